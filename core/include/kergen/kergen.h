@@ -1,0 +1,189 @@
+// kergen — exact kernel of a closed 3D polygon mesh.
+//
+// The kernel of a shape is the set of points that see every point of it; for a closed polygon mesh
+// it is the intersection of the inner half-spaces of all face planes (a convex set, empty when the
+// shape is not star-shaped). This library computes it with KerGen (Asiler & Sahillioglu, 2024):
+// one kernel vertex from Seidel's randomized LP, then additive tracing of kernel edges along the
+// lines where two face planes meet, until the boundary closes. Topology is decided by exact
+// (filtered) predicates; no tolerance depends on the mesh's scale.
+//
+// Conventions used by every function in this header:
+//   positions  flat xyz, double, `3 * num_vertices` values.
+//   indices    flat uint32 vertex indices of the faces, concatenated.
+//   face_sizes vertices per face; nullptr / empty = every face is a triangle.
+//   Faces are counter-clockwise seen from outside (outward normals). A mesh whose faces are all
+//   clockwise is accepted and flipped (reported as a warning).
+//   Output faces are convex polygons, counter-clockwise seen from outside the kernel.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace kergen {
+
+// ---------------------------------------------------------------------------------------------
+// Status values. User errors (bad input) are reported through these, never by exceptions or
+// crashes. The JS package exposes the same names in SCREAMING_SNAKE_CASE as `KergenError.code`.
+enum class Error : int {
+  Ok = 0,
+  EmptyInput,               // no vertices or no faces
+  NonFiniteCoordinate,      // NaN or infinity in positions
+  IndexOutOfRange,          // a face refers to a vertex that does not exist
+  FaceTooSmall,             // a face with fewer than 3 vertices
+  OpenMesh,                 // an edge used by one face only (a hole); see Options::allow_open
+  NonManifoldEdge,          // an edge used by more than two faces
+  InconsistentOrientation,  // two faces traverse a shared edge in the same direction
+  MultipleComponents,       // more than one connected piece (the kernel of such a shape is undefined)
+  DegenerateInput,          // encloses no volume (flat, or only zero-area faces)
+  TooLarge,                 // exceeds Options::max_faces / max_vertices
+  ParseError,               // a mesh file could not be read (io.h)
+  IoError,                  // a file could not be opened or written (io.h)
+  InvalidArgument,          // a programmer-supplied argument is malformed (sizes disagree, etc.)
+};
+
+// Shape of the kernel (meaningful when error == Error::Ok).
+enum class KernelType : int {
+  Empty = 0,   // not star-shaped
+  Point,       // one vertex
+  Segment,     // two vertices, one edge
+  Polygon,     // a flat convex polygon (one face, no volume)
+  Polyhedron,  // a closed convex polyhedron
+  Unbounded,   // only with allow_open: the half-spaces do not bound a region; the result is
+               // clipped to a large box around the mesh (box facets are reported as such)
+};
+
+const char* error_name(Error e);        // "OPEN_MESH", ...
+const char* kernel_type_name(KernelType t);  // "POLYHEDRON", ...
+
+// ---------------------------------------------------------------------------------------------
+// Input. A non-owning view; the arrays must outlive the call.
+struct MeshView {
+  const double* positions = nullptr;   // xyz, 3 * num_vertices
+  size_t num_vertices = 0;
+  const uint32_t* indices = nullptr;   // concatenated face loops
+  size_t num_indices = 0;
+  const uint32_t* face_sizes = nullptr;  // nullptr = triangles (num_indices / 3 faces)
+  size_t num_faces = 0;                  // used only when face_sizes != nullptr
+};
+
+// An owning mesh (what the readers in io.h return).
+struct Mesh {
+  std::vector<double> positions;     // xyz
+  std::vector<uint32_t> indices;     // concatenated face loops
+  std::vector<uint32_t> face_sizes;  // empty = all triangles
+  size_t num_vertices() const { return positions.size() / 3; }
+  size_t num_faces() const { return face_sizes.empty() ? indices.size() / 3 : face_sizes.size(); }
+  MeshView view() const;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Streaming. Events arrive in discovery order; every prefix describes a subset of the kernel's
+// boundary (each reported vertex is an exact kernel vertex, each edge a whole kernel edge).
+struct StepEvent {
+  enum class Kind : uint8_t { Vertex, Edge, Face };
+  Kind kind = Kind::Vertex;
+  uint32_t id = 0;                 // index into Kernel::vertices / edges / faces of the result
+  uint32_t a = 0, b = 0;           // Edge: endpoint vertex ids
+  std::array<double, 3> position{};  // Vertex: coordinates
+  const uint32_t* loop = nullptr;  // Face: vertex ids, CCW from outside (valid during the call)
+  uint32_t loop_size = 0;
+};
+// Return false to stop; the result then holds the partial kernel found so far (complete = false).
+using StepCallback = std::function<bool(const StepEvent&)>;
+
+struct Options {
+  // Start the trace at the kernel vertex extreme towards this point (seen from the mesh's centre)
+  // and expand the vertex nearest to it first, so the kernel grows around it.
+  bool has_from = false;
+  std::array<double, 3> from{};
+  StepCallback on_step;            // optional
+  uint64_t max_steps = 0;          // stop after this many events (0 = no limit)
+  bool allow_open = false;         // accept meshes with holes: result may be Unbounded
+  bool deepest_point = false;      // also compute the centre of the largest inscribed ball
+  uint64_t seed = 0x4b6572476e;    // LP constraint order (results do not depend on it)
+  size_t max_faces = 20'000'000;   // larger inputs get Error::TooLarge instead of exhausting memory
+  size_t max_vertices = 20'000'000;
+};
+
+struct Warning {
+  enum class Kind : int {
+    OrientationFlipped,    // faces were clockwise seen from outside; the mesh was flipped
+    DegenerateFacesDropped,  // zero-area faces (exactly collinear vertices) were ignored
+    NonPlanarFacesSplit,   // polygons whose vertices are not coplanar were fan-triangulated
+    UnusedVertices,        // vertices not referenced by any face
+  };
+  Kind kind;
+  size_t count;
+  std::string message;
+};
+
+struct Stats {
+  size_t input_vertices = 0;
+  size_t input_faces = 0;
+  size_t dropped_faces = 0;        // zero-area faces
+  size_t distinct_planes = 0;      // after merging coplanar faces (a plane used from both sides counts twice)
+  size_t active_planes = 0;        // planes left after culling (those that can touch the kernel)
+  size_t traced_lines = 0;
+  size_t exact_fallbacks = 0;      // predicate evaluations the floating-point filter could not decide
+  double ms_validate = 0, ms_planes = 0, ms_lp = 0, ms_trace = 0, ms_assemble = 0, ms_total = 0;
+};
+
+struct Kernel {
+  Error error = Error::Ok;
+  std::string message;             // human-readable reason when error != Ok
+  KernelType type = KernelType::Empty;
+  bool complete = true;            // false when stopped early by on_step / max_steps
+
+  std::vector<double> vertices;    // xyz, 3 * V
+  std::vector<uint32_t> edges;     // vertex id pairs, 2 * E
+  std::vector<uint32_t> face_indices;  // concatenated convex polygon loops, CCW from outside
+  std::vector<uint32_t> face_sizes;    // one per face
+  std::vector<uint32_t> triangles;     // the faces fan-triangulated, 3 * T (ready for rendering)
+
+  double volume = 0;               // kernel volume (0 unless Polyhedron and complete)
+  double area = 0;                 // kernel surface area (Polygon: the polygon's area)
+  double shape_volume = 0;         // volume enclosed by the input mesh
+  double volume_ratio = 0;         // volume / shape_volume
+
+  bool has_kernel_point = false;   // the LP vertex (a kernel vertex); false when Empty
+  std::array<double, 3> kernel_point{};
+  bool has_deepest_point = false;  // with Options::deepest_point and a full-dimensional kernel
+  std::array<double, 3> deepest_point{};
+  double inscribed_radius = 0;
+
+  std::vector<Warning> warnings;
+  Stats stats;
+
+  size_t num_vertices() const { return vertices.size() / 3; }
+  size_t num_edges() const { return edges.size() / 2; }
+  size_t num_faces() const { return face_sizes.size(); }
+  bool ok() const { return error == Error::Ok; }
+};
+
+// Computes the kernel. Never throws for bad input: check `error` / `message`.
+Kernel compute_kernel(const MeshView& mesh, const Options& options = {});
+
+// Emptiness test and one kernel point: validation + planes + one LP (expected O(N)).
+struct KernelPoint {
+  Error error = Error::Ok;
+  std::string message;
+  bool star_shaped = false;        // kernel non-empty
+  std::array<double, 3> point{};   // a kernel vertex (when star_shaped)
+  std::vector<Warning> warnings;
+};
+KernelPoint find_kernel_point(const MeshView& mesh, const Options& options = {});
+
+// Validation only (what compute_kernel checks first).
+struct Validation {
+  Error error = Error::Ok;
+  std::string message;
+  std::vector<Warning> warnings;
+  double volume = 0;               // enclosed volume after any orientation fix
+};
+Validation validate_mesh(const MeshView& mesh, const Options& options = {});
+
+}  // namespace kergen

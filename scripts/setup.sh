@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Idempotent set-up for a fresh Debian (bookworm) machine, run as root (or with sudo available):
+# system packages for the native build, tests, wasm build and browser tests, then npm packages.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+need=()
+for p in build-essential cmake clang libgtest-dev libbenchmark-dev libcgal-dev libgmp-dev libmpfr-dev \
+         emscripten chromium nodejs npm valgrind; do
+  dpkg -s "$p" >/dev/null 2>&1 || need+=("$p")
+done
+if [ ${#need[@]} -gt 0 ]; then
+  echo "setup: installing ${need[*]}"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need[@]}" >/dev/null
+fi
+
+if [ -f package-lock.json ]; then
+  if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
+    echo "setup: npm ci"
+    npm ci --no-audit --no-fund --loglevel=error
+  fi
+fi
+echo "setup: ok"
