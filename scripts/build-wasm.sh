@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# WebAssembly build of the core + embind bindings → dist/kergen.mjs + dist/kergen.wasm
+# (the files the npm package `kergen-wasm` ships; dist/ is gitignored).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+# Debian's emscripten needs its acorn from here for every optimized link (see ../shared/TOOLCHAIN.md).
+export NODE_PATH=/usr/share/nodejs
+command -v emcmake >/dev/null || { echo "build-wasm: emcmake not found (apt-get install emscripten, or bash scripts/setup.sh)" >&2; exit 1; }
+emcmake cmake -S . -B build-wasm -DCMAKE_BUILD_TYPE=Release ${KERGEN_WASM_CMAKE_ARGS:-} >/dev/null
+cmake --build build-wasm -j2
+mkdir -p dist
+cp build-wasm/wasm/kergen.mjs build-wasm/wasm/kergen.wasm dist/
+raw=$(stat -c %s dist/kergen.wasm)
+gz=$(gzip -9 -c dist/kergen.wasm | wc -c)
+echo "build-wasm: dist/kergen.mjs ($(stat -c %s dist/kergen.mjs) B), dist/kergen.wasm ($raw B raw, $gz B gzip -9)"

@@ -1,0 +1,96 @@
+// Type-level usage example: `npx tsc -p tests/types` must pass with --strict (checks index.d.ts
+// and worker.d.ts as a package consumer sees them, through the package's "exports" map).
+import {
+  init,
+  computeKernel,
+  computeKernelSync,
+  findKernelPoint,
+  isStarShaped,
+  memoryStats,
+  KergenError,
+  type KernelResult,
+  type StepEvent,
+  type Vec3,
+} from 'kergen-wasm';
+import { KernelWorker, type ProgressEvent } from 'kergen-wasm/worker';
+
+const positions = new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]);
+const indices = new Uint32Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]);
+
+async function main(): Promise<void> {
+  await init({ wasmUrl: new URL('https://example.invalid/kergen.wasm') });
+  await init({ wasmBinary: new Uint8Array(8) });
+
+  const seen: Vec3[] = [];
+  const result: KernelResult = await computeKernel(positions, indices, {
+    from: [0.1, 0.1, 0.1],
+    maxSteps: 1000,
+    deepestPoint: true,
+    onStep(event: StepEvent) {
+      switch (event.type) {
+        case 'vertex':
+          seen.push(event.position);
+          break;
+        case 'edge':
+          return event.a !== event.b;
+        case 'face': {
+          const n: number = event.loop.length;
+          return n >= 3;
+        }
+      }
+      return undefined;
+    },
+  });
+  const status: 'EMPTY' | 'POINT' | 'SEGMENT' | 'POLYGON' | 'POLYHEDRON' | 'UNBOUNDED' = result.status;
+  const tri: Uint32Array = result.triangles;
+  const verts: Float64Array = result.vertices;
+  const firstFace: Uint32Array | undefined = result.faces[0];
+  const p: Vec3 | null = result.deepestPoint;
+  const total: number = result.stats.msTotal + result.volume + result.volumeRatio;
+  const kinds: string[] = result.warnings.map((w) => `${w.kind} x${w.count}: ${w.message}`);
+  void [status, tri, verts, firstFace, p, total, kinds];
+
+  const sync = computeKernelSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2], { allowOpen: true, faceSizes: [3] });
+  const complete: boolean = sync.complete;
+  const kp = await findKernelPoint(positions, indices, { from: [0, 0, 0] });
+  if (kp.starShaped && kp.point) {
+    const [x, y, z] = kp.point;
+    void (x + y + z);
+  }
+  const star: boolean = await isStarShaped(positions, indices);
+  const heap: number = memoryStats().heapUsed + memoryStats().heapSize;
+  void [complete, star, heap];
+
+  try {
+    await computeKernel([NaN], [0]);
+  } catch (err) {
+    if (err instanceof KergenError) {
+      const code: string = err.code;
+      const message: string = err.message;
+      void [code, message];
+    }
+  }
+
+  const worker = new KernelWorker({ wasmUrl: '/assets/kergen.wasm' });
+  const fromWorker: KernelResult = await worker.compute(positions, indices, {
+    copy: true,
+    onStep: (e) => e.type !== 'face',
+    onProgress: (pr: ProgressEvent) => {
+      const phase: 'loading' | 'computing' | 'tracing' | 'done' = pr.phase;
+      void [phase, pr.steps];
+    },
+  });
+  void fromWorker.edges;
+  worker.cancel();
+  worker.dispose();
+}
+
+// @ts-expect-error: positions must be numbers
+void computeKernel(['a'], [0]);
+// @ts-expect-error: from is a 3-tuple
+void computeKernel(positions, indices, { from: [1, 2] });
+// @ts-expect-error: statuses are a closed set
+const bad: KernelResult['status'] = 'CONCAVE';
+void bad;
+
+void main;

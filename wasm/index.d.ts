@@ -1,0 +1,180 @@
+// Type declarations for `kergen-wasm` (hand-written; checked by `tsc --noEmit --strict`
+// against tests/types/usage.ts).
+
+/** A point or direction `[x, y, z]`. */
+export type Vec3 = [number, number, number];
+
+/** Vertex coordinates, flat `x, y, z` per vertex. */
+export type PositionsInput = Float32Array | Float64Array | number[];
+
+/** Vertex indices of the faces, concatenated (triangles unless `faceSizes` is given). */
+export type IndicesInput = Uint32Array | Uint16Array | Int32Array | number[];
+
+/** Shape of the kernel. */
+export type KernelStatus = 'EMPTY' | 'POINT' | 'SEGMENT' | 'POLYGON' | 'POLYHEDRON' | 'UNBOUNDED';
+
+/** `KergenError.code` values coming from the C++ core (`kergen::Error`). */
+export type CoreErrorCode =
+  | 'EMPTY_INPUT'
+  | 'NON_FINITE_COORDINATE'
+  | 'INDEX_OUT_OF_RANGE'
+  | 'FACE_TOO_SMALL'
+  | 'OPEN_MESH'
+  | 'NON_MANIFOLD_EDGE'
+  | 'INCONSISTENT_ORIENTATION'
+  | 'MULTIPLE_COMPONENTS'
+  | 'DEGENERATE_INPUT'
+  | 'TOO_LARGE'
+  | 'INVALID_ARGUMENT';
+
+/** Every `KergenError.code` this package produces. */
+export type KergenErrorCode =
+  | CoreErrorCode
+  /** init() could not fetch, read or compile kergen.wasm. */
+  | 'WASM_LOAD_FAILED'
+  /** A *Sync function was called before init() finished. */
+  | 'NOT_INITIALIZED'
+  /** The 4 GB wasm heap was exhausted. */
+  | 'OUT_OF_MEMORY'
+  /** An unexpected failure inside the module (a bug: please report it). */
+  | 'INTERNAL_ERROR'
+  /** KernelWorker: cancel(), dispose(), or onStep returned false. */
+  | 'CANCELLED'
+  /** KernelWorker: compute() after dispose(). */
+  | 'DISPOSED'
+  /** KernelWorker: the worker script or the module could not start, or crashed. */
+  | 'WORKER_ERROR';
+
+/** The error thrown (or rejected with) by every function of this package. */
+export class KergenError extends Error {
+  constructor(code: KergenErrorCode | string, message: string, options?: { cause?: unknown });
+  readonly name: 'KergenError';
+  /** What went wrong, e.g. 'OPEN_MESH', 'NON_MANIFOLD_EDGE', 'INVALID_ARGUMENT'. */
+  code: KergenErrorCode | string;
+}
+
+export interface InitOptions {
+  /** Where to load kergen.wasm from (default: next to the module, found by the bundler). */
+  wasmUrl?: string | URL;
+  /** The bytes of kergen.wasm (then nothing is fetched). */
+  wasmBinary?: ArrayBuffer | Uint8Array;
+}
+
+/** A step of the trace, in discovery order; ids index the final result's arrays. */
+export type StepEvent =
+  | { type: 'vertex'; id: number; position: Vec3 }
+  | { type: 'edge'; id: number; a: number; b: number }
+  | { type: 'face'; id: number; loop: number[] };
+
+export interface KernelOptions {
+  /** Grow the kernel from the kernel vertex extreme towards this point. */
+  from?: Vec3;
+  /** Called once per discovered vertex / edge / face; return `false` to stop (result: complete = false). */
+  onStep?: (event: StepEvent) => void | boolean;
+  /** Stop after this many step events (0 or absent: no limit). */
+  maxSteps?: number;
+  /** Accept meshes with holes; the result may then be 'UNBOUNDED'. */
+  allowOpen?: boolean;
+  /** Also compute the centre of the largest inscribed ball (`deepestPoint`, `inscribedRadius`). */
+  deepestPoint?: boolean;
+  /** Vertices per face, for polygon input (default: every face is a triangle). */
+  faceSizes?: Uint32Array | number[];
+}
+
+export interface KernelWarning {
+  /** 'ORIENTATION_FLIPPED' | 'DEGENERATE_FACES_DROPPED' | 'NON_PLANAR_FACES_SPLIT' | 'UNUSED_VERTICES' */
+  kind: string;
+  count: number;
+  message: string;
+}
+
+export interface KernelStats {
+  inputVertices: number;
+  inputFaces: number;
+  /** Zero-area faces ignored. */
+  droppedFaces: number;
+  /** Face planes after merging coplanar faces. */
+  distinctPlanes: number;
+  /** Planes left after culling those that cannot touch the kernel. */
+  activePlanes: number;
+  tracedLines: number;
+  /** Predicate evaluations the floating-point filter could not decide. */
+  exactFallbacks: number;
+  msValidate: number;
+  msPlanes: number;
+  msLp: number;
+  msTrace: number;
+  msAssemble: number;
+  msTotal: number;
+}
+
+export interface KernelResult {
+  status: KernelStatus;
+  /** false when stopped early by onStep / maxSteps (the result is then the partial kernel). */
+  complete: boolean;
+  /** Kernel vertices, flat x, y, z. */
+  vertices: Float64Array;
+  /** Kernel edges, pairs of vertex ids. */
+  edges: Uint32Array;
+  /** Convex polygon faces (vertex id loops, counter-clockwise seen from outside the kernel). */
+  faces: Uint32Array[];
+  /** The same loops concatenated (`faces[i]` are views into this array). */
+  faceIndices: Uint32Array;
+  /** Vertices per face. */
+  faceSizes: Uint32Array;
+  /** The faces fan-triangulated, 3 vertex ids per triangle (three.js BufferGeometry index). */
+  triangles: Uint32Array;
+  /** Kernel volume (0 unless 'POLYHEDRON' and complete). */
+  volume: number;
+  /** Kernel surface area ('POLYGON': the polygon's area). */
+  area: number;
+  /** Volume enclosed by the input mesh. */
+  shapeVolume: number;
+  /** volume / shapeVolume. */
+  volumeRatio: number;
+  /** A kernel vertex (null when 'EMPTY'). */
+  kernelPoint: Vec3 | null;
+  /** Centre of the largest inscribed ball (with options.deepestPoint and a full-dimensional kernel). */
+  deepestPoint: Vec3 | null;
+  inscribedRadius: number;
+  warnings: KernelWarning[];
+  stats: KernelStats;
+}
+
+export interface KernelPointResult {
+  /** The kernel is non-empty. */
+  starShaped: boolean;
+  /** A kernel vertex, or null when not star-shaped. */
+  point: Vec3 | null;
+  warnings: KernelWarning[];
+}
+
+export type KernelPointOptions = Pick<KernelOptions, 'from' | 'allowOpen' | 'faceSizes'>;
+
+export interface MemoryStats {
+  /** Bytes of WebAssembly memory (grows, never shrinks). */
+  heapSize: number;
+  /** Bytes currently allocated by the C++ side. */
+  heapUsed: number;
+}
+
+/** Loads the module (idempotent; the async functions call it for you). */
+export function init(options?: InitOptions): Promise<void>;
+/** True once init() has finished. */
+export function isInitialized(): boolean;
+
+/** Computes the kernel of a closed mesh. */
+export function computeKernel(positions: PositionsInput, indices: IndicesInput, options?: KernelOptions): Promise<KernelResult>;
+/** Synchronous computeKernel; requires a finished init(). */
+export function computeKernelSync(positions: PositionsInput, indices: IndicesInput, options?: KernelOptions): KernelResult;
+
+/** Star-shapedness and one kernel point, without tracing the kernel (expected O(n)). */
+export function findKernelPoint(positions: PositionsInput, indices: IndicesInput, options?: KernelPointOptions): Promise<KernelPointResult>;
+/** Synchronous findKernelPoint; requires a finished init(). */
+export function findKernelPointSync(positions: PositionsInput, indices: IndicesInput, options?: KernelPointOptions): KernelPointResult;
+
+/** True when the kernel is non-empty. */
+export function isStarShaped(positions: PositionsInput, indices: IndicesInput, options?: KernelPointOptions): Promise<boolean>;
+
+/** Wasm heap figures (requires a finished init()). */
+export function memoryStats(): MemoryStats;

@@ -1,0 +1,2 @@
+// The worker script spawned by KernelWorker; it exports nothing.
+export {};

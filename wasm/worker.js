@@ -1,0 +1,191 @@
+// kergen-wasm/worker — run kernel computations off the main thread.
+//
+//   import { KernelWorker } from 'kergen-wasm/worker';
+//   const kw = new KernelWorker();
+//   const result = await kw.compute(positions, indices, { onStep, onProgress });
+//   kw.cancel();   // stop the running computation (its promise rejects with code 'CANCELLED')
+//   kw.dispose();  // terminate for good
+//
+// The input typed arrays are *transferred* to the worker (their buffers become detached in the
+// caller) unless `{ copy: true }` is passed. Step events arrive in batches (every ~16 ms or 256
+// events) and are replayed in order through onStep on the main thread.
+import { KergenError } from './errors.js';
+
+function toTransferable(arr, copy, transfer) {
+  if (arr == null) return arr;
+  if (!ArrayBuffer.isView(arr)) return arr; // plain arrays are structured-cloned
+  const whole = arr.byteOffset === 0 && arr.byteLength === arr.buffer.byteLength;
+  const shared = typeof SharedArrayBuffer !== 'undefined' && arr.buffer instanceof SharedArrayBuffer;
+  if (copy || !whole || shared) return arr.slice(); // never detach a buffer we do not fully own
+  transfer.push(arr.buffer);
+  return arr;
+}
+
+function resolveUrl(url) {
+  if (url == null) return undefined;
+  const base = typeof location !== 'undefined' && location ? location.href : undefined;
+  try {
+    return new URL(String(url), base).href;
+  } catch {
+    return String(url);
+  }
+}
+
+function rebuildResult(r) {
+  const faces = new Array(r.faceSizes.length);
+  for (let f = 0, at = 0; f < r.faceSizes.length; f++) {
+    faces[f] = r.faceIndices.subarray(at, at + r.faceSizes[f]);
+    at += r.faceSizes[f];
+  }
+  return { ...r, faces };
+}
+
+export class KernelWorker {
+  /** @param {{ wasmUrl?: string | URL }} [options] */
+  constructor(options = {}) {
+    this._wasmUrl = resolveUrl(options && options.wasmUrl);
+    this._jobs = new Map();
+    this._nextId = 1;
+    this._disposed = false;
+    this._spawn();
+  }
+
+  _spawn() {
+    const worker = new Worker(new URL('./kergen-worker.js', import.meta.url), { type: 'module' });
+    worker.onmessage = (e) => this._onMessage(e.data);
+    worker.onerror = (e) => {
+      if (e && typeof e.preventDefault === 'function') e.preventDefault();
+      const message = e && e.message ? e.message : 'the kergen worker failed to start or crashed';
+      this._failAll(new KergenError('WORKER_ERROR', message));
+      this._restart();
+    };
+    worker.postMessage({ type: 'init', wasmUrl: this._wasmUrl });
+    this._worker = worker;
+  }
+
+  _restart() {
+    if (this._worker) this._worker.terminate();
+    this._worker = null;
+    if (!this._disposed) this._spawn();
+  }
+
+  _failAll(error) {
+    const jobs = [...this._jobs.values()];
+    this._jobs.clear();
+    for (const job of jobs) job.reject(error);
+  }
+
+  _onMessage(msg) {
+    const job = this._jobs.get(msg && msg.id);
+    if (!job) return; // a message from a job that was cancelled
+    switch (msg.type) {
+      case 'steps':
+        if (job.onStep) {
+          for (const event of msg.events) {
+            let keepGoing;
+            try {
+              keepGoing = job.onStep(event);
+            } catch (err) {
+              this._abort(job, err);
+              return;
+            }
+            if (keepGoing === false) {
+              this._abort(job, new KergenError('CANCELLED', 'stopped by onStep returning false'));
+              return;
+            }
+          }
+        }
+        break;
+      case 'progress':
+        if (job.onProgress) {
+          try {
+            job.onProgress({ phase: msg.phase, steps: msg.steps });
+          } catch (err) {
+            this._abort(job, err);
+          }
+        }
+        break;
+      case 'result':
+        this._jobs.delete(job.id);
+        job.resolve(rebuildResult(msg.result));
+        break;
+      case 'error':
+        this._jobs.delete(job.id);
+        job.reject(new KergenError(msg.code, msg.message));
+        break;
+      default:
+        break;
+    }
+  }
+
+  // The worker is busy inside a synchronous wasm call and cannot be interrupted: terminate it,
+  // reject this job and every queued one, and start a fresh worker.
+  _abort(job, error) {
+    this._jobs.delete(job.id);
+    job.reject(error);
+    this._failAll(new KergenError('CANCELLED', 'cancelled together with a running computation'));
+    this._restart();
+  }
+
+  /**
+   * Computes the kernel in the worker. Options as computeKernel, plus onProgress({ phase, steps })
+   * and copy (keep the caller's input arrays usable instead of transferring their buffers).
+   * onStep's return value `false` cancels the computation (the promise rejects with 'CANCELLED').
+   */
+  compute(positions, indices, options = {}) {
+    if (this._disposed) return Promise.reject(new KergenError('DISPOSED', 'this KernelWorker was disposed'));
+    options = options || {};
+    const { onStep, onProgress, copy, faceSizes, ...rest } = options;
+    if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'compute: options.onStep must be a function'));
+    if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'compute: options.onProgress must be a function'));
+    const plain = {};
+    for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint']) if (rest[key] !== undefined) plain[key] = rest[key];
+    if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
+
+    const transfer = [];
+    let message;
+    try {
+      message = {
+        type: 'compute',
+        id: this._nextId++,
+        wasmUrl: this._wasmUrl,
+        positions: toTransferable(positions, copy, transfer),
+        indices: toTransferable(indices, copy, transfer),
+        faceSizes: toTransferable(faceSizes, copy, transfer),
+        options: plain,
+        wantSteps: typeof onStep === 'function',
+      };
+    } catch (err) {
+      return Promise.reject(new KergenError('INVALID_ARGUMENT', `compute: ${err.message}`));
+    }
+    return new Promise((resolve, reject) => {
+      const job = { id: message.id, resolve, reject, onStep, onProgress };
+      this._jobs.set(job.id, job);
+      try {
+        this._worker.postMessage(message, [...new Set(transfer)]);
+      } catch (err) {
+        this._jobs.delete(job.id);
+        reject(new KergenError('INVALID_ARGUMENT', `compute: the input could not be sent to the worker: ${err.message}`));
+      }
+    });
+  }
+
+  /** Cancels every running or queued computation (they reject with code 'CANCELLED'). */
+  cancel() {
+    if (this._disposed) return;
+    const hadJobs = this._jobs.size > 0;
+    this._failAll(new KergenError('CANCELLED', 'cancelled'));
+    if (hadJobs) this._restart();
+  }
+
+  /** Terminates the worker; pending computations reject with code 'CANCELLED'. */
+  dispose() {
+    if (this._disposed) return;
+    this._disposed = true;
+    this._failAll(new KergenError('CANCELLED', 'the KernelWorker was disposed'));
+    if (this._worker) this._worker.terminate();
+    this._worker = null;
+  }
+}
+
+export { KergenError };
