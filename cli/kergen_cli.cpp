@@ -1,0 +1,356 @@
+// kergen — command-line front end: computes the kernel of one or many mesh files.
+//
+//   kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open] [--deepest]
+//                  [--max-steps N]
+//
+// Exit code: 0 when every mesh was processed (an empty kernel is a result, not an error), 1 when
+// some mesh could not be read or was rejected by validation, 2 for a usage error.
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "kergen/io.h"
+#include "kergen/kergen.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kUsage =
+    "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
+    "                      [--deepest] [--max-steps N]\n"
+    "\n"
+    "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
+    "  MESH            a .off, .obj or .stl file, or a folder (its mesh files, sorted)\n"
+    "  -o OUT          write the kernel as OBJ, OFF or binary STL (one mesh only)\n"
+    "  --json          one JSON object per mesh on stdout\n"
+    "  --from x,y,z    grow the kernel from the vertex nearest to this direction\n"
+    "  --allow-open    accept meshes with holes (the kernel may be unbounded, then clipped)\n"
+    "  --deepest       also compute the centre and radius of the largest inscribed ball\n"
+    "  --max-steps N   stop after N trace events (the result is then partial)\n"
+    "Exit code: 0 all meshes processed, 1 some mesh had an input error, 2 usage error.\n";
+
+struct Arguments {
+  std::vector<std::string> inputs;
+  std::string output;
+  bool json = false;
+  kergen::Options options;
+};
+
+[[noreturn]] void usage_error(const std::string& reason) {
+  std::fprintf(stderr, "kergen: %s\n\n%s", reason.c_str(), kUsage);
+  std::exit(2);
+}
+
+bool parse_number(const std::string& text, double& out) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size() && std::isfinite(out);
+}
+
+Arguments parse_arguments(int argc, char** argv) {
+  Arguments args;
+  bool only_paths = false;  // after "--"
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage_error(arg + " needs a value");
+      return argv[++i];
+    };
+    if (only_paths || arg.empty() || arg[0] != '-' || arg == "-") {
+      args.inputs.push_back(arg);
+    } else if (arg == "--") {
+      only_paths = true;
+    } else if (arg == "-h" || arg == "--help") {
+      std::fputs(kUsage, stdout);
+      std::exit(0);
+    } else if (arg == "-o" || arg == "--output") {
+      args.output = value();
+      if (kergen::format_from_path(args.output) == kergen::MeshFormat::Unknown)
+        usage_error("output '" + args.output + "' must end in .obj, .off or .stl");
+    } else if (arg == "--json") {
+      args.json = true;
+    } else if (arg == "--allow-open") {
+      args.options.allow_open = true;
+    } else if (arg == "--deepest") {
+      args.options.deepest_point = true;
+    } else if (arg == "--from") {
+      const std::string text = value();
+      std::vector<std::string> parts(1);
+      for (char c : text) {
+        if (c == ',') parts.emplace_back();
+        else parts.back() += c;
+      }
+      if (parts.size() != 3) usage_error("--from needs x,y,z, got '" + text + "'");
+      for (int k = 0; k < 3; ++k)
+        if (!parse_number(parts[k], args.options.from[k])) usage_error("--from needs x,y,z, got '" + text + "'");
+      args.options.has_from = true;
+    } else if (arg == "--max-steps") {
+      const std::string text = value();
+      char* end = nullptr;
+      errno = 0;
+      const unsigned long long steps = std::strtoull(text.c_str(), &end, 10);
+      if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE)
+        usage_error("--max-steps needs a non-negative integer, got '" + text + "'");
+      args.options.max_steps = steps;
+    } else {
+      usage_error("unknown option '" + arg + "'");
+    }
+  }
+  if (args.inputs.empty()) usage_error("no mesh given");
+  return args;
+}
+
+bool is_mesh_file_name(const fs::path& path) {
+  return kergen::format_from_path(path.string()) != kergen::MeshFormat::Unknown;
+}
+
+// A folder contributes its mesh files (not recursively), sorted by name; anything else is taken as
+// a file path, so a missing file is reported by the reader like any other unreadable input.
+std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, std::vector<std::string>& problems) {
+  std::vector<std::string> files;
+  for (const std::string& input : inputs) {
+    std::error_code ec;
+    if (!fs::is_directory(input, ec)) {
+      files.push_back(input);
+      continue;
+    }
+    std::vector<std::string> found;
+    for (fs::directory_iterator it(input, ec), end; !ec && it != end; it.increment(ec)) {
+      std::error_code type_ec;
+      if (it->is_regular_file(type_ec) && is_mesh_file_name(it->path())) found.push_back(it->path().string());
+    }
+    if (ec) problems.push_back(input + ": cannot list folder: " + ec.message());
+    else if (found.empty()) problems.push_back(input + ": folder has no .off, .obj or .stl file");
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  return files;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output.
+
+const char* warning_kind_name(kergen::Warning::Kind kind) {
+  switch (kind) {
+    case kergen::Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
+    case kergen::Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
+    case kergen::Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
+    case kergen::Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
+  }
+  return "UNKNOWN";
+}
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (c < 0x20 || c == 0x7f) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += static_cast<char>(c);  // UTF-8 passes through (file names may be non-ASCII)
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// %.17g round-trips; JSON has no NaN or infinity, so those become null.
+std::string json_number(double value) {
+  if (!std::isfinite(value)) return "null";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return buf;
+}
+
+std::string json_point(bool present, const std::array<double, 3>& p) {
+  if (!present) return "null";
+  return "[" + json_number(p[0]) + "," + json_number(p[1]) + "," + json_number(p[2]) + "]";
+}
+
+struct MeshOutcome {
+  std::string file;
+  bool read_ok = false;
+  kergen::Error error = kergen::Error::Ok;
+  std::string message;
+  kergen::Kernel kernel;  // meaningful when read_ok
+  double ms_parse = 0;
+  double ms_total = 0;    // parse + kernel
+  bool ok() const { return error == kergen::Error::Ok; }
+};
+
+std::string json_line(const MeshOutcome& m) {
+  const kergen::Kernel& k = m.kernel;
+  const bool computed = m.ok();
+  std::string s = "{";
+  s += "\"file\":" + json_string(m.file);
+  s += ",\"ok\":" + std::string(computed ? "true" : "false");
+  s += ",\"error\":" + (computed ? std::string("null") : json_string(kergen::error_name(m.error)));
+  s += ",\"message\":" + json_string(m.message);
+  s += ",\"status\":" + (computed ? json_string(kergen::kernel_type_name(k.type)) : std::string("null"));
+  s += ",\"complete\":" + (computed ? std::string(k.complete ? "true" : "false") : std::string("null"));
+  auto count = [&](size_t n) { return computed ? std::to_string(n) : std::string("null"); };
+  auto number = [&](double x) { return computed ? json_number(x) : std::string("null"); };
+  s += ",\"vertices\":" + count(k.num_vertices());
+  s += ",\"edges\":" + count(k.num_edges());
+  s += ",\"faces\":" + count(k.num_faces());
+  s += ",\"volume\":" + number(k.volume);
+  s += ",\"area\":" + number(k.area);
+  s += ",\"shape_volume\":" + number(k.shape_volume);
+  s += ",\"volume_ratio\":" + number(k.volume_ratio);
+  s += ",\"kernel_point\":" + json_point(computed && k.has_kernel_point, k.kernel_point);
+  s += ",\"deepest_point\":" + json_point(computed && k.has_deepest_point, k.deepest_point);
+  s += ",\"inscribed_radius\":" + (computed && k.has_deepest_point ? json_number(k.inscribed_radius) : "null");
+  s += ",\"warnings\":[";
+  for (size_t i = 0; i < k.warnings.size(); ++i) {
+    const kergen::Warning& w = k.warnings[i];
+    if (i) s += ",";
+    s += "{\"kind\":" + json_string(warning_kind_name(w.kind)) + ",\"count\":" + std::to_string(w.count) +
+         ",\"message\":" + json_string(w.message) + "}";
+  }
+  s += "]";
+  const kergen::Stats& st = k.stats;
+  s += ",\"stats\":{";
+  s += "\"input_faces\":" + std::to_string(st.input_faces);
+  s += ",\"distinct_planes\":" + std::to_string(st.distinct_planes);
+  s += ",\"active_planes\":" + std::to_string(st.active_planes);
+  s += ",\"traced_lines\":" + std::to_string(st.traced_lines);
+  s += ",\"exact_fallbacks\":" + std::to_string(st.exact_fallbacks);
+  s += ",\"ms_parse\":" + json_number(m.ms_parse);
+  s += ",\"ms_validate\":" + json_number(st.ms_validate);
+  s += ",\"ms_planes\":" + json_number(st.ms_planes);
+  s += ",\"ms_lp\":" + json_number(st.ms_lp);
+  s += ",\"ms_trace\":" + json_number(st.ms_trace);
+  s += ",\"ms_assemble\":" + json_number(st.ms_assemble);
+  s += ",\"ms_total\":" + json_number(m.ms_total);
+  s += "}}";
+  return s;
+}
+
+void print_human(const MeshOutcome& m) {
+  const kergen::Kernel& k = m.kernel;
+  std::printf("%s\n", m.file.c_str());
+  std::printf("  status      %s%s\n", kergen::kernel_type_name(k.type), k.complete ? "" : " (partial: stopped early)");
+  std::printf("  kernel      V %zu  E %zu  F %zu\n", k.num_vertices(), k.num_edges(), k.num_faces());
+  std::printf("  volume      %.10g  (shape %.10g, ratio %.6g)\n", k.volume, k.shape_volume, k.volume_ratio);
+  std::printf("  area        %.10g\n", k.area);
+  if (k.has_kernel_point)
+    std::printf("  point       %.10g %.10g %.10g\n", k.kernel_point[0], k.kernel_point[1], k.kernel_point[2]);
+  if (k.has_deepest_point)
+    std::printf("  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],
+                k.deepest_point[2], k.inscribed_radius);
+  for (const kergen::Warning& w : k.warnings)
+    std::printf("  warning     %s (%zu): %s\n", warning_kind_name(w.kind), w.count, w.message.c_str());
+  const kergen::Stats& st = k.stats;
+  std::printf("  planes      %zu faces, %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
+              st.input_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);
+  std::printf("  time        %.3f ms (parse %.3f, validate %.3f, planes %.3f, lp %.3f, trace %.3f, assemble %.3f)\n",
+              m.ms_total, m.ms_parse, st.ms_validate, st.ms_planes, st.ms_lp, st.ms_trace, st.ms_assemble);
+}
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+MeshOutcome process(const std::string& file, const Arguments& args) {
+  MeshOutcome m;
+  m.file = file;
+  const auto start = std::chrono::steady_clock::now();
+  kergen::ReadResult read = kergen::read_mesh_file(file);
+  m.ms_parse = milliseconds_since(start);
+  if (!read.ok()) {
+    m.error = read.error;
+    m.message = read.message;
+    m.ms_total = m.ms_parse;
+    return m;
+  }
+  m.read_ok = true;
+  m.kernel = kergen::compute_kernel(read.mesh.view(), args.options);
+  m.ms_total = milliseconds_since(start);
+  m.error = m.kernel.error;
+  m.message = m.kernel.message;
+  if (m.ok() && !args.output.empty()) {
+    std::string write_message;
+    if (kergen::write_mesh_file(args.output, kergen::kernel_mesh(m.kernel), &write_message) != kergen::Error::Ok) {
+      m.error = kergen::Error::IoError;
+      m.message = write_message;
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Arguments args = parse_arguments(argc, argv);
+  std::vector<std::string> problems;
+  const std::vector<std::string> files = expand_inputs(args.inputs, problems);
+  if (!args.output.empty() && (files.size() != 1 || !problems.empty()))
+    usage_error("-o needs exactly one mesh (got " + std::to_string(files.size()) + ")");
+  for (const std::string& problem : problems) std::fprintf(stderr, "kergen: %s\n", problem.c_str());
+
+  const bool batch = files.size() > 1;
+  const auto start = std::chrono::steady_clock::now();
+  std::map<std::string, size_t> statuses, errors;
+  size_t failed = 0;
+  for (size_t i = 0; i < files.size(); ++i) {
+    if (batch) {
+      std::fprintf(stderr, "[%zu/%zu] %s ...\n", i + 1, files.size(), files[i].c_str());
+      std::fflush(stderr);
+    }
+    const MeshOutcome m = process(files[i], args);
+    if (m.ok()) {
+      ++statuses[kergen::kernel_type_name(m.kernel.type)];
+    } else {
+      ++failed;
+      ++errors[kergen::error_name(m.error)];
+    }
+    if (args.json) {
+      std::printf("%s\n", json_line(m).c_str());
+    } else if (m.ok()) {
+      print_human(m);
+    } else {
+      // Reader messages already start with the file name; kernel messages do not.
+      const bool named = m.message.compare(0, m.file.size(), m.file) == 0;
+      std::fprintf(stderr, "kergen: %s%s%s\n", named ? "" : m.file.c_str(), named ? "" : ": ", m.message.c_str());
+    }
+    std::fflush(stdout);
+  }
+
+  if (batch) {
+    std::string summary = "kergen: " + std::to_string(files.size()) + " meshes in ";
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f s", milliseconds_since(start) / 1000);
+    summary += seconds;
+    summary += ": " + std::to_string(files.size() - failed) + " ok";
+    std::string detail;
+    for (const auto& [name, n] : statuses) detail += (detail.empty() ? "" : ", ") + name + " " + std::to_string(n);
+    if (!detail.empty()) summary += " (" + detail + ")";
+    summary += ", " + std::to_string(failed) + " failed";
+    detail.clear();
+    for (const auto& [name, n] : errors) detail += (detail.empty() ? "" : ", ") + name + " " + std::to_string(n);
+    if (!detail.empty()) summary += " (" + detail + ")";
+    std::fprintf(stderr, "%s\n", summary.c_str());
+  }
+  return failed > 0 || !problems.empty() ? 1 : 0;
+}

@@ -1,0 +1,1000 @@
+// io.cpp — mesh files in and out: OFF, OBJ and STL readers, OBJ/OFF/STL writers, Mesh::view and
+// kernel_mesh.
+//
+// The readers are strict: a malformed number, an index out of range or a truncated file is a
+// ParseError naming the file and the line (text) or byte offset (binary STL), never a silently
+// repaired mesh. Geometric problems of a well-formed file (holes, degenerate faces, ...) are left to
+// the core's validation. No reader trusts a count from a header before checking it against the
+// bytes that follow, so a lying header cannot trigger a huge allocation.
+#include "kergen/io.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <new>
+#include <stdexcept>
+#include <unordered_map>
+#if defined(__has_include)
+#if __has_include(<version>)
+#include <version>
+#endif
+#endif
+
+// libstdc++ (g++ >= 11) has a correctly rounded, locale-independent std::from_chars for double.
+// Emscripten's libc++ deletes that overload; there we use strtod, which in its musl-based libc
+// ignores the locale (the decimal point is always '.').
+#if defined(__cpp_lib_to_chars) && defined(__GLIBCXX__)
+#define KERGEN_FROM_CHARS_DOUBLE 1
+#else
+#define KERGEN_FROM_CHARS_DOUBLE 0
+#endif
+
+namespace kergen {
+
+MeshView Mesh::view() const {
+  MeshView v;
+  v.positions = positions.empty() ? nullptr : positions.data();
+  v.num_vertices = positions.size() / 3;
+  v.indices = indices.empty() ? nullptr : indices.data();
+  v.num_indices = indices.size();
+  if (!face_sizes.empty()) {
+    v.face_sizes = face_sizes.data();
+    v.num_faces = face_sizes.size();
+  }
+  return v;
+}
+
+namespace {
+
+// Internal control flow only: every public entry point catches it and turns it into a ReadResult.
+struct ReadFailure {
+  Error error;
+  std::string message;
+};
+
+[[noreturn]] void fail(Error error, std::string message) { throw ReadFailure{error, std::move(message)}; }
+
+[[noreturn]] void fail_at_line(const std::string& name, size_t line, const std::string& reason) {
+  fail(Error::ParseError, name + ":" + std::to_string(line) + ": " + reason);
+}
+
+[[noreturn]] void fail_at_byte(const std::string& name, uint64_t offset, const std::string& reason) {
+  fail(Error::ParseError, name + ": byte " + std::to_string(offset) + ": " + reason);
+}
+
+// A token quoted for an error message: control and non-ASCII bytes escaped, long tokens shortened,
+// so a binary file fed to a text reader still gives a readable one-line message.
+std::string quoted(std::string_view token) {
+  constexpr size_t kMaxShown = 40;
+  std::string out = "'";
+  for (size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
+    unsigned char c = static_cast<unsigned char>(token[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  if (token.size() > kMaxShown) out += "...";
+  out += "'";
+  return out;
+}
+
+ReadResult run_reader(const std::function<void(ReadResult&)>& body) {
+  ReadResult result;
+  try {
+    body(result);
+  } catch (const ReadFailure& failure) {
+    result = ReadResult{};
+    result.error = failure.error;
+    result.message = failure.message;
+  } catch (const std::bad_alloc&) {
+    result = ReadResult{};
+    result.error = Error::TooLarge;
+    result.message = "out of memory while reading the mesh";
+  } catch (const std::length_error&) {
+    result = ReadResult{};
+    result.error = Error::TooLarge;
+    result.message = "mesh too large to hold in memory";
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lines and tokens.
+
+inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text) : text_(text) {}
+  bool next(std::string_view& line) {
+    if (pos_ >= text_.size()) return false;
+    const char* begin = text_.data() + pos_;
+    const void* newline = std::memchr(begin, '\n', text_.size() - pos_);
+    size_t end = newline ? static_cast<size_t>(static_cast<const char*>(newline) - text_.data()) : text_.size();
+    line = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++line_number_;
+    return true;
+  }
+  size_t line_number() const { return line_number_; }
+  size_t remaining_bytes() const { return pos_ >= text_.size() ? 0 : text_.size() - pos_; }
+
+ private:
+  std::string_view text_;
+  size_t pos_ = 0;
+  size_t line_number_ = 0;
+};
+
+class Tokens {
+ public:
+  explicit Tokens(std::string_view line) : line_(line) {}
+  bool next(std::string_view& token) {
+    while (pos_ < line_.size() && is_blank(line_[pos_])) ++pos_;
+    if (pos_ >= line_.size()) return false;
+    size_t start = pos_;
+    while (pos_ < line_.size() && !is_blank(line_[pos_])) ++pos_;
+    token = line_.substr(start, pos_ - start);
+    return true;
+  }
+  bool at_end() {
+    while (pos_ < line_.size() && is_blank(line_[pos_])) ++pos_;
+    return pos_ >= line_.size();
+  }
+
+ private:
+  std::string_view line_;
+  size_t pos_ = 0;
+};
+
+std::string_view strip_comment(std::string_view line) {
+  size_t hash = line.find('#');
+  return hash == std::string_view::npos ? line : line.substr(0, hash);
+}
+
+bool equals_ignore_case(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    char x = a[i], y = b[i];
+    if (x >= 'A' && x <= 'Z') x = static_cast<char>(x - 'A' + 'a');
+    if (y >= 'A' && y <= 'Z') y = static_cast<char>(y - 'A' + 'a');
+    if (x != y) return false;
+  }
+  return true;
+}
+
+bool only_blank(std::string_view text) {
+  for (char c : text)
+    if (!is_blank(c) && c != '\n') return false;
+  return true;
+}
+
+// Text formats: refuses UTF-16 (a common export option of Windows tools) with a clear reason instead
+// of a confusing "invalid number" on line 1, and drops a UTF-8 byte order mark.
+std::string_view prepare_text(std::string_view text, const std::string& name) {
+  if (text.size() >= 2) {
+    unsigned char b0 = static_cast<unsigned char>(text[0]), b1 = static_cast<unsigned char>(text[1]);
+    bool bom16 = (b0 == 0xFF && b1 == 0xFE) || (b0 == 0xFE && b1 == 0xFF);
+    bool ascii_as_utf16 = (b0 == 0 && b1 != 0) || (b0 != 0 && b1 == 0);
+    if (bom16 || ascii_as_utf16) fail_at_line(name, 1, "UTF-16 is not supported (save the file as UTF-8 or ASCII)");
+  }
+  if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  if (only_blank(text)) fail(Error::EmptyInput, name + ": empty file");
+  return text;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Numbers.
+
+enum class NumberStatus { Ok, Invalid, NonFinite };
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// Decimal exponent of the leading significant digit of a syntactically valid decimal number with
+// at least one non-zero digit; used only to tell overflow from underflow.
+long long leading_decimal_exponent(std::string_view mantissa, long long exponent) {
+  long long position = -1;  // exponent of the next digit relative to the decimal point
+  size_t point = mantissa.find('.');
+  size_t integer_digits = point == std::string_view::npos ? mantissa.size() : point;
+  position = static_cast<long long>(integer_digits) - 1;
+  for (char c : mantissa) {
+    if (c == '.') continue;
+    if (c != '0') return position + exponent;
+    --position;
+  }
+  return std::numeric_limits<long long>::min();
+}
+
+// Strict decimal syntax: [+-] (digits [. digits] | . digits) [(e|E) [+-] digits]. "inf" and "nan"
+// spellings are recognised so they can be reported as non-finite rather than as garbage.
+NumberStatus parse_double(std::string_view token, double& out) {
+  size_t i = 0, n = token.size();
+  bool negative = false;
+  if (i < n && (token[i] == '+' || token[i] == '-')) negative = token[i++] == '-';
+  std::string_view unsigned_part = token.substr(i);
+  if (!unsigned_part.empty() && !is_digit(unsigned_part[0]) && unsigned_part[0] != '.') {
+    const bool nan_with_payload = unsigned_part.size() > 4 && equals_ignore_case(unsigned_part.substr(0, 4), "nan(") &&
+                                  unsigned_part.back() == ')';
+    if (equals_ignore_case(unsigned_part, "inf") || equals_ignore_case(unsigned_part, "infinity") ||
+        equals_ignore_case(unsigned_part, "nan") || nan_with_payload)
+      return NumberStatus::NonFinite;
+    return NumberStatus::Invalid;
+  }
+  size_t mantissa_begin = i, digits = 0;
+  while (i < n && is_digit(token[i])) ++i, ++digits;
+  if (i < n && token[i] == '.') {
+    ++i;
+    while (i < n && is_digit(token[i])) ++i, ++digits;
+  }
+  if (digits == 0) return NumberStatus::Invalid;
+  std::string_view mantissa = token.substr(mantissa_begin, i - mantissa_begin);
+  long long exponent = 0;
+  if (i < n && (token[i] == 'e' || token[i] == 'E')) {
+    ++i;
+    bool exponent_negative = false;
+    if (i < n && (token[i] == '+' || token[i] == '-')) exponent_negative = token[i++] == '-';
+    size_t exponent_digits = 0;
+    while (i < n && is_digit(token[i])) {
+      if (exponent < 1'000'000'000) exponent = exponent * 10 + (token[i] - '0');
+      ++i, ++exponent_digits;
+    }
+    if (exponent_digits == 0) return NumberStatus::Invalid;
+    if (exponent_negative) exponent = -exponent;
+  }
+  if (i != n) return NumberStatus::Invalid;
+
+  // Hand the validated text (without a leading '+', which from_chars refuses) to the converter.
+  std::string_view number = token.substr(token[0] == '+' ? 1 : 0);
+  double value = 0;
+  bool out_of_range = false;
+#if KERGEN_FROM_CHARS_DOUBLE
+  auto converted = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (converted.ec == std::errc::result_out_of_range) out_of_range = true;
+  else if (converted.ec != std::errc() || converted.ptr != number.data() + number.size()) return NumberStatus::Invalid;
+#else
+  char small[64];
+  std::string large;
+  const char* text;
+  if (number.size() < sizeof small) {
+    std::memcpy(small, number.data(), number.size());
+    small[number.size()] = '\0';
+    text = small;
+  } else {
+    large.assign(number);
+    text = large.c_str();
+  }
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtod(text, &end);
+  if (end != text + number.size()) return NumberStatus::Invalid;
+  if (errno == ERANGE || std::isinf(value)) out_of_range = true;
+#endif
+  if (out_of_range) {
+    // Too large for a double is a non-finite coordinate; too small rounds to a signed zero.
+    if (leading_decimal_exponent(mantissa, exponent) > 0) return NumberStatus::NonFinite;
+    if (value == 0 || std::isinf(value)) value = negative ? -0.0 : 0.0;
+  }
+  if (!std::isfinite(value)) return NumberStatus::NonFinite;
+  out = value;
+  return NumberStatus::Ok;
+}
+
+// [+-]digits, no overflow.
+bool parse_integer(std::string_view token, long long& out) {
+  if (!token.empty() && token[0] == '+') {
+    token.remove_prefix(1);
+    if (!token.empty() && token[0] == '-') return false;
+  }
+  if (token.empty()) return false;
+  auto converted = std::from_chars(token.data(), token.data() + token.size(), out);
+  return converted.ec == std::errc() && converted.ptr == token.data() + token.size();
+}
+
+// Reads three coordinates; reports a bad or non-finite one with the line number.
+void read_coordinates(Tokens& tokens, double xyz[3], const std::string& name, size_t line, const char* what) {
+  for (int k = 0; k < 3; ++k) {
+    std::string_view token;
+    if (!tokens.next(token))
+      fail_at_line(name, line, std::string(what) + " needs 3 coordinates, found " + std::to_string(k));
+    switch (parse_double(token, xyz[k])) {
+      case NumberStatus::Ok: break;
+      case NumberStatus::Invalid: fail_at_line(name, line, "invalid number " + quoted(token));
+      case NumberStatus::NonFinite: fail_at_line(name, line, "non-finite coordinate " + quoted(token));
+    }
+  }
+}
+
+void check_vertex_count(size_t count, const std::string& name, size_t line) {
+  if (count > std::numeric_limits<uint32_t>::max())
+    fail_at_line(name, line, "more than 4294967295 vertices (indices are 32-bit)");
+}
+
+// Faces are stored with explicit sizes while reading; an all-triangle mesh drops them, which is
+// what "face_sizes empty = triangles" means in the public API.
+void drop_face_sizes_if_all_triangles(Mesh& mesh) {
+  if (std::all_of(mesh.face_sizes.begin(), mesh.face_sizes.end(), [](uint32_t k) { return k == 3; }))
+    mesh.face_sizes.clear();
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ.
+
+void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
+  text = prepare_text(text, name);
+  LineReader lines(text);
+  std::string_view line;
+  size_t point_and_line_records = 0;
+  // Positive indices may refer to vertices defined further down; they are checked at the end.
+  uint64_t largest_positive_index = 0;
+  size_t largest_positive_index_line = 0;
+  std::vector<uint32_t> face;
+  while (lines.next(line)) {
+    Tokens tokens(strip_comment(line));
+    std::string_view keyword;
+    if (!tokens.next(keyword)) continue;
+    size_t line_number = lines.line_number();
+    if (keyword == "v") {
+      double xyz[3];
+      read_coordinates(tokens, xyz, name, line_number, "vertex");
+      mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+      check_vertex_count(mesh.positions.size() / 3, name, line_number);
+      // Anything after x y z (a w component or vertex colours) is ignored.
+    } else if (keyword == "f" || keyword == "fo") {
+      face.clear();
+      const long long vertices_so_far = static_cast<long long>(mesh.positions.size() / 3);
+      std::string_view token;
+      while (tokens.next(token)) {
+        // v, v/vt, v//vn or v/vt/vn: only the position index matters, the others must be integers.
+        std::string_view parts[3];
+        size_t part_count = 0, start = 0;
+        while (true) {
+          size_t slash = token.find('/', start);
+          if (part_count == 3) fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
+          parts[part_count++] = token.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
+          if (slash == std::string_view::npos) break;
+          start = slash + 1;
+        }
+        long long index = 0, unused = 0;
+        if (!parse_integer(parts[0], index)) fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
+        for (size_t p = 1; p < part_count; ++p)
+          if (!parts[p].empty() && !parse_integer(parts[p], unused))
+            fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
+        if (index == 0) fail_at_line(name, line_number, "vertex index 0 (OBJ indices start at 1)");
+        uint32_t resolved;
+        if (index < 0) {
+          if (-index > vertices_so_far)
+            fail_at_line(name, line_number,
+                         "relative vertex index " + std::to_string(index) + " points before the first vertex (" +
+                             std::to_string(vertices_so_far) + " vertices so far)");
+          resolved = static_cast<uint32_t>(vertices_so_far + index);
+        } else {
+          if (index > static_cast<long long>(std::numeric_limits<uint32_t>::max()))
+            fail_at_line(name, line_number, "vertex index " + std::to_string(index) + " out of range");
+          if (static_cast<uint64_t>(index) > largest_positive_index) {
+            largest_positive_index = static_cast<uint64_t>(index);
+            largest_positive_index_line = line_number;
+          }
+          resolved = static_cast<uint32_t>(index - 1);
+        }
+        face.push_back(resolved);
+      }
+      if (face.size() < 3)
+        fail_at_line(name, line_number, "face has " + std::to_string(face.size()) + " vertices (at least 3 needed)");
+      mesh.indices.insert(mesh.indices.end(), face.begin(), face.end());
+      mesh.face_sizes.push_back(static_cast<uint32_t>(face.size()));
+    } else if (keyword == "l" || keyword == "p") {
+      ++point_and_line_records;
+    }
+    // Everything else (vt, vn, vp, g, o, s, usemtl, mtllib, curves, ...) does not affect the shape.
+  }
+  const size_t vertex_count = mesh.positions.size() / 3;
+  if (largest_positive_index > vertex_count)
+    fail_at_line(name, largest_positive_index_line,
+                 "vertex index " + std::to_string(largest_positive_index) + " out of range (the file has " +
+                     std::to_string(vertex_count) + " vertices)");
+  if (mesh.face_sizes.empty()) {
+    if (point_and_line_records > 0) fail(Error::EmptyInput, name + ": no faces (only points/lines)");
+    fail(Error::EmptyInput, name + (vertex_count == 0 ? ": no vertices and no faces" : ": no faces"));
+  }
+  drop_face_sizes_if_all_triangles(mesh);
+}
+
+// ---------------------------------------------------------------------------------------------
+// OFF.
+
+// Next line with content (comments and blank lines skipped); false at the end of the text.
+bool next_content_line(LineReader& lines, Tokens& tokens) {
+  std::string_view line;
+  while (lines.next(line)) {
+    tokens = Tokens(strip_comment(line));
+    if (!tokens.at_end()) return true;
+  }
+  return false;
+}
+
+long long read_count(Tokens& tokens, const std::string& name, size_t line, const char* what) {
+  std::string_view token;
+  long long value = 0;
+  if (!tokens.next(token)) fail_at_line(name, line, std::string("missing ") + what + " count");
+  if (!parse_integer(token, value) || value < 0)
+    fail_at_line(name, line, std::string("invalid ") + what + " count " + quoted(token));
+  return value;
+}
+
+void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
+  text = prepare_text(text, name);
+  LineReader lines(text);
+  Tokens tokens{std::string_view{}};
+  next_content_line(lines, tokens);  // not empty: prepare_text refused blank files
+  std::string_view keyword;
+  tokens.next(keyword);
+  // [ST][C][N][4][n]OFF: texture coordinates, colours and normals trail the xyz and are ignored.
+  std::string_view kind = keyword;
+  if (kind.substr(0, 2) == "ST") kind.remove_prefix(2);
+  if (kind.substr(0, 1) == "C") kind.remove_prefix(1);
+  if (kind.substr(0, 1) == "N") kind.remove_prefix(1);
+  bool higher_dimension = false;
+  if (kind.substr(0, 1) == "4") kind.remove_prefix(1), higher_dimension = true;
+  if (kind.substr(0, 1) == "n") kind.remove_prefix(1), higher_dimension = true;
+  if (kind != "OFF") fail_at_line(name, lines.line_number(), "expected an OFF header, found " + quoted(keyword));
+  if (higher_dimension) fail_at_line(name, lines.line_number(), "4D / n-dimensional OFF is not supported");
+  if (tokens.at_end()) {
+    if (!next_content_line(lines, tokens)) fail_at_line(name, lines.line_number(), "missing vertex/face counts");
+  } else {
+    // "OFF BINARY" or "OFF nv nf ne" on the header line.
+    Tokens peek = tokens;
+    std::string_view next;
+    peek.next(next);
+    if (equals_ignore_case(next, "BINARY")) fail_at_line(name, lines.line_number(), "binary OFF is not supported");
+  }
+  const size_t counts_line = lines.line_number();
+  const long long vertex_count = read_count(tokens, name, counts_line, "vertex");
+  const long long face_count = read_count(tokens, name, counts_line, "face");
+  // The edge count is optional in practice and unused.
+
+  // Every vertex and face needs a line of its own, at least one character and a newline (the last
+  // one possibly without): a header asking for more lines than the file can hold is a lie, caught
+  // here before anything is reserved. Finer problems are reported by the line that shows them.
+  const uint64_t available = lines.remaining_bytes();
+  const uint64_t huge = uint64_t(1) << 40;
+  if (static_cast<uint64_t>(vertex_count) > huge || static_cast<uint64_t>(face_count) > huge ||
+      2 * (static_cast<uint64_t>(vertex_count) + static_cast<uint64_t>(face_count)) > available + 1)
+    fail_at_line(name, counts_line,
+                 "header declares " + std::to_string(vertex_count) + " vertices and " + std::to_string(face_count) +
+                     " faces but only " + std::to_string(available) + " bytes follow");
+  check_vertex_count(static_cast<size_t>(vertex_count), name, counts_line);
+  mesh.positions.reserve(3 * static_cast<size_t>(vertex_count));
+  mesh.face_sizes.reserve(static_cast<size_t>(face_count));
+  mesh.indices.reserve(3 * static_cast<size_t>(face_count));
+
+  for (long long v = 0; v < vertex_count; ++v) {
+    if (!next_content_line(lines, tokens))
+      fail_at_line(name, lines.line_number(),
+                   "unexpected end of file: " + std::to_string(v) + " of " + std::to_string(vertex_count) +
+                       " vertices read");
+    double xyz[3];
+    read_coordinates(tokens, xyz, name, lines.line_number(), "vertex");
+    mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+  }
+  for (long long f = 0; f < face_count; ++f) {
+    if (!next_content_line(lines, tokens))
+      fail_at_line(name, lines.line_number(),
+                   "unexpected end of file: " + std::to_string(f) + " of " + std::to_string(face_count) +
+                       " faces read");
+    const size_t line = lines.line_number();
+    std::string_view token;
+    tokens.next(token);
+    long long size = 0;
+    if (!parse_integer(token, size) || size < 0) fail_at_line(name, line, "invalid face size " + quoted(token));
+    if (size < 3) fail_at_line(name, line, "face has " + std::to_string(size) + " vertices (at least 3 needed)");
+    for (long long k = 0; k < size; ++k) {
+      if (!tokens.next(token))
+        fail_at_line(name, line,
+                     "face declares " + std::to_string(size) + " vertices but the line has only " + std::to_string(k));
+      long long index = 0;
+      if (!parse_integer(token, index)) fail_at_line(name, line, "invalid vertex index " + quoted(token));
+      if (index < 0 || index >= vertex_count)
+        fail_at_line(name, line,
+                     "vertex index " + std::to_string(index) + " out of range (the file has " +
+                         std::to_string(vertex_count) + " vertices)");
+      mesh.indices.push_back(static_cast<uint32_t>(index));
+    }
+    // A colour may follow the indices; it is ignored.
+    mesh.face_sizes.push_back(static_cast<uint32_t>(size));
+  }
+  if (vertex_count == 0 && face_count == 0) fail(Error::EmptyInput, name + ": no vertices and no faces");
+  if (face_count == 0) fail(Error::EmptyInput, name + ": no faces");
+  drop_face_sizes_if_all_triangles(mesh);
+}
+
+// ---------------------------------------------------------------------------------------------
+// STL.
+
+// Welds vertices that have exactly the same coordinates (an STL stores every triangle's corners
+// separately). -0.0 and 0.0 are the same point.
+class VertexWelder {
+ public:
+  explicit VertexWelder(std::vector<double>& positions, size_t expected_vertices) : positions_(positions) {
+    index_of_.reserve(expected_vertices);
+  }
+  uint32_t add(double x, double y, double z) {
+    Point key{x + 0.0, y + 0.0, z + 0.0};  // adding +0.0 turns -0.0 into +0.0 (round-to-nearest)
+    auto inserted = index_of_.emplace(key, static_cast<uint32_t>(positions_.size() / 3));
+    if (inserted.second) {
+      if (positions_.size() / 3 >= std::numeric_limits<uint32_t>::max())
+        fail(Error::TooLarge, "more than 4294967295 distinct vertices");
+      positions_.insert(positions_.end(), {key.x, key.y, key.z});
+    }
+    return inserted.first->second;
+  }
+
+ private:
+  struct Point {
+    double x, y, z;
+    bool operator==(const Point& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct PointHash {
+    static uint64_t bits(double d) {
+      uint64_t b;
+      std::memcpy(&b, &d, sizeof b);
+      return b;
+    }
+    size_t operator()(const Point& p) const {
+      uint64_t h = bits(p.x) * 0x9E3779B97F4A7C15ull;
+      h ^= (h >> 29) ^ bits(p.y) * 0xC2B2AE3D27D4EB4Full;
+      h ^= (h >> 31) ^ bits(p.z) * 0x165667B19E3779F9ull;
+      h ^= h >> 32;
+      return static_cast<size_t>(h);
+    }
+  };
+  std::vector<double>& positions_;
+  std::unordered_map<Point, uint32_t, PointHash> index_of_;
+};
+
+uint32_t read_le32(const unsigned char* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+float read_le_float(const unsigned char* p) {
+  uint32_t bits = read_le32(p);
+  float f;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+void parse_binary_stl(std::string_view bytes, uint32_t triangle_count, const std::string& name, Mesh& mesh) {
+  if (triangle_count == 0) fail(Error::EmptyInput, name + ": no triangles");
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  VertexWelder welder(mesh.positions, std::min<size_t>(triangle_count, size_t(1) << 24));
+  mesh.indices.reserve(3 * size_t(triangle_count));
+  for (uint32_t t = 0; t < triangle_count; ++t) {
+    const size_t record = 84 + 50 * size_t(t);
+    for (int corner = 0; corner < 3; ++corner) {
+      const size_t offset = record + 12 + 12 * size_t(corner);  // after the 12-byte normal
+      double xyz[3];
+      for (int k = 0; k < 3; ++k) {
+        float value = read_le_float(data + offset + 4 * k);
+        if (!std::isfinite(value))
+          fail_at_byte(name, offset + 4 * k,
+                       "non-finite coordinate in triangle " + std::to_string(t) + " (vertex " +
+                           std::to_string(corner) + ")");
+        xyz[k] = static_cast<double>(value);  // exact: every float is a double
+      }
+      mesh.indices.push_back(welder.add(xyz[0], xyz[1], xyz[2]));
+    }
+  }
+}
+
+void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh) {
+  if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  enum class State { OutsideSolid, InSolid, InFacet, InLoop, AfterLoop };
+  State state = State::OutsideSolid;
+  LineReader lines(text);
+  std::string_view line;
+  // A facet line is about 200 bytes of text; a generous guess keeps rehashing rare.
+  VertexWelder welder(mesh.positions, text.size() / 200 + 16);
+  uint32_t corners[3];
+  int corner_count = 0;
+  auto expect_end = [&](Tokens& tokens, std::string_view keyword) {
+    std::string_view extra;
+    if (tokens.next(extra))
+      fail_at_line(name, lines.line_number(), "unexpected " + quoted(extra) + " after '" + std::string(keyword) + "'");
+  };
+  while (lines.next(line)) {
+    Tokens tokens(line);
+    std::string_view keyword;
+    if (!tokens.next(keyword)) continue;
+    const size_t line_number = lines.line_number();
+    auto unexpected = [&](const char* expected) {
+      fail_at_line(name, line_number, "expected " + std::string(expected) + ", found " + quoted(keyword));
+    };
+    switch (state) {
+      case State::OutsideSolid:
+        if (!equals_ignore_case(keyword, "solid")) unexpected("'solid'");
+        state = State::InSolid;  // the rest of the line is the solid's name
+        break;
+      case State::InSolid:
+        if (equals_ignore_case(keyword, "endsolid")) {
+          state = State::OutsideSolid;
+        } else if (equals_ignore_case(keyword, "facet")) {
+          std::string_view word;
+          if (!tokens.next(word) || !equals_ignore_case(word, "normal"))
+            fail_at_line(name, line_number, "expected 'facet normal nx ny nz'");
+          // The normal is recomputed by everyone; it only has to be three numbers (some exporters
+          // write nan for degenerate facets, which is harmless here).
+          for (int k = 0; k < 3; ++k) {
+            std::string_view token;
+            double ignored;
+            if (!tokens.next(token)) fail_at_line(name, line_number, "facet normal needs 3 components");
+            if (parse_double(token, ignored) == NumberStatus::Invalid)
+              fail_at_line(name, line_number, "invalid number " + quoted(token));
+          }
+          expect_end(tokens, "facet normal");
+          state = State::InFacet;
+        } else {
+          unexpected("'facet' or 'endsolid'");
+        }
+        break;
+      case State::InFacet: {
+        std::string_view word;
+        if (!equals_ignore_case(keyword, "outer") || !tokens.next(word) || !equals_ignore_case(word, "loop"))
+          fail_at_line(name, line_number, "expected 'outer loop', found " + quoted(keyword));
+        expect_end(tokens, "outer loop");
+        state = State::InLoop;
+        corner_count = 0;
+        break;
+      }
+      case State::InLoop:
+        if (equals_ignore_case(keyword, "vertex")) {
+          if (corner_count == 3) fail_at_line(name, line_number, "facet has more than 3 vertices");
+          double xyz[3];
+          read_coordinates(tokens, xyz, name, line_number, "vertex");
+          expect_end(tokens, "vertex x y z");
+          corners[corner_count++] = welder.add(xyz[0], xyz[1], xyz[2]);
+        } else if (equals_ignore_case(keyword, "endloop")) {
+          if (corner_count != 3)
+            fail_at_line(name, line_number, "facet has " + std::to_string(corner_count) + " vertices (3 needed)");
+          expect_end(tokens, "endloop");
+          state = State::AfterLoop;
+        } else {
+          unexpected("'vertex' or 'endloop'");
+        }
+        break;
+      case State::AfterLoop:
+        if (!equals_ignore_case(keyword, "endfacet")) unexpected("'endfacet'");
+        expect_end(tokens, "endfacet");
+        mesh.indices.insert(mesh.indices.end(), corners, corners + 3);
+        state = State::InSolid;
+        break;
+    }
+  }
+  // A missing final "endsolid" is tolerated (common in hand-written files); a cut facet is not.
+  if (state != State::OutsideSolid && state != State::InSolid)
+    fail_at_line(name, lines.line_number(), "unexpected end of file inside a facet");
+  if (mesh.indices.empty()) fail(Error::EmptyInput, name + ": no facets");
+}
+
+bool starts_with_solid(std::string_view bytes) {
+  if (bytes.size() >= 3 && bytes.substr(0, 3) == "\xEF\xBB\xBF") bytes.remove_prefix(3);
+  size_t i = 0;
+  while (i < bytes.size() && (is_blank(bytes[i]) || bytes[i] == '\n')) ++i;
+  return bytes.size() - i >= 5 && equals_ignore_case(bytes.substr(i, 5), "solid") &&
+         (bytes.size() - i == 5 || is_blank(bytes[i + 5]) || bytes[i + 5] == '\n');
+}
+
+[[noreturn]] void fail_binary_size(std::string_view bytes, const std::string& name) {
+  const uint64_t declared = read_le32(reinterpret_cast<const unsigned char*>(bytes.data()) + 80);
+  const uint64_t room = (bytes.size() - 84) / 50;
+  fail_at_byte(name, 80,
+               "binary STL header declares " + std::to_string(declared) + " triangles (" +
+                   std::to_string(84 + 50 * declared) + " bytes) but the file has " + std::to_string(bytes.size()) +
+                   " bytes (room for " + std::to_string(room) + " triangles)");
+}
+
+void parse_stl(std::string_view bytes, const std::string& name, Mesh& mesh) {
+  if (bytes.empty()) fail(Error::EmptyInput, name + ": empty file");
+  // Binary vs ascii is decided by content: many binary files start their header with "solid" too.
+  if (bytes.size() >= 84) {
+    const uint32_t declared = read_le32(reinterpret_cast<const unsigned char*>(bytes.data()) + 80);
+    if (84 + 50 * uint64_t(declared) == bytes.size()) return parse_binary_stl(bytes, declared, name, mesh);
+  }
+  if (starts_with_solid(bytes)) {
+    try {
+      parse_ascii_stl(bytes, name, mesh);
+      return;
+    } catch (const ReadFailure& failure) {
+      // A NUL byte means binary data whose header happens to start with "solid": the real problem
+      // is then its triangle count, not its "text".
+      if (failure.error == Error::ParseError && bytes.size() >= 84 &&
+          std::memchr(bytes.data(), '\0', bytes.size()) != nullptr)
+        fail_binary_size(bytes, name);
+      throw;
+    }
+  }
+  if (bytes.size() < 84)
+    fail_at_byte(name, 0,
+                 "not an STL file: " + std::to_string(bytes.size()) +
+                     " bytes is shorter than a binary STL header (84 bytes) and the text does not start with 'solid'");
+  fail_binary_size(bytes, name);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writers.
+
+// %.17g round-trips every double. The C locale might have been changed by the host program, so a
+// decimal comma is turned back into a point.
+void append_double(std::string& out, double value) {
+  char buf[40];
+  int n = std::snprintf(buf, sizeof buf, "%.17g", value);
+  for (int i = 0; i < n; ++i)
+    if (buf[i] == ',') buf[i] = '.';
+  out.append(buf, static_cast<size_t>(n));
+}
+
+void append_uint(std::string& out, uint64_t value) {
+  char buf[24];
+  auto converted = std::to_chars(buf, buf + sizeof buf, value);
+  out.append(buf, converted.ptr);
+}
+
+// Calls visit(first_index_pointer, size) for each face; a face running past the index array (a
+// malformed Mesh) ends the walk instead of reading out of bounds.
+template <class Visit>
+void for_each_face(const Mesh& mesh, Visit visit) {
+  if (mesh.face_sizes.empty()) {
+    for (size_t i = 0; i + 3 <= mesh.indices.size(); i += 3) visit(&mesh.indices[i], size_t(3));
+    return;
+  }
+  size_t offset = 0;
+  for (uint32_t size : mesh.face_sizes) {
+    if (offset + size > mesh.indices.size()) break;
+    visit(mesh.indices.data() + offset, size_t(size));
+    offset += size;
+  }
+}
+
+size_t count_faces(const Mesh& mesh) {
+  size_t faces = 0;
+  for_each_face(mesh, [&](const uint32_t*, size_t) { ++faces; });
+  return faces;
+}
+
+void append_le32(std::string& out, uint32_t value) {
+  char b[4] = {char(value & 0xFF), char((value >> 8) & 0xFF), char((value >> 16) & 0xFF), char((value >> 24) & 0xFF)};
+  out.append(b, 4);
+}
+
+void append_le_float(std::string& out, float value) {
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  append_le32(out, bits);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Public readers.
+
+MeshFormat format_from_path(const std::string& path) {
+  size_t slash = path.find_last_of("/\\");
+  size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return MeshFormat::Unknown;
+  std::string_view extension = std::string_view(path).substr(dot + 1);
+  if (equals_ignore_case(extension, "off")) return MeshFormat::Off;
+  if (equals_ignore_case(extension, "obj")) return MeshFormat::Obj;
+  if (equals_ignore_case(extension, "stl")) return MeshFormat::Stl;
+  return MeshFormat::Unknown;
+}
+
+ReadResult read_off(std::string_view text, const std::string& name) {
+  return run_reader([&](ReadResult& r) { parse_off(text, name, r.mesh); });
+}
+
+ReadResult read_obj(std::string_view text, const std::string& name) {
+  return run_reader([&](ReadResult& r) { parse_obj(text, name, r.mesh); });
+}
+
+ReadResult read_stl(std::string_view bytes, const std::string& name) {
+  return run_reader([&](ReadResult& r) { parse_stl(bytes, name, r.mesh); });
+}
+
+ReadResult read_mesh(std::string_view bytes, MeshFormat format, const std::string& name) {
+  switch (format) {
+    case MeshFormat::Off: return read_off(bytes, name);
+    case MeshFormat::Obj: return read_obj(bytes, name);
+    case MeshFormat::Stl: return read_stl(bytes, name);
+    case MeshFormat::Unknown: break;
+  }
+  ReadResult result;
+  result.error = Error::ParseError;
+  result.message = name + ": unknown mesh format (expected .off, .obj or .stl)";
+  return result;
+}
+
+ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
+  // The header's default, size_t(4) << 30, wraps to 0 where size_t is 32-bit (wasm32): 0 therefore
+  // means "no limit beyond what the address space allows".
+  if (max_bytes == 0) max_bytes = std::numeric_limits<size_t>::max();
+  ReadResult result;
+  auto io_error = [&](const std::string& reason) {
+    result.error = Error::IoError;
+    result.message = path + ": " + reason;
+    return result;
+  };
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0) return io_error(std::strerror(errno));
+  if (S_ISDIR(info.st_mode)) return io_error("is a directory");
+  const MeshFormat format = format_from_path(path);
+  if (format == MeshFormat::Unknown) {
+    result.error = Error::ParseError;
+    result.message = path + ": unsupported file type (expected .off, .obj or .stl)";
+    return result;
+  }
+  auto too_large = [&](uint64_t size) {
+    result.error = Error::TooLarge;
+    result.message = path + ": file is " + std::to_string(size) + " bytes, more than the limit of " +
+                     std::to_string(max_bytes) + " bytes";
+    return result;
+  };
+  if (S_ISREG(info.st_mode) && static_cast<uint64_t>(info.st_size) > max_bytes) return too_large(info.st_size);
+
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) return io_error(std::strerror(errno));
+  std::string bytes;
+  try {
+    if (S_ISREG(info.st_mode)) bytes.reserve(static_cast<size_t>(info.st_size));
+    char buffer[1 << 16];
+    size_t got;
+    while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0) {
+      if (bytes.size() + got > max_bytes) {
+        std::fclose(file);
+        return too_large(bytes.size() + got);
+      }
+      bytes.append(buffer, got);
+    }
+  } catch (const std::bad_alloc&) {
+    std::fclose(file);
+    result.error = Error::TooLarge;
+    result.message = path + ": out of memory while reading the file";
+    return result;
+  }
+  const bool read_failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (read_failed) return io_error("read error");
+  return read_mesh(bytes, format, path);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Public writers.
+
+std::string write_obj(const Mesh& mesh) {
+  std::string out = "# written by kergen\n";
+  out.reserve(out.size() + mesh.positions.size() * 24 + mesh.indices.size() * 8);
+  for (size_t v = 0; v + 3 <= mesh.positions.size(); v += 3) {
+    out += "v ";
+    append_double(out, mesh.positions[v]);
+    out += ' ';
+    append_double(out, mesh.positions[v + 1]);
+    out += ' ';
+    append_double(out, mesh.positions[v + 2]);
+    out += '\n';
+  }
+  for_each_face(mesh, [&](const uint32_t* loop, size_t size) {
+    out += 'f';
+    for (size_t k = 0; k < size; ++k) {
+      out += ' ';
+      append_uint(out, uint64_t(loop[k]) + 1);
+    }
+    out += '\n';
+  });
+  return out;
+}
+
+std::string write_off(const Mesh& mesh) {
+  std::string out = "OFF\n";
+  out.reserve(mesh.positions.size() * 24 + mesh.indices.size() * 8 + 32);
+  append_uint(out, mesh.positions.size() / 3);
+  out += ' ';
+  append_uint(out, count_faces(mesh));
+  out += " 0\n";
+  for (size_t v = 0; v + 3 <= mesh.positions.size(); v += 3) {
+    append_double(out, mesh.positions[v]);
+    out += ' ';
+    append_double(out, mesh.positions[v + 1]);
+    out += ' ';
+    append_double(out, mesh.positions[v + 2]);
+    out += '\n';
+  }
+  for_each_face(mesh, [&](const uint32_t* loop, size_t size) {
+    append_uint(out, size);
+    for (size_t k = 0; k < size; ++k) {
+      out += ' ';
+      append_uint(out, loop[k]);
+    }
+    out += '\n';
+  });
+  return out;
+}
+
+std::string write_stl_binary(const Mesh& mesh) {
+  const size_t vertex_count = mesh.positions.size() / 3;
+  std::string triangles;
+  uint64_t triangle_count = 0;
+  auto corner = [&](uint32_t index, int k) { return mesh.positions[3 * size_t(index) + k]; };
+  for_each_face(mesh, [&](const uint32_t* loop, size_t size) {
+    for (size_t k = 1; k + 1 < size; ++k) {
+      const uint32_t a = loop[0], b = loop[k], c = loop[k + 1];
+      if (a >= vertex_count || b >= vertex_count || c >= vertex_count) continue;  // malformed mesh
+      double u[3], w[3], n[3];
+      for (int d = 0; d < 3; ++d) u[d] = corner(b, d) - corner(a, d), w[d] = corner(c, d) - corner(a, d);
+      n[0] = u[1] * w[2] - u[2] * w[1];
+      n[1] = u[2] * w[0] - u[0] * w[2];
+      n[2] = u[0] * w[1] - u[1] * w[0];
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (double& x : n) x = length > 0 && std::isfinite(length) ? x / length : 0.0;
+      for (double x : n) append_le_float(triangles, static_cast<float>(x));
+      for (uint32_t v : {a, b, c})
+        for (int d = 0; d < 3; ++d) append_le_float(triangles, static_cast<float>(corner(v, d)));
+      triangles.append(2, '\0');  // attribute byte count
+      ++triangle_count;
+    }
+  });
+  std::string out = "binary STL written by kergen";
+  out.resize(80, ' ');
+  append_le32(out, static_cast<uint32_t>(std::min<uint64_t>(triangle_count, 0xFFFFFFFFu)));
+  out += triangles;
+  return out;
+}
+
+Error write_mesh_file(const std::string& path, const Mesh& mesh, std::string* message) {
+  auto failed = [&](const std::string& reason) {
+    if (message) *message = path + ": " + reason;
+    return Error::IoError;
+  };
+  std::string bytes;
+  try {
+    switch (format_from_path(path)) {
+      case MeshFormat::Off: bytes = write_off(mesh); break;
+      case MeshFormat::Obj: bytes = write_obj(mesh); break;
+      case MeshFormat::Stl: bytes = write_stl_binary(mesh); break;
+      case MeshFormat::Unknown: return failed("unsupported file type (expected .off, .obj or .stl)");
+    }
+  } catch (const std::bad_alloc&) {
+    return failed("out of memory while formatting the mesh");
+  }
+  FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file) return failed(std::string("cannot open for writing: ") + std::strerror(errno));
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+  const int write_errno = errno;
+  const bool closed = std::fclose(file) == 0;
+  if (!written) return failed(std::string("write failed: ") + std::strerror(write_errno));
+  if (!closed) return failed(std::string("write failed: ") + std::strerror(errno));
+  if (message) message->clear();
+  return Error::Ok;
+}
+
+Mesh kernel_mesh(const Kernel& kernel) {
+  Mesh mesh;
+  mesh.positions = kernel.vertices;
+  // Point and segment kernels have vertices but no face; an empty kernel has neither.
+  if (kernel.type == KernelType::Polygon || kernel.type == KernelType::Polyhedron ||
+      kernel.type == KernelType::Unbounded) {
+    mesh.indices = kernel.face_indices;
+    mesh.face_sizes = kernel.face_sizes;
+  }
+  if (kernel.type == KernelType::Empty) mesh.positions.clear();
+  return mesh;
+}
+
+}  // namespace kergen

@@ -1,0 +1,270 @@
+// The `kergen` command: exit codes, JSON lines, folders, -o. Runs the built binary via popen.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "kergen/io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("kergen_cli_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    if (!fs::exists(KERGEN_CLI_PATH)) GTEST_SKIP() << "CLI not built at " << KERGEN_CLI_PATH;
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  CliRun run(const std::string& arguments) {
+    const std::string err_file = (dir_ / "stderr.txt").string();
+    const std::string command = shell_quote(KERGEN_CLI_PATH) + " " + arguments + " 2>" + shell_quote(err_file);
+    CliRun r;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) return r;
+    char buffer[4096];
+    size_t got;
+    while ((got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, got);
+    const int status = ::pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream err(err_file, std::ios::binary);
+    r.err.assign(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
+    return r;
+  }
+
+  // An axis-aligned box with quad faces, outward, written with the project's own writer.
+  std::string write_box(const std::string& name, double sx, double sy, double sz) {
+    kergen::Mesh m;
+    for (int i = 0; i < 8; ++i) {
+      m.positions.push_back((i & 1) ? sx : 0.0);
+      m.positions.push_back((i & 2) ? sy : 0.0);
+      m.positions.push_back((i & 4) ? sz : 0.0);
+    }
+    m.indices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
+    m.face_sizes = {4, 4, 4, 4, 4, 4};
+    const std::string path = (dir_ / name).string();
+    std::string message;
+    EXPECT_EQ(kergen::write_mesh_file(path, m, &message), kergen::Error::Ok) << message;
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    lines.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return lines;
+}
+
+// Minimal field extraction from one JSON line written by the CLI (flat keys are unique enough).
+std::string json_raw(const std::string& line, const std::string& key) {
+  const std::string needle = "\"" + key + "\":";
+  size_t at = line.find(needle);
+  if (at == std::string::npos) return "<missing>";
+  at += needle.size();
+  size_t end = at;
+  if (line[at] == '"') {
+    end = at + 1;
+    while (end < line.size() && line[end] != '"') end += line[end] == '\\' ? 2 : 1;
+    return line.substr(at + 1, end - at - 1);
+  }
+  int depth = 0;
+  while (end < line.size()) {
+    const char c = line[end];
+    if (c == '[' || c == '{') ++depth;
+    if ((c == ']' || c == '}') && depth-- == 0) break;
+    if (c == ',' && depth == 0) break;
+    ++end;
+  }
+  return line.substr(at, end - at);
+}
+
+double json_number(const std::string& line, const std::string& key) {
+  return std::strtod(json_raw(line, key).c_str(), nullptr);
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST_F(CliTest, BoxJsonIsPolyhedronWithItsVolume) {
+  const std::string box = write_box("box.off", 2.0, 3.0, 0.5);
+  CliRun r = run("--json " + shell_quote(box));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 1u) << r.out;
+  const std::string& line = lines[0];
+  EXPECT_EQ(line.front(), '{');
+  EXPECT_EQ(line.back(), '}');
+  EXPECT_EQ(json_raw(line, "file"), box);
+  EXPECT_EQ(json_raw(line, "ok"), "true");
+  EXPECT_EQ(json_raw(line, "error"), "null");
+  EXPECT_EQ(json_raw(line, "status"), "POLYHEDRON");
+  EXPECT_EQ(json_raw(line, "complete"), "true");
+  EXPECT_EQ(json_raw(line, "vertices"), "8");
+  EXPECT_EQ(json_raw(line, "edges"), "12");
+  EXPECT_EQ(json_raw(line, "faces"), "6");
+  const double volume = json_number(line, "volume");
+  EXPECT_NEAR(volume, 3.0, 3.0 * 1e-12);
+  EXPECT_NEAR(json_number(line, "shape_volume"), 3.0, 3.0 * 1e-12);
+  EXPECT_NEAR(json_number(line, "volume_ratio"), 1.0, 1e-12);
+  EXPECT_NEAR(json_number(line, "area"), 2 * (6.0 + 1.0 + 1.5), 1e-12);
+  EXPECT_NE(json_raw(line, "kernel_point"), "null");
+  for (const char* key : {"warnings", "stats", "input_faces", "distinct_planes", "active_planes", "traced_lines",
+                          "exact_fallbacks", "ms_parse", "ms_validate", "ms_planes", "ms_lp", "ms_trace",
+                          "ms_assemble", "ms_total", "deepest_point", "inscribed_radius", "message"})
+    EXPECT_NE(json_raw(line, key), "<missing>") << key;
+  EXPECT_EQ(json_raw(line, "input_faces"), "6");
+  EXPECT_TRUE(r.err.empty()) << "single mesh: no progress output: " << r.err;
+}
+
+TEST_F(CliTest, HumanOutputAndKernelFile) {
+  const std::string box = write_box("box.obj", 1.0, 1.0, 1.0);
+  const std::string out = (dir_ / "kernel.off").string();
+  CliRun r = run(shell_quote(box) + " -o " + shell_quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, box)) << r.out;
+  EXPECT_TRUE(has(r.out, "POLYHEDRON")) << r.out;
+  kergen::ReadResult kernel = kergen::read_mesh_file(out);
+  ASSERT_TRUE(kernel.ok()) << kernel.message;
+  EXPECT_EQ(kernel.mesh.num_vertices(), 8u);
+  EXPECT_EQ(kernel.mesh.num_faces(), 6u);
+}
+
+TEST_F(CliTest, MissingFileIsAnInputError) {
+  const std::string missing = (dir_ / "missing.off").string();
+  CliRun r = run(shell_quote(missing));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "kergen: ")) << r.err;
+  EXPECT_TRUE(has(r.err, "missing.off")) << r.err;
+
+  r = run("--json " + shell_quote(missing));
+  EXPECT_EQ(r.exit_code, 1);
+  ASSERT_EQ(lines_of(r.out).size(), 1u) << r.out;
+  EXPECT_EQ(json_raw(r.out, "ok"), "false");
+  EXPECT_EQ(json_raw(r.out, "error"), "IO_ERROR");
+  EXPECT_TRUE(has(json_raw(r.out, "message"), "missing.off"));
+}
+
+TEST_F(CliTest, ParseErrorIsReportedWithLine) {
+  const std::string bad = (dir_ / "bad.obj").string();
+  {
+    std::ofstream out(bad);
+    out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+  }
+  CliRun r = run(shell_quote(bad));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "bad.obj:4: vertex index 7 out of range")) << r.err;
+}
+
+TEST_F(CliTest, UsageErrorsExitWithTwo) {
+  for (const std::string& arguments :
+       {std::string(""), std::string("--no-such-option x.off"), std::string("x.off --from 1,2"),
+        std::string("x.off --max-steps minus"), std::string("x.off -o kernel.ply"), std::string("x.off -o"),
+        std::string("a.off b.off -o k.obj")}) {
+    CliRun r = run(arguments);
+    EXPECT_EQ(r.exit_code, 2) << "kergen " << arguments;
+    EXPECT_TRUE(has(r.err, "usage: kergen")) << r.err;
+  }
+  CliRun help = run("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_TRUE(has(help.out, "usage: kergen"));
+}
+
+TEST_F(CliTest, FolderGivesOneJsonLinePerMeshAndASummary) {
+  write_box("b.off", 1, 1, 1);
+  write_box("a.stl", 1, 2, 3);
+  write_box("c.obj", 2, 2, 2);
+  {
+    std::ofstream notes(dir_ / "notes.txt");
+    notes << "not a mesh\n";
+  }
+  CliRun r = run("--json " + shell_quote(dir_.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  // Sorted by name; every line is a complete object.
+  EXPECT_TRUE(has(json_raw(lines[0], "file"), "a.stl"));
+  EXPECT_TRUE(has(json_raw(lines[1], "file"), "b.off"));
+  EXPECT_TRUE(has(json_raw(lines[2], "file"), "c.obj"));
+  EXPECT_NEAR(json_number(lines[0], "volume"), 6.0, 6e-12);
+  EXPECT_NEAR(json_number(lines[2], "volume"), 8.0, 8e-12);
+  EXPECT_TRUE(has(r.err, "[1/3]")) << r.err;
+  EXPECT_TRUE(has(r.err, "[3/3]")) << r.err;
+  EXPECT_TRUE(has(r.err, "3 meshes")) << r.err;
+}
+
+TEST_F(CliTest, BatchWithOneBadMeshExitsWithOne) {
+  const std::string good = write_box("good.off", 1, 1, 1);
+  const std::string empty = (dir_ / "empty.stl").string();
+  { std::ofstream create(empty); }
+  CliRun r = run("--json " + shell_quote(good) + " " + shell_quote(empty));
+  EXPECT_EQ(r.exit_code, 1);
+  std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 2u) << r.out;
+  EXPECT_EQ(json_raw(lines[0], "ok"), "true");
+  EXPECT_EQ(json_raw(lines[1], "ok"), "false");
+  EXPECT_EQ(json_raw(lines[1], "error"), "EMPTY_INPUT");
+  EXPECT_TRUE(has(r.err, "EMPTY_INPUT 1")) << r.err;
+}
+
+TEST_F(CliTest, EmptyKernelIsNotAnError) {
+  // A U-shaped prism: the inner walls of its two arms face each other, so no point sees both.
+  kergen::Mesh u;
+  // Outline of the U in the xy-plane (counter-clockwise), extruded from z = 0 to z = 1.
+  const double outline[][2] = {{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
+  const uint32_t n = 8;
+  for (int layer = 0; layer < 2; ++layer)
+    for (const auto& p : outline) u.positions.insert(u.positions.end(), {p[0], p[1], double(layer)});
+  // Bottom (seen from below: clockwise in xy) and top as single non-convex polygons.
+  for (uint32_t i = 0; i < n; ++i) u.indices.push_back(n - 1 - i);
+  u.face_sizes.push_back(n);
+  for (uint32_t i = 0; i < n; ++i) u.indices.push_back(n + i);
+  u.face_sizes.push_back(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t j = (i + 1) % n;
+    u.indices.insert(u.indices.end(), {i, j, n + j, n + i});
+    u.face_sizes.push_back(4);
+  }
+  const std::string path = (dir_ / "u.obj").string();
+  ASSERT_EQ(kergen::write_mesh_file(path, u), kergen::Error::Ok);
+  CliRun r = run("--json " + shell_quote(path));
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(json_raw(r.out, "ok"), "true");
+  EXPECT_EQ(json_raw(r.out, "status"), "EMPTY");
+  EXPECT_EQ(json_raw(r.out, "kernel_point"), "null");
+}
+
+}  // namespace

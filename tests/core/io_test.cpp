@@ -1,0 +1,633 @@
+// Mesh file readers and writers (kergen/io.h): round trips, format variants, welding, strict errors,
+// and the outcome for every file of the shared format/bad fixture folders.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "kergen/io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using kergen::Error;
+using kergen::Mesh;
+using kergen::ReadResult;
+
+// A unit cube with quad faces, outward (counter-clockwise seen from outside).
+Mesh quad_cube(double size = 1.0) {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) {
+    m.positions.push_back((i & 1) ? size : 0.0);
+    m.positions.push_back((i & 2) ? size : 0.0);
+    m.positions.push_back((i & 4) ? size : 0.0);
+  }
+  m.indices = {0, 2, 3, 1,  4, 5, 7, 6,  0, 1, 5, 4,  2, 6, 7, 3,  0, 4, 6, 2,  1, 3, 7, 5};
+  m.face_sizes = {4, 4, 4, 4, 4, 4};
+  return m;
+}
+
+// Same polygon soup regardless of whether sizes are implicit (all triangles) or explicit.
+std::vector<uint32_t> sizes_of(const Mesh& m) {
+  return m.face_sizes.empty() ? std::vector<uint32_t>(m.indices.size() / 3, 3) : m.face_sizes;
+}
+
+void expect_same_mesh(const Mesh& expected, const Mesh& actual) {
+  ASSERT_EQ(expected.positions.size(), actual.positions.size());
+  for (size_t i = 0; i < expected.positions.size(); ++i) EXPECT_EQ(expected.positions[i], actual.positions[i]) << i;
+  EXPECT_EQ(expected.indices, actual.indices);
+  EXPECT_EQ(sizes_of(expected), sizes_of(actual));
+}
+
+// Triangles as sets of 3 points (order within a triangle kept), for meshes that went through STL
+// (float coordinates, welded vertices renumbered).
+std::multiset<std::vector<float>> triangle_set(const Mesh& m) {
+  std::multiset<std::vector<float>> out;
+  std::vector<uint32_t> sizes = sizes_of(m);
+  size_t offset = 0;
+  for (uint32_t k : sizes) {
+    for (uint32_t j = 1; j + 1 < k; ++j) {
+      std::vector<float> t;
+      for (uint32_t v : {m.indices[offset], m.indices[offset + j], m.indices[offset + j + 1]})
+        for (int d = 0; d < 3; ++d) t.push_back(static_cast<float>(m.positions[3 * v + d]));
+      out.insert(t);
+    }
+    offset += k;
+  }
+  return out;
+}
+
+std::string shared_meshes() { return KERGEN_SHARED_MESHES; }
+
+#define REQUIRE_SHARED_MESHES()                                                                  \
+  do {                                                                                           \
+    if (!fs::is_directory(shared_meshes() + "/fixtures"))                                        \
+      GTEST_SKIP() << "shared meshes not found at " << shared_meshes() << " (fixtures/ missing)"; \
+  } while (0)
+
+fs::path temp_dir() {
+  fs::path dir = fs::temp_directory_path() / ("kergen_io_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// ---------------------------------------------------------------------------------------------
+// Round trips.
+
+TEST(IoTest, OffRoundTripKeepsEveryBit) {
+  Mesh m = quad_cube();
+  m.positions[0] = 0.1;                  // not exactly representable in decimal
+  m.positions[4] = -1.0 / 3.0;
+  m.positions[8] = 1e-300;
+  m.positions[9] = 6.02214076e23;
+  ReadResult r = kergen::read_off(kergen::write_off(m));
+  ASSERT_TRUE(r.ok()) << r.message;
+  expect_same_mesh(m, r.mesh);
+}
+
+TEST(IoTest, ObjRoundTripKeepsEveryBit) {
+  Mesh m = quad_cube();
+  m.positions[3] = 0.30000000000000004;
+  m.positions[5] = -2.5e-310;  // subnormal
+  ReadResult r = kergen::read_obj(kergen::write_obj(m));
+  ASSERT_TRUE(r.ok()) << r.message;
+  expect_same_mesh(m, r.mesh);
+}
+
+TEST(IoTest, TrianglesReadBackWithImplicitSizes) {
+  Mesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  m.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  for (const std::string& text : {kergen::write_off(m), kergen::write_obj(m)}) {
+    ReadResult r = text[0] == 'O' ? kergen::read_off(text) : kergen::read_obj(text);
+    ASSERT_TRUE(r.ok()) << r.message;
+    EXPECT_TRUE(r.mesh.face_sizes.empty());
+    expect_same_mesh(m, r.mesh);
+  }
+}
+
+TEST(IoTest, StlRoundTripFanTriangulatesAndWelds) {
+  Mesh m = quad_cube(2.0);
+  std::string bytes = kergen::write_stl_binary(m);
+  ASSERT_EQ(bytes.size(), 84u + 50u * 12u);
+  uint32_t count;
+  std::memcpy(&count, bytes.data() + 80, 4);
+  EXPECT_EQ(count, 12u);
+  ReadResult r = kergen::read_stl(bytes);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_vertices(), 8u);  // welded back
+  EXPECT_EQ(r.mesh.num_faces(), 12u);
+  EXPECT_EQ(triangle_set(m), triangle_set(r.mesh));
+  // The first triangle's normal is the unit outward normal of face 0 (z = 0 plane: -z).
+  float normal[3];
+  std::memcpy(normal, bytes.data() + 84, 12);
+  EXPECT_EQ(normal[0], 0.0f);
+  EXPECT_EQ(normal[1], 0.0f);
+  EXPECT_EQ(normal[2], -1.0f);
+}
+
+TEST(IoTest, WriteMeshFileByExtensionAndReadBack) {
+  fs::path dir = temp_dir();
+  Mesh m = quad_cube(3.0);
+  for (const char* name : {"cube.off", "cube.OBJ", "cube.stl"}) {
+    std::string path = (dir / name).string();
+    std::string message = "unchanged";
+    ASSERT_EQ(kergen::write_mesh_file(path, m, &message), Error::Ok) << message;
+    ReadResult r = kergen::read_mesh_file(path);
+    ASSERT_TRUE(r.ok()) << r.message;
+    EXPECT_EQ(triangle_set(m), triangle_set(r.mesh)) << name;
+  }
+  std::string message;
+  EXPECT_EQ(kergen::write_mesh_file((dir / "cube.ply").string(), m, &message), Error::IoError);
+  EXPECT_TRUE(contains(message, "cube.ply")) << message;
+  EXPECT_EQ(kergen::write_mesh_file((dir / "no" / "such" / "dir.off").string(), m, &message), Error::IoError);
+  EXPECT_TRUE(contains(message, "dir.off")) << message;
+  fs::remove_all(dir);
+}
+
+TEST(IoTest, MeshViewMatchesMesh) {
+  Mesh m = quad_cube();
+  kergen::MeshView v = m.view();
+  EXPECT_EQ(v.positions, m.positions.data());
+  EXPECT_EQ(v.num_vertices, 8u);
+  EXPECT_EQ(v.indices, m.indices.data());
+  EXPECT_EQ(v.num_indices, 24u);
+  EXPECT_EQ(v.face_sizes, m.face_sizes.data());
+  EXPECT_EQ(v.num_faces, 6u);
+  m.face_sizes.clear();
+  v = m.view();
+  EXPECT_EQ(v.face_sizes, nullptr);
+  EXPECT_EQ(v.num_faces, 0u);
+}
+
+TEST(IoTest, KernelMeshByType) {
+  kergen::Kernel k;
+  k.type = kergen::KernelType::Polygon;
+  k.vertices = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  k.face_indices = {0, 1, 2};
+  k.face_sizes = {3};
+  Mesh polygon = kergen::kernel_mesh(k);
+  EXPECT_EQ(polygon.num_vertices(), 3u);
+  EXPECT_EQ(polygon.num_faces(), 1u);
+
+  k.type = kergen::KernelType::Segment;
+  k.vertices = {0, 0, 0, 1, 1, 1};
+  k.edges = {0, 1};
+  k.face_indices.clear();
+  k.face_sizes.clear();
+  Mesh segment = kergen::kernel_mesh(k);
+  EXPECT_EQ(segment.num_vertices(), 2u);
+  EXPECT_EQ(segment.num_faces(), 0u);
+
+  kergen::Kernel empty;
+  EXPECT_EQ(kergen::kernel_mesh(empty).num_faces(), 0u);
+  EXPECT_EQ(kergen::kernel_mesh(empty).num_vertices(), 0u);
+  // An empty face list still writes valid files.
+  EXPECT_TRUE(kergen::read_off(kergen::write_off(segment)).error == Error::EmptyInput);
+}
+
+TEST(IoTest, FormatFromPath) {
+  EXPECT_EQ(kergen::format_from_path("a/b.off"), kergen::MeshFormat::Off);
+  EXPECT_EQ(kergen::format_from_path("B.OBJ"), kergen::MeshFormat::Obj);
+  EXPECT_EQ(kergen::format_from_path("x.Stl"), kergen::MeshFormat::Stl);
+  EXPECT_EQ(kergen::format_from_path("x.ply"), kergen::MeshFormat::Unknown);
+  EXPECT_EQ(kergen::format_from_path("dir.off/file"), kergen::MeshFormat::Unknown);
+  EXPECT_EQ(kergen::format_from_path("noext"), kergen::MeshFormat::Unknown);
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ.
+
+TEST(IoTest, ObjFaceVertexForms) {
+  const char* text =
+      "# a tetrahedron written four ways\n"
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+      "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n"
+      "f 1 3 2\n"
+      "f 1/1 2/2 4/3\n"
+      "f 1//1 4//1 3//1\n"
+      "f 2/2/1 3/3/1 4/1/1\n";
+  ReadResult r = kergen::read_obj(text, "tet.obj");
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_vertices(), 4u);
+  EXPECT_EQ(r.mesh.indices, (std::vector<uint32_t>{0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}));
+  EXPECT_TRUE(r.mesh.face_sizes.empty());
+}
+
+TEST(IoTest, ObjNegativeIndicesAreRelative) {
+  const char* text =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+      "f -4 -3 -2 -1\n"
+      "v 0 0 1\n"
+      "f -5 -4 -1\n"  // 5 vertices so far: -5 -> 1, -4 -> 2, -1 -> 5
+      "f -1/1/1 -2//3 -3/2\n";
+  ReadResult r = kergen::read_obj(text);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.indices, (std::vector<uint32_t>{0, 1, 2, 3, 0, 1, 4, 4, 3, 2}));
+  EXPECT_EQ(r.mesh.face_sizes, (std::vector<uint32_t>{4, 3, 3}));
+}
+
+TEST(IoTest, ObjPolygonsCommentsAndIgnoredRecords) {
+  const char* text =
+      "\xEF\xBB\xBF# BOM, then comments\r\n"
+      "mtllib x.mtl\r\no thing\r\ng group one\r\ns off\r\nusemtl red\r\n"
+      "v 0 0 0 1.0\r\n"                   // w component
+      "v 1 0 0 0.5 0.5 0.5\r\n"           // vertex colour
+      "v   1   1   0   # trailing comment\r\n"
+      "v\t0\t1\t0\r\n"
+      "v 0.5 0.5 1\r\n"
+      "vp 0.5\r\nl 1 2\r\np 3\r\n"
+      "f 1 4 3 2   \r\n"
+      "f 1 2 5\r\nf 2 3 5\r\nf 3 4 5\r\nf 4 1 5";  // no final newline
+  ReadResult r = kergen::read_obj(text);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_vertices(), 5u);
+  EXPECT_EQ(r.mesh.face_sizes, (std::vector<uint32_t>{4, 3, 3, 3, 3}));
+  EXPECT_EQ(r.mesh.positions[3], 1.0);  // colour did not shift coordinates
+  EXPECT_EQ(r.mesh.positions[4], 0.0);
+}
+
+TEST(IoTest, ObjForwardReferenceIsAllowed) {
+  ReadResult r = kergen::read_obj("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_faces(), 1u);
+}
+
+struct ErrorCase {
+  const char* text;
+  Error error;
+  const char* message_part;
+};
+
+void expect_errors(ReadResult (*reader)(std::string_view, const std::string&), const std::vector<ErrorCase>& cases) {
+  for (const ErrorCase& c : cases) {
+    ReadResult r = reader(c.text, "in.txt");
+    EXPECT_EQ(r.error, c.error) << c.text << "\n-> " << r.message;
+    EXPECT_TRUE(contains(r.message, c.message_part)) << "expected '" << c.message_part << "' in: " << r.message;
+    EXPECT_TRUE(r.mesh.positions.empty() && r.mesh.indices.empty()) << "a failed read returns no mesh";
+  }
+}
+
+TEST(IoTest, ObjErrorsNameLineAndReason) {
+  expect_errors(kergen::read_obj, {
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", Error::ParseError, "in.txt:4: vertex index 0"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", Error::ParseError, "in.txt:4: vertex index 4 out of range"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", Error::ParseError, "in.txt:4: relative vertex index -4"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", Error::ParseError, "in.txt:4: face has 2 vertices"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", Error::ParseError, "in.txt:4: invalid face vertex 'x'"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/1/1/1\n", Error::ParseError, "in.txt:4: invalid face vertex"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999\n", Error::ParseError, "in.txt:4: vertex index 99999999999"},
+      {"v 0 0\n", Error::ParseError, "in.txt:1: vertex needs 3 coordinates, found 2"},
+      {"\nv 0 0 abc\n", Error::ParseError, "in.txt:2: invalid number 'abc'"},
+      {"v 0 0 1.5.2\n", Error::ParseError, "invalid number '1.5.2'"},
+      {"v 0 0 nan\n", Error::ParseError, "in.txt:1: non-finite coordinate 'nan'"},
+      {"v 0 -inf 0\n", Error::ParseError, "in.txt:1: non-finite coordinate '-inf'"},
+      {"v 0 1e999 0\n", Error::ParseError, "in.txt:1: non-finite coordinate '1e999'"},
+      {"v 0 0 0\nv 1 0 0\n", Error::EmptyInput, "in.txt: no faces"},
+      {"v 0 0 0\nv 1 0 0\nl 1 2\n", Error::EmptyInput, "no faces (only points/lines)"},
+      {"# nothing\n", Error::EmptyInput, "no vertices and no faces"},
+      {"", Error::EmptyInput, "in.txt: empty file"},
+      {"  \n\n", Error::EmptyInput, "in.txt: empty file"},
+      {"\xFF\xFEv\0 \0", Error::ParseError, "UTF-16 is not supported"},
+  });
+}
+
+TEST(IoTest, NumbersAreParsedExactly) {
+  ReadResult r = kergen::read_obj(
+      "v 0.1 -0 1e-400\n"            // underflow rounds to zero
+      "v +2. .5 -1E+2\n"
+      "v 4.9406564584124654e-324 1.7976931348623157e308 123456789012345678901234567890\n"
+      "f 1 2 3\n");
+  ASSERT_TRUE(r.ok()) << r.message;
+  const std::vector<double> expected = {0.1, -0.0, 0.0, 2.0, 0.5, -100.0,
+                                        4.9406564584124654e-324, 1.7976931348623157e308,
+                                        123456789012345678901234567890.0};
+  ASSERT_EQ(r.mesh.positions.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(r.mesh.positions[i], expected[i]) << i;
+  EXPECT_TRUE(std::signbit(r.mesh.positions[1]));
+}
+
+// ---------------------------------------------------------------------------------------------
+// OFF.
+
+TEST(IoTest, OffVariants) {
+  // Header and counts on one line, comments, colours after faces, COFF vertex colours.
+  ReadResult r = kergen::read_off(
+      "OFF 4 4 6 # counts on the header line\n"
+      "# a comment\n\n"
+      "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+      "3 0 2 1 255 0 0\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_vertices(), 4u);
+  EXPECT_EQ(r.mesh.num_faces(), 4u);
+
+  r = kergen::read_off("COFF\n4 4 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n0 0 1 1 1 1 1\n"
+                       "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.positions[3], 1.0);
+  EXPECT_EQ(r.mesh.positions[4], 0.0);
+
+  r = kergen::read_off("NOFF\n3 1\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2");  // no edge count, no final newline
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_faces(), 1u);
+}
+
+TEST(IoTest, OffErrorsNameLineAndReason) {
+  expect_errors(kergen::read_off, {
+      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", Error::ParseError, "in.txt:6: vertex index 3 out of range"},
+      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n", Error::ParseError, "in.txt:6: vertex index -1 out of range"},
+      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", Error::ParseError, "in.txt:6: face has 2 vertices"},
+      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", Error::ParseError, "in.txt:6: face declares 4 vertices"},
+      {"OFF\n3 1 0\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:4: invalid number 'x'"},
+      {"OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:4: non-finite coordinate"},
+      {"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", Error::ParseError, "unexpected end of file: 1 of 2 faces read"},
+      {"OFF\n300 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:2: header declares 300 vertices and 2 faces but only 26 bytes follow"},
+      {"OFF\n1000000000000 1000000000000 0\n0 0 0\n", Error::ParseError, "in.txt:2: header declares 1000000000000 vertices"},
+      {"OFF\n-3 1 0\n", Error::ParseError, "in.txt:2: invalid vertex count '-3'"},
+      {"OFF\n3 x 0\n", Error::ParseError, "in.txt:2: invalid face count 'x'"},
+      {"OFF\n", Error::ParseError, "missing vertex/face counts"},
+      {"PLY\n3 1 0\n", Error::ParseError, "in.txt:1: expected an OFF header, found 'PLY'"},
+      {"4OFF\n3 1 0\n", Error::ParseError, "4D / n-dimensional OFF is not supported"},
+      {"OFF BINARY\n", Error::ParseError, "binary OFF is not supported"},
+      {"OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", Error::EmptyInput, "in.txt: no faces"},
+      {"", Error::EmptyInput, "empty file"},
+  });
+}
+
+TEST(IoTest, OffTruncatedFile) {
+  // The size check is a lower bound; a file that passes it but ends early still fails cleanly.
+  ReadResult r = kergen::read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n\n\n\n\n\n\n\n\n\n\n\n\n\n\n");
+  EXPECT_EQ(r.error, Error::ParseError);
+  EXPECT_TRUE(contains(r.message, "unexpected end of file: 2 of 3 vertices read")) << r.message;
+}
+
+// ---------------------------------------------------------------------------------------------
+// STL.
+
+std::string ascii_tetra_stl(const char* solid_name = "tet") {
+  const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::string s = std::string("solid ") + solid_name + "\n";
+  for (const auto& f : faces) {
+    s += "  facet normal 0 0 0\n    outer loop\n";
+    for (int k : f) {
+      char line[128];
+      std::snprintf(line, sizeof line, "      vertex %.17g %.17g %.17g\n", v[k][0], v[k][1], v[k][2]);
+      s += line;
+    }
+    s += "    endloop\n  endfacet\n";
+  }
+  return s + "endsolid " + solid_name + "\n";
+}
+
+TEST(IoTest, StlAsciiAndBinaryGiveTheSameMesh) {
+  ReadResult ascii = kergen::read_stl(ascii_tetra_stl());
+  ASSERT_TRUE(ascii.ok()) << ascii.message;
+  EXPECT_EQ(ascii.mesh.num_vertices(), 4u);  // 12 corners welded to 4 vertices
+  EXPECT_EQ(ascii.mesh.num_faces(), 4u);
+  ReadResult binary = kergen::read_stl(kergen::write_stl_binary(ascii.mesh));
+  ASSERT_TRUE(binary.ok()) << binary.message;
+  expect_same_mesh(ascii.mesh, binary.mesh);
+}
+
+TEST(IoTest, StlBinaryWhoseHeaderSaysSolid) {
+  std::string bytes = kergen::write_stl_binary(kergen::read_stl(ascii_tetra_stl()).mesh);
+  std::memcpy(&bytes[0], "solid tet", 9);
+  ReadResult r = kergen::read_stl(bytes);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_faces(), 4u);
+}
+
+TEST(IoTest, StlWeldsByExactEqualityOnly) {
+  std::string s =
+      "solid w\n"
+      "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+      // -0 welds with 0; 1.0000000000000002 (next double after 1) does not weld with 1.
+      "facet normal 0 0 0\nouter loop\nvertex -0 -0 -0\nvertex 1.0000000000000002 0 0\nvertex 0 1.0 0\nendloop\nendfacet\n"
+      "endsolid w\n";
+  ReadResult r = kergen::read_stl(s);
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_vertices(), 4u);
+  EXPECT_EQ(r.mesh.indices, (std::vector<uint32_t>{0, 1, 2, 0, 3, 2}));
+  EXPECT_FALSE(std::signbit(r.mesh.positions[0]));
+}
+
+TEST(IoTest, StlMultipleAndEmptySolids) {
+  ReadResult r = kergen::read_stl(ascii_tetra_stl("a") + "solid empty\nendsolid empty\n" + ascii_tetra_stl("b"));
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.mesh.num_faces(), 8u);
+  EXPECT_EQ(r.mesh.num_vertices(), 4u);
+}
+
+TEST(IoTest, StlBinaryCountMismatch) {
+  std::string bytes = kergen::write_stl_binary(quad_cube());
+  // Lying count: header says 1000 triangles, the file holds 12.
+  std::string lying = bytes;
+  const uint32_t claimed = 1000;
+  std::memcpy(&lying[80], &claimed, 4);
+  ReadResult r = kergen::read_stl(lying, "lying.stl");
+  EXPECT_EQ(r.error, Error::ParseError);
+  EXPECT_TRUE(contains(r.message, "lying.stl: byte 80: binary STL header declares 1000 triangles")) << r.message;
+  EXPECT_TRUE(contains(r.message, "room for 12 triangles")) << r.message;
+
+  // Truncated in the middle of a triangle.
+  std::string truncated = bytes.substr(0, bytes.size() - 20);
+  r = kergen::read_stl(truncated, "cut.stl");
+  EXPECT_EQ(r.error, Error::ParseError);
+  EXPECT_TRUE(contains(r.message, "declares 12 triangles")) << r.message;
+  EXPECT_TRUE(contains(r.message, "room for 11 triangles")) << r.message;
+
+  // Largest possible lie: no allocation proportional to it.
+  const uint32_t huge = 0xFFFFFFFFu;
+  std::memcpy(&lying[80], &huge, 4);
+  r = kergen::read_stl(lying, "huge.stl");
+  EXPECT_EQ(r.error, Error::ParseError);
+  EXPECT_TRUE(contains(r.message, "4294967295 triangles")) << r.message;
+}
+
+TEST(IoTest, StlBinaryNonFiniteCoordinateNamesTheByte) {
+  std::string bytes = kergen::write_stl_binary(quad_cube());
+  const float nan = std::nanf("");
+  std::memcpy(&bytes[84 + 50 * 2 + 12 + 12 + 4], &nan, 4);  // triangle 2, vertex 1, y: byte 212
+  ReadResult r = kergen::read_stl(bytes, "nan.stl");
+  EXPECT_EQ(r.error, Error::ParseError);
+  EXPECT_TRUE(contains(r.message, "nan.stl: byte 212: non-finite coordinate in triangle 2 (vertex 1)")) << r.message;
+}
+
+TEST(IoTest, StlErrors) {
+  expect_errors(kergen::read_stl, {
+      {"", Error::EmptyInput, "in.txt: empty file"},
+      {"solid x\nendsolid x\n", Error::EmptyInput, "in.txt: no facets"},
+      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n endloop\n endfacet\nendsolid\n",
+       Error::ParseError, "in.txt:6: facet has 2 vertices"},
+      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 1 1 0\n vertex 1 2 0\n",
+       Error::ParseError, "in.txt:7: facet has more than 3 vertices"},
+      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 1 1 0\n endloop\n",
+       Error::ParseError, "unexpected end of file inside a facet"},
+      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0 0\n", Error::ParseError,
+       "in.txt:4: unexpected '0' after 'vertex x y z'"},
+      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 nan 0\n", Error::ParseError,
+       "in.txt:4: non-finite coordinate 'nan'"},
+      {"solid x\n facet 0 0 1\n", Error::ParseError, "in.txt:2: expected 'facet normal nx ny nz'"},
+      {"solid x\n vertex 0 0 0\n", Error::ParseError, "in.txt:2: expected 'facet' or 'endsolid', found 'vertex'"},
+      {"tiny", Error::ParseError, "in.txt: byte 0: not an STL file"},
+  });
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files.
+
+TEST(IoTest, ReadMeshFileErrors) {
+  fs::path dir = temp_dir();
+  ReadResult r = kergen::read_mesh_file((dir / "missing.off").string());
+  EXPECT_EQ(r.error, Error::IoError);
+  EXPECT_TRUE(contains(r.message, "missing.off")) << r.message;
+
+  r = kergen::read_mesh_file(dir.string());
+  EXPECT_EQ(r.error, Error::IoError);
+  EXPECT_TRUE(contains(r.message, "is a directory")) << r.message;
+
+  const std::string empty = (dir / "empty.obj").string();
+  { std::ofstream create_empty(empty, std::ios::binary); }
+  r = kergen::read_mesh_file(empty);
+  EXPECT_EQ(r.error, Error::EmptyInput);
+  EXPECT_TRUE(contains(r.message, "empty.obj: empty file")) << r.message;
+
+  const std::string big = (dir / "big.off").string();
+  ASSERT_EQ(kergen::write_mesh_file(big, quad_cube()), Error::Ok);
+  r = kergen::read_mesh_file(big, 10);
+  EXPECT_EQ(r.error, Error::TooLarge);
+  EXPECT_TRUE(contains(r.message, "big.off")) << r.message;
+  EXPECT_TRUE(kergen::read_mesh_file(big).ok());
+
+  const std::string ply = (dir / "shape.ply").string();
+  {
+    std::ofstream out(ply);
+    out << "ply\n";
+  }
+  r = kergen::read_mesh_file(ply);
+  EXPECT_EQ(r.error, Error::ParseError);
+  EXPECT_TRUE(contains(r.message, "unsupported file type")) << r.message;
+  fs::remove_all(dir);
+}
+
+// The outcome judged right for every shared fixture: Ok with the face count, or the error and a
+// fragment of the message. Geometric trouble (holes, zero-area or back-to-back triangles) is the
+// core's business: those files parse.
+struct FixtureOutcome {
+  Error error;
+  size_t faces;            // when Ok
+  const char* message_part;  // when not Ok
+};
+
+void check_fixture_folder(const std::string& folder, const std::map<std::string, FixtureOutcome>& expected) {
+  std::set<std::string> seen;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (kergen::format_from_path(name) == kergen::MeshFormat::Unknown) continue;  // licences
+    seen.insert(name);
+    auto it = expected.find(name);
+    if (it == expected.end()) {
+      ADD_FAILURE() << "no expectation for new fixture " << name;
+      continue;
+    }
+    ReadResult r = kergen::read_mesh_file(entry.path().string());
+    EXPECT_EQ(r.error, it->second.error) << name << ": " << r.message;
+    if (it->second.error == Error::Ok) {
+      EXPECT_EQ(r.mesh.num_faces(), it->second.faces) << name;
+    } else {
+      EXPECT_TRUE(contains(r.message, entry.path().string())) << "message names the file: " << r.message;
+      EXPECT_TRUE(contains(r.message, it->second.message_part)) << name << ": " << r.message;
+    }
+  }
+  for (const auto& [name, outcome] : expected) EXPECT_TRUE(seen.count(name)) << "fixture missing: " << name;
+}
+
+TEST(IoFixtures, FormatsFolder) {
+  REQUIRE_SHARED_MESHES();
+  check_fixture_folder(shared_meshes() + "/fixtures/formats",
+                       {
+                           {"3DSMaxExport.STL", {Error::Ok, 2000, ""}},
+                           {"Cube.off", {Error::Ok, 6, ""}},
+                           {"box.obj", {Error::Ok, 6, ""}},
+                           {"box_UTF16BE.obj", {Error::ParseError, 0, "box_UTF16BE.obj:1: UTF-16 is not supported"}},
+                           {"box_mat_with_spaces.obj", {Error::Ok, 6, ""}},
+                           {"box_without_lineending.obj", {Error::Ok, 6, ""}},
+                           {"concave_polygon.obj", {Error::Ok, 1, ""}},
+                           {"cube_usemtl.obj", {Error::Ok, 12, ""}},
+                           {"cube_with_vertexcolors.obj", {Error::Ok, 12, ""}},
+                           {"import_ascii.stl", {Error::Ok, 46, ""}},
+                           {"import_binary.stl", {Error::Ok, 46, ""}},
+                           {"multiple_spaces.obj", {Error::Ok, 1, ""}},
+                           // "3.1+e2" is not a number (the '+' precedes the 'e').
+                           {"number_formats.obj", {Error::ParseError, 0, "number_formats.obj:11: invalid number '3.1+e2'"}},
+                           {"sphereWithHole.stl", {Error::Ok, 285, ""}},
+                           {"testline.obj", {Error::EmptyInput, 0, "no faces (only points/lines)"}},
+                           {"testpoints.obj", {Error::EmptyInput, 0, "no faces (only points/lines)"}},
+                           {"triangle_with_empty_solid.stl", {Error::Ok, 1, ""}},
+                           {"triangle_with_two_solids.stl", {Error::Ok, 2, ""}},
+                       });
+}
+
+TEST(IoFixtures, FormatsSameShapeAcrossFormats) {
+  REQUIRE_SHARED_MESHES();
+  const std::string dir = shared_meshes() + "/fixtures/formats/";
+  ReadResult ascii = kergen::read_mesh_file(dir + "import_ascii.stl");
+  ReadResult binary = kergen::read_mesh_file(dir + "import_binary.stl");
+  ASSERT_TRUE(ascii.ok() && binary.ok());
+  EXPECT_EQ(ascii.mesh.num_vertices(), 25u);
+  EXPECT_EQ(binary.mesh.num_vertices(), 25u);
+  // The ascii file has 6 decimals, the binary one floats: same triangles up to float rounding.
+  auto a = triangle_set(ascii.mesh), b = triangle_set(binary.mesh);
+  ASSERT_EQ(a.size(), b.size());
+  for (auto ia = a.begin(), ib = b.begin(); ia != a.end(); ++ia, ++ib)
+    for (size_t k = 0; k < 9; ++k) EXPECT_NEAR((*ia)[k], (*ib)[k], 1e-6);
+
+  ReadResult box = kergen::read_mesh_file(dir + "box.obj");
+  ReadResult no_newline = kergen::read_mesh_file(dir + "box_without_lineending.obj");
+  ASSERT_TRUE(box.ok() && no_newline.ok());
+  expect_same_mesh(box.mesh, no_newline.mesh);
+}
+
+TEST(IoFixtures, BadFolder) {
+  REQUIRE_SHARED_MESHES();
+  check_fixture_folder(shared_meshes() + "/fixtures/bad",
+                       {
+                           // Well-formed binary STL of a broken model: the core judges it.
+                           {"bad-stl-tardis.stl", {Error::Ok, 3636, ""}},
+                           {"empty2.stl", {Error::EmptyInput, 0, "no facets"}},
+                           {"invalidvertex.stl", {Error::ParseError, 0, "invalidvertex.stl:89: invalid number 'blah'"}},
+                           {"issue1580-back-to-back.stl", {Error::Ok, 10, ""}},
+                           {"issue1580-zero-area-triangle.stl", {Error::Ok, 14, ""}},
+                           {"toomanyvertices.stl", {Error::ParseError, 0, "toomanyvertices.stl:91: facet has more than 3 vertices"}},
+                           {"unparseable.stl", {Error::ParseError, 0, "unparseable.stl:4: invalid number '\\x10'"}},
+                       });
+}
+
+TEST(IoFixtures, EveryMeshFixtureParses) {
+  REQUIRE_SHARED_MESHES();
+  size_t checked = 0;
+  for (const auto& entry : fs::directory_iterator(shared_meshes() + "/fixtures")) {
+    if (!entry.is_regular_file() || kergen::format_from_path(entry.path().string()) == kergen::MeshFormat::Unknown)
+      continue;
+    ReadResult r = kergen::read_mesh_file(entry.path().string());
+    EXPECT_TRUE(r.ok()) << r.message;
+    EXPECT_GT(r.mesh.num_faces(), 0u) << entry.path();
+    ++checked;
+  }
+  EXPECT_GE(checked, 30u);
+}
+
+}  // namespace
