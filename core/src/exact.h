@@ -1,0 +1,87 @@
+// Exact and filtered arithmetic for the predicates.
+//
+// Expansion: an exact real number as a sum of non-overlapping doubles, after Shewchuk,
+// "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric Predicates" (1997).
+// Exact for +, -, * as long as no intermediate overflows or underflows; the kernel code scales
+// its input by a power of two (exact) so coordinates are below 1 in magnitude.
+//
+// Approx: a double with a rigorous bound on its absolute error (running error analysis). Every
+// predicate is written once as a template and evaluated first with Approx; only when the sign is
+// not certain (|value| <= error) is it evaluated again with Expansion.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace kergen {
+namespace exact {
+
+constexpr double kEps = 1.1102230246251565e-16;  // 2^-53, unit roundoff
+// Inflation applied to every bound so the bound's own rounding never makes it too small; the
+// absolute floor covers underflow in products of tiny values.
+constexpr double kBoundScale = 1.0 + 8 * kEps;
+constexpr double kUnderflowFloor = 1e-290;
+
+class Expansion {
+ public:
+  Expansion() = default;
+  explicit Expansion(double x) { if (x != 0) c_.push_back(x); }
+
+  int sign() const { return c_.empty() ? 0 : (c_.back() > 0 ? 1 : -1); }
+  double estimate() const;  // the value rounded (nearly correctly) to a double
+  size_t size() const { return c_.size(); }
+  const std::vector<double>& components() const { return c_; }
+
+  friend Expansion operator+(const Expansion& a, const Expansion& b);
+  friend Expansion operator-(const Expansion& a, const Expansion& b);
+  friend Expansion operator*(const Expansion& a, const Expansion& b);
+  Expansion operator-() const;
+
+  static Expansion difference(double a, double b);  // a - b exactly
+  static Expansion product(double a, double b);     // a * b exactly
+
+ private:
+  void compress();
+  std::vector<double> c_;  // increasing magnitude, non-overlapping, no zeros
+};
+
+struct Approx {
+  double v = 0;  // value
+  double e = 0;  // |v - exact| <= e
+  Approx() = default;
+  Approx(double value) : v(value), e(0) {}  // NOLINT: exact input
+  Approx(double value, double err) : v(value), e(err) {}
+  // Sign when certain, 2 when not.
+  int sign() const { return v > e ? 1 : (v < -e ? -1 : 2); }
+  bool certain() const { return std::fabs(v) > e; }
+};
+
+inline Approx operator+(Approx a, Approx b) {
+  double v = a.v + b.v;
+  return {v, (a.e + b.e + kEps * std::fabs(v)) * kBoundScale};
+}
+inline Approx operator-(Approx a, Approx b) {
+  double v = a.v - b.v;
+  return {v, (a.e + b.e + kEps * std::fabs(v)) * kBoundScale};
+}
+inline Approx operator-(Approx a) { return {-a.v, a.e}; }
+inline Approx operator*(Approx a, Approx b) {
+  double v = a.v * b.v;
+  double e = std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e + kEps * std::fabs(v);
+  if (e != 0 || v == 0) e += kUnderflowFloor;  // a product of inexact or tiny values may underflow
+  return {v, e * kBoundScale};
+}
+// Division; the caller guarantees b.certain().
+inline Approx operator/(Approx a, Approx b) {
+  double x = a.v / b.v;
+  double denom = std::fabs(b.v) - b.e;
+  double e = (a.e + std::fabs(x) * b.e) / denom + kEps * std::fabs(x);
+  return {x, e * kBoundScale * kBoundScale + kUnderflowFloor};
+}
+
+inline int sign_of(const Approx& a) { return a.sign(); }
+inline int sign_of(const Expansion& a) { return a.sign(); }
+
+}  // namespace exact
+}  // namespace kergen

@@ -1,0 +1,214 @@
+// Public entry points: validation -> exact planes -> LP start vertex -> tracing -> polytope.
+#include "kergen/kergen.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "lp.h"
+#include "mesh_prep.h"
+#include "plane_classes.h"
+#include "planes.h"
+#include "polytope.h"
+#include "tracer.h"
+
+namespace kergen {
+
+const char* error_name(Error e) {
+  switch (e) {
+    case Error::Ok: return "OK";
+    case Error::EmptyInput: return "EMPTY_INPUT";
+    case Error::NonFiniteCoordinate: return "NON_FINITE_COORDINATE";
+    case Error::IndexOutOfRange: return "INDEX_OUT_OF_RANGE";
+    case Error::FaceTooSmall: return "FACE_TOO_SMALL";
+    case Error::OpenMesh: return "OPEN_MESH";
+    case Error::NonManifoldEdge: return "NON_MANIFOLD_EDGE";
+    case Error::InconsistentOrientation: return "INCONSISTENT_ORIENTATION";
+    case Error::MultipleComponents: return "MULTIPLE_COMPONENTS";
+    case Error::DegenerateInput: return "DEGENERATE_INPUT";
+    case Error::TooLarge: return "TOO_LARGE";
+    case Error::ParseError: return "PARSE_ERROR";
+    case Error::IoError: return "IO_ERROR";
+    case Error::InvalidArgument: return "INVALID_ARGUMENT";
+  }
+  return "UNKNOWN";
+}
+
+const char* kernel_type_name(KernelType t) {
+  switch (t) {
+    case KernelType::Empty: return "EMPTY";
+    case KernelType::Point: return "POINT";
+    case KernelType::Segment: return "SEGMENT";
+    case KernelType::Polygon: return "POLYGON";
+    case KernelType::Polyhedron: return "POLYHEDRON";
+    case KernelType::Unbounded: return "UNBOUNDED";
+  }
+  return "UNKNOWN";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// Everything up to and including the LP, shared by compute_kernel and find_kernel_point.
+struct Setup {
+  PreparedMesh mesh;
+  std::unique_ptr<PlaneSet> planes;
+  std::vector<uint32_t> active;
+  std::vector<char> is_box;
+  LpResult lp;
+  double center[3] = {0, 0, 0};
+};
+
+constexpr double kLpBound = 8;  // scaled coordinates are below 1; the open-mesh box is within 4
+
+void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
+  auto t = Clock::now();
+  s.mesh = prepare_mesh(mesh, options);
+  stats.input_vertices = mesh.num_vertices;
+  stats.input_faces = s.mesh.input_faces;
+  stats.dropped_faces = s.mesh.dropped_faces;
+  stats.ms_validate = ms_since(t);
+  if (s.mesh.error != Error::Ok) return;
+
+  t = Clock::now();
+  s.planes = std::make_unique<PlaneSet>(&s.mesh.points);
+  std::vector<uint32_t> face_plane;
+  build_planes(s.mesh, *s.planes, face_plane);
+  stats.distinct_planes = s.planes->size();
+  for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
+  for (int k = 0; k < 3; ++k) s.center[k] = 0.5 * (s.mesh.bbox_min[k] + s.mesh.bbox_max[k]);
+  if (options.allow_open && s.mesh.boundary_edges > 0) {
+    // A box twice the size of the data bounds what the open surface leaves unbounded.
+    for (int k = 0; k < 3; ++k)
+      for (int sgn = -1; sgn <= 1; sgn += 2) {
+        double n[3] = {0, 0, 0};
+        n[k] = sgn;
+        s.active.push_back(s.planes->add_explicit(n[0], n[1], n[2], -2.0));
+      }
+  }
+  s.is_box.assign(s.planes->size(), 0);
+  for (uint32_t i = 0; i < s.planes->size(); ++i) s.is_box[i] = s.planes->explicit_plane(i);
+  stats.ms_planes = ms_since(t);
+
+  t = Clock::now();
+  double dir[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
+  if (options.has_from) {
+    double len = 0;
+    for (int k = 0; k < 3; ++k) {
+      double d = options.from[k] * s.mesh.scale - s.center[k];
+      len += d * d;
+    }
+    if (len > 0 && std::isfinite(len))
+      for (int k = 0; k < 3; ++k) dir[k] = options.from[k] * s.mesh.scale - s.center[k];
+  }
+  s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
+  stats.ms_lp = ms_since(t);
+}
+
+}  // namespace
+
+Kernel compute_kernel(const MeshView& mesh, const Options& options) {
+  auto t_total = Clock::now();
+  Kernel out;
+  Setup s;
+  setup(mesh, options, s, out.stats);
+  out.warnings = s.mesh.warnings;
+  if (s.mesh.error != Error::Ok) {
+    out.error = s.mesh.error;
+    out.message = s.mesh.message;
+    out.stats.ms_total = ms_since(t_total);
+    return out;
+  }
+  const double unscale = 1.0 / s.mesh.scale;
+  out.shape_volume = s.mesh.volume * unscale * unscale * unscale;
+  out.stats.active_planes = s.active.size();
+
+  if (s.lp.outcome == LpResult::Outcome::Infeasible) {
+    out.type = KernelType::Empty;
+  } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
+    out.type = KernelType::Unbounded;
+  } else {
+    out.has_kernel_point = true;
+    for (int k = 0; k < 3; ++k) out.kernel_point[k] = s.lp.vertex.x[k].v * unscale;
+
+    auto t = Clock::now();
+    uint64_t steps = 0;
+    TraceOptions topt;
+    topt.on_step = &options.on_step;
+    topt.max_steps = options.max_steps;
+    topt.steps = &steps;
+    topt.unscale = unscale;
+    if (options.has_from) {
+      topt.has_from = true;
+      for (int k = 0; k < 3; ++k) topt.from[k] = options.from[k] * s.mesh.scale;
+    }
+    TraceResult tr = trace_kernel_edges(*s.planes, s.active, s.lp.vertex, topt);
+    out.stats.ms_trace = ms_since(t);
+    out.stats.traced_lines = tr.traced_lines;
+    out.complete = tr.complete;
+    if (tr.internal_error) {
+      out.error = Error::InvalidArgument;
+      out.message = "internal error: kernel tracing could not certify a vertex (please report this mesh)";
+      return out;
+    }
+
+    t = Clock::now();
+    bool stopped = !tr.complete;
+    auto emit_face = [&](const StepEvent& e) {
+      if (stopped) return false;
+      ++steps;
+      bool go = !options.on_step || options.on_step(e);
+      if (options.max_steps && steps >= options.max_steps) go = false;
+      if (!go) { stopped = true; out.complete = false; }
+      return go;
+    };
+    double scaled_volume = 0;
+    if (!assemble_polytope(*s.planes, tr, unscale, out, emit_face, scaled_volume)) {
+      out.error = Error::InvalidArgument;
+      out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
+      return out;
+    }
+    for (const auto& v : tr.vertices)
+      for (uint32_t p : v.tight)
+        if (s.is_box[p]) out.type = KernelType::Unbounded;
+    out.stats.ms_assemble = ms_since(t);
+    out.volume_ratio = s.mesh.volume > 0 ? scaled_volume / s.mesh.volume : 0;
+  }
+  out.stats.exact_fallbacks = s.planes->exact_fallbacks;
+  out.stats.ms_total = ms_since(t_total);
+  return out;
+}
+
+KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
+  KernelPoint r;
+  Setup s;
+  Stats stats;
+  setup(mesh, options, s, stats);
+  r.warnings = s.mesh.warnings;
+  if (s.mesh.error != Error::Ok) {
+    r.error = s.mesh.error;
+    r.message = s.mesh.message;
+    return r;
+  }
+  if (s.lp.outcome == LpResult::Outcome::Optimal) {
+    r.star_shaped = true;
+    for (int k = 0; k < 3; ++k) r.point[k] = s.lp.vertex.x[k].v / s.mesh.scale;
+  } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
+    r.star_shaped = true;  // non-empty but unbounded (open input)
+  }
+  return r;
+}
+
+Validation validate_mesh(const MeshView& mesh, const Options& options) {
+  Validation v;
+  PreparedMesh m = prepare_mesh(mesh, options);
+  v.error = m.error;
+  v.message = m.message;
+  v.warnings = m.warnings;
+  v.volume = m.volume / (m.scale * m.scale * m.scale);
+  return v;
+}
+
+}  // namespace kergen

@@ -1,0 +1,180 @@
+// Seidel's randomized LP, 3D -> 2D -> 1D, with every decision an exact predicate:
+//  - "does the current optimum violate plane h" = side(h, vertex),
+//  - "which end of the line h∩g is better" = sign of objective . (n_h x n_g), lexicographic over
+//    three independent directions, so the optimum is one point even on degenerate input,
+//  - "which plane cuts the line first" = side of one plane at the other's vertex on the line.
+// Three bounding planes s_i x_i <= M (s = sign pattern of the objective) make every subproblem
+// bounded; their corner is the optimum of the empty constraint set.
+#include "lp.h"
+
+#include <cassert>
+
+namespace kergen {
+
+namespace {
+
+// Deterministic on every platform (std::shuffle's algorithm is not).
+void shuffle(std::vector<uint32_t>& v, uint64_t seed) {
+  uint64_t s = seed ^ 0x9e3779b97f4a7c15ull;
+  auto next = [&]() {
+    s += 0x9e3779b97f4a7c15ull;
+    uint64_t z = s;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  for (size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[next() % i]);
+}
+
+class SeidelLp {
+ public:
+  SeidelLp(const PlaneSet& ps, const double dir[3], const uint32_t bounds[3]) : ps_(ps) {
+    for (int i = 0; i < 3; ++i) bounds_[i] = bounds[i];
+    double s[3];
+    for (int i = 0; i < 3; ++i) s[i] = dir[i] < 0 ? -1 : 1;
+    // Tie-breaks with the same sign pattern (bounded on the orthant), independent of dir.
+    const double cand[4][3] = {{3, 1, 2}, {2, 3, 1}, {1, 1, 5}, {7, 2, 1}};
+    for (int i = 0; i < 3; ++i) obj_[0][i] = dir[i];
+    int found = 0;
+    for (int a = 0; a < 4 && found < 2; ++a)
+      for (int b = a + 1; b < 4 && found < 2; ++b) {
+        double c2[3], c3[3];
+        for (int i = 0; i < 3; ++i) { c2[i] = s[i] * cand[a][i]; c3[i] = s[i] * cand[b][i]; }
+        Expansion det = det3(Expansion(dir[0]), Expansion(dir[1]), Expansion(dir[2]), Expansion(c2[0]), Expansion(c2[1]),
+                             Expansion(c2[2]), Expansion(c3[0]), Expansion(c3[1]), Expansion(c3[2]));
+        if (det.sign() != 0) {
+          for (int i = 0; i < 3; ++i) { obj_[1][i] = c2[i]; obj_[2][i] = c3[i]; }
+          found = 2;
+        }
+      }
+    assert(found == 2);
+  }
+
+  LpResult solve(const std::vector<uint32_t>& cons) {
+    LpResult r;
+    VertexGeom v = make_vertex(ps_, cons[0], cons[1], cons[2]);
+    for (size_t i = 3; i < cons.size(); ++i) {
+      uint32_t h = cons[i];
+      if (side(ps_, h, v) > 0 && !solve2(h, cons.data(), i, v)) {
+        r.outcome = LpResult::Outcome::Infeasible;
+        return r;
+      }
+    }
+    r.vertex = v;
+    r.outcome = LpResult::Outcome::Optimal;
+    for (uint32_t b : v.basis)
+      if (is_bound(b)) r.outcome = LpResult::Outcome::Unbounded;
+    return r;
+  }
+
+ private:
+  bool is_bound(uint32_t p) const { return p == bounds_[0] || p == bounds_[1] || p == bounds_[2]; }
+
+  // Lexicographic sign of the objective along n_p x n_q (never 0 for non-parallel p, q).
+  int objective_sign(uint32_t p, uint32_t q) const {
+    for (const auto& c : obj_) {
+      int s = sign_det3_vector(ps_, c, p, q);
+      if (s != 0) return s;
+    }
+    return 0;
+  }
+
+  // Optimum on the line h∩g over cons[0..n).
+  bool solve1(uint32_t h, uint32_t g, const uint32_t* cons, size_t n, VertexGeom& out) {
+    int sigma = objective_sign(h, g);
+    assert(sigma != 0);
+    uint32_t ahead = kNoPlane, behind = kNoPlane;
+    VertexGeom va, vb;
+    parallel_.clear();
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t m = cons[i];
+      if (m == h || m == g) continue;
+      int r = sign_det3_normals(ps_, m, h, g) * sigma;
+      if (r > 0) {
+        if (ahead == kNoPlane || side(ps_, m, va) > 0) { ahead = m; va = make_vertex(ps_, h, g, m); }
+      } else if (r < 0) {
+        if (behind == kNoPlane || side(ps_, m, vb) > 0) { behind = m; vb = make_vertex(ps_, h, g, m); }
+      } else {
+        parallel_.push_back(m);
+      }
+    }
+    if (ahead == kNoPlane) return false;  // unreachable: the bounding planes bound the objective
+    if (behind != kNoPlane && side(ps_, behind, va) > 0) return false;
+    for (uint32_t m : parallel_)
+      if (side(ps_, m, va) > 0) return false;
+    out = va;
+    return true;
+  }
+
+  // Optimum on plane h over cons[0..n) (cons starts with the three bounding planes).
+  bool solve2(uint32_t h, const uint32_t* cons, size_t n, VertexGeom& out) {
+    VertexGeom w;
+    bool have = false;
+    // The optimum over the bounding planes alone: the feasible, locally optimal corner.
+    for (int x = 0; x < 3 && !have; ++x)
+      for (int y = x + 1; y < 3 && !have; ++y) {
+        uint32_t bx = bounds_[x], by = bounds_[y], bz = bounds_[3 - x - y];
+        if (sign_det3_normals(ps_, h, bx, by) == 0) continue;
+        VertexGeom c = make_vertex(ps_, h, bx, by);
+        int sz = side(ps_, bz, c);
+        if (sz > 0) continue;
+        uint32_t tight[3] = {bx, by, bz};
+        int nt = sz == 0 ? 3 : 2;
+        bool optimal = true;
+        for (int a = 0; a < nt && optimal; ++a) {
+          if (normals_parallel(ps_, h, tight[a])) continue;
+          for (int sigma = -1; sigma <= 1 && optimal; sigma += 2) {
+            bool feasible = true;
+            for (int b = 0; b < nt; ++b)
+              if (b != a && sigma * sign_det3_normals(ps_, tight[b], h, tight[a]) > 0) feasible = false;
+            if (feasible && sigma * objective_sign(h, tight[a]) > 0) optimal = false;
+          }
+        }
+        if (optimal) { w = c; have = true; }
+      }
+    assert(have && "no optimal corner of the bounding planes on h");
+    if (!have) return false;
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t g = cons[i];
+      if (is_bound(g)) continue;
+      if (side(ps_, g, w) > 0) {
+        if (normals_parallel(ps_, h, g)) return false;  // g excludes all of h
+        if (!solve1(h, g, cons, i, w)) return false;
+      }
+    }
+    out = w;
+    return true;
+  }
+
+  const PlaneSet& ps_;
+  uint32_t bounds_[3];
+  double obj_[3][3];
+  std::vector<uint32_t> parallel_;
+};
+
+}  // namespace
+
+LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const double direction[3], double bound,
+                  uint64_t seed) {
+  uint32_t bounds[3];
+  for (int i = 0; i < 3; ++i) {
+    double n[3] = {0, 0, 0};
+    n[i] = direction[i] < 0 ? -1 : 1;
+    bounds[i] = ps.add_explicit(n[0], n[1], n[2], -bound);
+  }
+  std::vector<uint32_t> cons;
+  cons.reserve(planes.size() + 3);
+  cons.insert(cons.end(), bounds, bounds + 3);
+  std::vector<uint32_t> order = planes;
+  shuffle(order, seed);
+  cons.insert(cons.end(), order.begin(), order.end());
+  LpResult r;
+  {
+    SeidelLp lp(ps, direction, bounds);
+    r = lp.solve(cons);
+  }
+  for (int i = 0; i < 3; ++i) ps.pop_last();
+  return r;
+}
+
+}  // namespace kergen

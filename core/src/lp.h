@@ -1,0 +1,26 @@
+// Seidel's randomized linear programming in 3D (Seidel, "Small-dimensional linear programming
+// and convex hulls made easy", 1991), expected O(N), on exact predicates: the extreme kernel
+// vertex in a direction, or a proof that the kernel is empty.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "planes.h"
+
+namespace kergen {
+
+struct LpResult {
+  enum class Outcome { Optimal, Infeasible, Unbounded };
+  Outcome outcome = Outcome::Infeasible;
+  VertexGeom vertex;  // Optimal: the unique lexicographic optimum, with its basis planes
+};
+
+// Maximizes `direction` (then two fixed tie-break directions, lexicographically, so the optimum
+// is a unique point) over { x : f_i(x) <= 0 for i in `planes` }. Three bounding planes at
+// +-bound (a power of two beyond the data) are appended to `ps`; an optimum on them is reported
+// as Unbounded. The constraint order is shuffled with `seed` (the result does not depend on it).
+LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const double direction[3], double bound,
+                  uint64_t seed);
+
+}  // namespace kergen

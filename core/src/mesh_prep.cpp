@@ -1,0 +1,290 @@
+// Input validation: finite coordinates, valid indices, closed 2-manifold edges with consistent
+// orientation, one connected piece, positive enclosed volume (flipped if negative). Zero-area
+// faces are detected exactly and dropped (after the topology check, which still counts them:
+// they are part of the closed surface, they only carry no plane).
+#include "mesh_prep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+#include "planes.h"
+
+namespace kergen {
+
+namespace {
+
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  bool unite(uint32_t a, uint32_t b) {
+    a = find(a); b = find(b);
+    if (a == b) return false;
+    parent[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+};
+
+PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
+  m.error = e;
+  m.message = msg;
+  return std::move(m);
+}
+
+bool lex_less(const double* a, const double* b) {
+  return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
+}
+
+}  // namespace
+
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
+  PreparedMesh m;
+  const size_t nv = mesh.num_vertices;
+  const size_t nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
+  m.input_faces = nf;
+
+  if ((nv > 0 && !mesh.positions) || (mesh.num_indices > 0 && !mesh.indices) || (mesh.face_sizes == nullptr && mesh.num_faces > 0 && mesh.num_faces != nf))
+    return fail(m, Error::InvalidArgument, "null array with a non-zero size, or num_faces given without face_sizes");
+  if (nv == 0) return fail(m, Error::EmptyInput, "the mesh has no vertices");
+  if (nf == 0) return fail(m, Error::EmptyInput, "the mesh has no faces");
+  if (nf > options.max_faces || nv > options.max_vertices) {
+    std::ostringstream s;
+    s << "the mesh has " << nf << " faces and " << nv << " vertices; the limit is " << options.max_faces
+      << " faces and " << options.max_vertices << " vertices (Options::max_faces / max_vertices)";
+    return fail(m, Error::TooLarge, s.str());
+  }
+  if (!mesh.face_sizes && mesh.num_indices % 3 != 0)
+    return fail(m, Error::InvalidArgument, "triangle indices: the count " + std::to_string(mesh.num_indices) + " is not a multiple of 3");
+
+  // Offsets of the input faces; sizes must add up.
+  std::vector<size_t> offsets(nf + 1, 0);
+  for (size_t f = 0; f < nf; ++f) {
+    size_t k = mesh.face_sizes ? mesh.face_sizes[f] : 3;
+    if (k < 3) {
+      std::ostringstream s;
+      s << "face " << f << " has " << k << " vertices; a face needs at least 3";
+      return fail(m, Error::FaceTooSmall, s.str());
+    }
+    offsets[f + 1] = offsets[f] + k;
+    if (offsets[f + 1] > mesh.num_indices)
+      return fail(m, Error::InvalidArgument, "face sizes add up to more than the number of indices");
+  }
+  if (offsets[nf] != mesh.num_indices)
+    return fail(m, Error::InvalidArgument, "face sizes add up to " + std::to_string(offsets[nf]) + " but " + std::to_string(mesh.num_indices) + " indices were given");
+
+  for (size_t i = 0; i < 3 * nv; ++i) {
+    if (!std::isfinite(mesh.positions[i])) {
+      std::ostringstream s;
+      s << "vertex " << i / 3 << " has a non-finite coordinate (" << mesh.positions[i] << ")";
+      return fail(m, Error::NonFiniteCoordinate, s.str());
+    }
+  }
+  for (size_t i = 0; i < mesh.num_indices; ++i) {
+    if (mesh.indices[i] >= nv) {
+      size_t f = size_t(std::upper_bound(offsets.begin(), offsets.end(), i) - offsets.begin()) - 1;
+      std::ostringstream s;
+      s << "face " << f << " refers to vertex " << mesh.indices[i] << " but the mesh has " << nv << " vertices";
+      return fail(m, Error::IndexOutOfRange, s.str());
+    }
+  }
+
+  // Scale by a power of two (exact) so that coordinates are below 1 in magnitude: keeps the
+  // exact arithmetic away from overflow and underflow whatever the input's units.
+  double maxabs = 0;
+  for (size_t i = 0; i < 3 * nv; ++i) maxabs = std::max(maxabs, std::fabs(mesh.positions[i]));
+  int ex = 0;
+  if (maxabs > 0) std::frexp(maxabs, &ex);
+  m.scale = std::ldexp(1.0, -ex);
+  m.points.resize(3 * nv);
+  for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = mesh.positions[i] * m.scale;
+
+  // Faces without repeated consecutive vertices; faces left with < 3 distinct vertices carry
+  // no area and no edges of their own (a -> b -> a pairs cancel), so they are dropped here.
+  std::vector<uint32_t> clean_offsets{0}, clean;
+  std::vector<uint32_t> clean_source;
+  clean.reserve(mesh.num_indices);
+  for (size_t f = 0; f < nf; ++f) {
+    size_t begin = clean.size();
+    size_t k = offsets[f + 1] - offsets[f];
+    for (size_t i = 0; i < k; ++i) {
+      uint32_t v = mesh.indices[offsets[f] + i];
+      if (clean.size() > begin && clean.back() == v) continue;
+      clean.push_back(v);
+    }
+    while (clean.size() - begin > 1 && clean.back() == clean[begin]) clean.pop_back();
+    if (clean.size() - begin < 3) {
+      clean.resize(begin);
+      ++m.dropped_faces;
+      continue;
+    }
+    clean_offsets.push_back(uint32_t(clean.size()));
+    clean_source.push_back(uint32_t(f));
+  }
+  const size_t cf = clean_offsets.size() - 1;
+  if (cf == 0) return fail(m, Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
+
+  // Edge use: key = (min, max); count each direction and remember the faces.
+  struct EdgeUse { uint32_t forward = 0, backward = 0, face0 = 0, face1 = 0; };
+  std::unordered_map<uint64_t, EdgeUse> edges;
+  edges.reserve(clean.size());
+  for (size_t f = 0; f < cf; ++f) {
+    size_t b = clean_offsets[f], e = clean_offsets[f + 1];
+    for (size_t i = b; i < e; ++i) {
+      uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : b];
+      uint32_t lo = std::min(u, v), hi = std::max(u, v);
+      EdgeUse& use = edges[(uint64_t(lo) << 32) | hi];
+      uint32_t n = use.forward + use.backward;
+      if (n == 0) use.face0 = uint32_t(f);
+      else if (n == 1) use.face1 = uint32_t(f);
+      (u < v ? use.forward : use.backward)++;
+    }
+  }
+  size_t open = 0, nonmanifold = 0, inconsistent = 0;
+  uint64_t open_ex = 0, nonmanifold_ex = 0, inconsistent_ex = 0;
+  UnionFind components(cf);
+  std::vector<std::array<uint32_t, 2>> face_pairs;
+  face_pairs.reserve(edges.size());
+  for (const auto& [key, use] : edges) {
+    uint32_t n = use.forward + use.backward;
+    if (n == 1) { if (!open++) open_ex = key; }
+    else if (n > 2) { if (!nonmanifold++) nonmanifold_ex = key; }
+    else if (use.forward != 1) { if (!inconsistent++) inconsistent_ex = key; }
+    else { components.unite(use.face0, use.face1); face_pairs.push_back({use.face0, use.face1}); }
+  }
+  auto edge_name = [](uint64_t k) {
+    return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";
+  };
+  if (nonmanifold) {
+    return fail(m, Error::NonManifoldEdge, std::to_string(nonmanifold) + " edge(s) are shared by more than two faces, e.g. edge " + edge_name(nonmanifold_ex));
+  }
+  if (inconsistent) {
+    return fail(m, Error::InconsistentOrientation, std::to_string(inconsistent) + " edge(s) are traversed in the same direction by both of their faces (inconsistent orientation), e.g. edge " + edge_name(inconsistent_ex));
+  }
+  if (open && !options.allow_open) {
+    return fail(m, Error::OpenMesh, "the mesh is open: " + std::to_string(open) + " edge(s) belong to one face only, e.g. edge " + edge_name(open_ex) + " (Options::allow_open accepts open meshes)");
+  }
+  m.boundary_edges = open;
+  // Faces joined by boundary edges only are joined through vertices for the component count.
+  {
+    std::vector<uint32_t> first_face(nv, 0xffffffffu);
+    if (open) {
+      for (size_t f = 0; f < cf; ++f)
+        for (size_t i = clean_offsets[f]; i < clean_offsets[f + 1]; ++i) {
+          uint32_t v = clean[i];
+          if (first_face[v] == 0xffffffffu) first_face[v] = uint32_t(f);
+          else components.unite(first_face[v], uint32_t(f));
+        }
+    }
+    size_t pieces = 0;
+    for (size_t f = 0; f < cf; ++f) pieces += components.find(uint32_t(f)) == f;
+    if (pieces > 1) {
+      return fail(m, Error::MultipleComponents, "the mesh has " + std::to_string(pieces) + " separate pieces; the kernel is defined for one closed surface");
+    }
+  }
+  {
+    std::vector<char> used(nv, 0);
+    for (uint32_t v : clean) used[v] = 1;
+    size_t unused = nv - size_t(std::count(used.begin(), used.end(), 1));
+    if (unused)
+      m.warnings.push_back({Warning::Kind::UnusedVertices, unused, std::to_string(unused) + " vertices are not used by any face"});
+  }
+
+  // Bounding box and enclosed volume (double; relative to the box centre for accuracy).
+  for (int k = 0; k < 3; ++k) { m.bbox_min[k] = INFINITY; m.bbox_max[k] = -INFINITY; }
+  for (uint32_t v : clean)
+    for (int k = 0; k < 3; ++k) {
+      m.bbox_min[k] = std::min(m.bbox_min[k], m.points[3 * v + k]);
+      m.bbox_max[k] = std::max(m.bbox_max[k], m.points[3 * v + k]);
+    }
+  double c[3], ext = 0;
+  for (int k = 0; k < 3; ++k) {
+    c[k] = 0.5 * (m.bbox_min[k] + m.bbox_max[k]);
+    ext = std::max(ext, m.bbox_max[k] - m.bbox_min[k]);
+  }
+  double vol6 = 0, vol6_abs = 0;
+  for (size_t f = 0; f < cf; ++f) {
+    size_t b = clean_offsets[f], e = clean_offsets[f + 1];
+    const double* p0 = &m.points[3 * clean[b]];
+    for (size_t i = b + 1; i + 1 < e; ++i) {
+      const double* p1 = &m.points[3 * clean[i]];
+      const double* p2 = &m.points[3 * clean[i + 1]];
+      double a[3], bb[3], cc[3];
+      for (int k = 0; k < 3; ++k) { a[k] = p0[k] - c[k]; bb[k] = p1[k] - c[k]; cc[k] = p2[k] - c[k]; }
+      double d = a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) + a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
+      vol6 += d;
+      vol6_abs += std::fabs(d);
+    }
+  }
+  // A closed surface enclosing nothing sums to zero up to rounding; anything at the rounding
+  // level of the terms' magnitudes is treated as zero.
+  if (!open && (!(std::fabs(vol6) > 1e-12 * vol6_abs) || ext == 0))
+    return fail(m, Error::DegenerateInput, "the mesh encloses no volume (flat or folded onto itself)");
+  bool flip = vol6 < 0 && !open;
+  m.volume = std::fabs(vol6) / 6;
+  if (open) m.volume = vol6 / 6;
+  if (flip) {
+    m.warnings.push_back({Warning::Kind::OrientationFlipped, cf, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"});
+    for (size_t f = 0; f < cf; ++f) std::reverse(clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
+  }
+
+  // Plane-carrying faces: drop exact zero-area ones; planar polygons keep one representative
+  // triangle at their lexicographically smallest vertex (a strictly convex corner, so the
+  // triangle has the polygon's orientation); non-planar polygons are fan-triangulated.
+  std::vector<uint32_t> face_of_clean(cf, 0xffffffffu);
+  size_t degenerate = 0, nonplanar = 0;
+  m.loop_offsets.push_back(0);
+  auto add_face = [&](const uint32_t* loop, size_t k, std::array<uint32_t, 3> rep) {
+    m.loops.insert(m.loops.end(), loop, loop + k);
+    m.loop_offsets.push_back(uint32_t(m.loops.size()));
+    m.rep.push_back(rep);
+  };
+  for (size_t f = 0; f < cf; ++f) {
+    const uint32_t* loop = &clean[clean_offsets[f]];
+    size_t k = clean_offsets[f + 1] - clean_offsets[f];
+    auto P = [&](uint32_t v) { return &m.points[3 * size_t(v)]; };
+    if (k == 3) {
+      if (collinear(P(loop[0]), P(loop[1]), P(loop[2]))) { ++degenerate; continue; }
+      face_of_clean[f] = uint32_t(m.rep.size());
+      add_face(loop, 3, {loop[0], loop[1], loop[2]});
+      continue;
+    }
+    size_t lo = 0;
+    for (size_t i = 1; i < k; ++i) if (lex_less(P(loop[i]), P(loop[lo]))) lo = i;
+    std::array<uint32_t, 3> rep = {loop[(lo + k - 1) % k], loop[lo], loop[(lo + 1) % k]};
+    bool planar = !collinear(P(rep[0]), P(rep[1]), P(rep[2]));
+    for (size_t i = 0; i < k && planar; ++i)
+      if (orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i])) != 0) planar = false;
+    if (planar) {
+      face_of_clean[f] = uint32_t(m.rep.size());
+      add_face(loop, k, rep);
+      continue;
+    }
+    bool any = false;
+    for (size_t i = 1; i + 1 < k; ++i) {
+      if (collinear(P(loop[0]), P(loop[i]), P(loop[i + 1]))) continue;
+      uint32_t tri[3] = {loop[0], loop[i], loop[i + 1]};
+      add_face(tri, 3, {tri[0], tri[1], tri[2]});
+      any = true;
+    }
+    if (any) ++nonplanar; else ++degenerate;
+  }
+  m.dropped_faces += degenerate;
+  if (m.dropped_faces)
+    m.warnings.push_back({Warning::Kind::DegenerateFacesDropped, m.dropped_faces, std::to_string(m.dropped_faces) + " zero-area faces were ignored"});
+  if (nonplanar)
+    m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, nonplanar, std::to_string(nonplanar) + " non-planar polygons were split into triangles"});
+  if (m.rep.empty()) return fail(m, Error::DegenerateInput, "every face has zero area");
+  for (const auto& pr : face_pairs) {
+    uint32_t a = face_of_clean[pr[0]], b = face_of_clean[pr[1]];
+    if (a != 0xffffffffu && b != 0xffffffffu) m.adjacent.push_back({a, b});
+  }
+  return m;
+}
+
+}  // namespace kergen

@@ -1,0 +1,40 @@
+// Input validation and clean-up: the checks every mesh passes before its planes are built.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "kergen/kergen.h"
+
+namespace kergen {
+
+struct PreparedMesh {
+  Error error = Error::Ok;
+  std::string message;
+  std::vector<Warning> warnings;
+
+  std::vector<double> points;  // input positions times `scale` (a power of two: exact)
+  double scale = 1;
+
+  // Faces that carry a plane: a loop of vertex ids (CCW from outside after any flip) and a
+  // representative triangle with the loop's orientation. Planar polygons stay whole; zero-area
+  // faces are gone; non-planar polygons are fan-triangulated.
+  std::vector<uint32_t> loop_offsets;  // size = faces + 1
+  std::vector<uint32_t> loops;
+  std::vector<std::array<uint32_t, 3>> rep;
+  // Pairs of plane-faces that share an edge (for merging coplanar neighbours).
+  std::vector<std::array<uint32_t, 2>> adjacent;
+
+  size_t input_faces = 0;
+  size_t dropped_faces = 0;
+  size_t boundary_edges = 0;   // > 0 only with allow_open
+  double volume = 0;           // enclosed volume, in scaled units
+  double bbox_min[3] = {0, 0, 0}, bbox_max[3] = {0, 0, 0};  // scaled units
+
+  size_t num_faces() const { return rep.size(); }
+};
+
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options);
+
+}  // namespace kergen

@@ -1,0 +1,16 @@
+// Builds the exact, deduplicated plane set of a prepared mesh.
+#pragma once
+
+#include <vector>
+
+#include "mesh_prep.h"
+#include "planes.h"
+
+namespace kergen {
+
+// Adds one plane per class of coplanar, equally oriented faces to `ps` (opposite classes are
+// linked with set_opposite), fills the point/plane incidence, and sets face_plane[f] for every
+// prepared face.
+void build_planes(const PreparedMesh& mesh, PlaneSet& ps, std::vector<uint32_t>& face_plane);
+
+}  // namespace kergen

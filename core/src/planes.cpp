@@ -1,0 +1,255 @@
+// Plane store and exact predicates. Each predicate evaluates one templated formula with Approx
+// (a double plus a rigorous error bound); when the sign is not certain it evaluates the same
+// formula with exact expansions. Kernel vertices at input points take a cheaper route: their
+// side of a plane is orient3d on input points, and incidence known from the mesh is 0 for free.
+#include "planes.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace kergen {
+
+namespace {
+
+template <class T>
+PlaneCoef<T> plane_from_points(const double* a, const double* b, const double* c);
+
+template <>
+PlaneCoef<Approx> plane_from_points<Approx>(const double* a, const double* b, const double* c) {
+  Approx u[3], v[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = Approx(b[i]) - Approx(a[i]);
+    v[i] = Approx(c[i]) - Approx(a[i]);
+  }
+  PlaneCoef<Approx> p;
+  p.n[0] = u[1] * v[2] - u[2] * v[1];
+  p.n[1] = u[2] * v[0] - u[0] * v[2];
+  p.n[2] = u[0] * v[1] - u[1] * v[0];
+  p.d = -(p.n[0] * Approx(a[0]) + p.n[1] * Approx(a[1]) + p.n[2] * Approx(a[2]));
+  return p;
+}
+
+template <>
+PlaneCoef<Expansion> plane_from_points<Expansion>(const double* a, const double* b, const double* c) {
+  Expansion u[3], v[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = Expansion::difference(b[i], a[i]);
+    v[i] = Expansion::difference(c[i], a[i]);
+  }
+  PlaneCoef<Expansion> p;
+  p.n[0] = u[1] * v[2] - u[2] * v[1];
+  p.n[1] = u[2] * v[0] - u[0] * v[2];
+  p.n[2] = u[0] * v[1] - u[1] * v[0];
+  p.d = -(p.n[0] * Expansion(a[0]) + p.n[1] * Expansion(a[1]) + p.n[2] * Expansion(a[2]));
+  return p;
+}
+
+template <class T>
+T orient3d_formula(const double* a, const double* b, const double* c, const double* p) {
+  PlaneCoef<T> pl = plane_from_points<T>(a, b, c);
+  return pl.n[0] * T(p[0]) + pl.n[1] * T(p[1]) + pl.n[2] * T(p[2]) + pl.d;
+}
+
+template <class T>
+T det4_planes(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, const PlaneCoef<T>& l) {
+  return -(a.d * det3_normals(b, c, l)) + b.d * det3_normals(a, c, l) - c.d * det3_normals(a, b, l) +
+         l.d * det3_normals(a, b, c);
+}
+
+template <class T>
+std::array<T, 3> cross_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q) {
+  return {p.n[1] * q.n[2] - p.n[2] * q.n[1], p.n[2] * q.n[0] - p.n[0] * q.n[2],
+          p.n[0] * q.n[1] - p.n[1] * q.n[0]};
+}
+
+// Cramer's rule for the vertex of planes a, b, c: coordinate k = num_k / den.
+template <class T>
+void cramer(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, T num[3], T& den) {
+  den = det3_normals(a, b, c);
+  T ma = -a.d, mb = -b.d, mc = -c.d;
+  num[0] = det3(ma, a.n[1], a.n[2], mb, b.n[1], b.n[2], mc, c.n[1], c.n[2]);
+  num[1] = det3(a.n[0], ma, a.n[2], b.n[0], mb, b.n[2], c.n[0], mc, c.n[2]);
+  num[2] = det3(a.n[0], a.n[1], ma, b.n[0], b.n[1], mb, c.n[0], c.n[1], mc);
+}
+
+}  // namespace
+
+uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c) {
+  PlaneCoef<Approx> p = plane_from_points<Approx>(point(a), point(b), point(c));
+  rep_.push_back({a, b, c});
+  nx_.push_back(p.n[0].v); enx_.push_back(p.n[0].e);
+  ny_.push_back(p.n[1].v); eny_.push_back(p.n[1].e);
+  nz_.push_back(p.n[2].v); enz_.push_back(p.n[2].e);
+  d_.push_back(p.d.v); ed_.push_back(p.d.e);
+  opposite_.push_back(kNoPlane);
+  exact_.emplace_back();
+  incident_points_.emplace_back();
+  return uint32_t(size() - 1);
+}
+
+uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
+  rep_.push_back({kNoPlane, kNoPlane, kNoPlane});
+  nx_.push_back(nx); enx_.push_back(0);
+  ny_.push_back(ny); eny_.push_back(0);
+  nz_.push_back(nz); enz_.push_back(0);
+  d_.push_back(d); ed_.push_back(0);
+  opposite_.push_back(kNoPlane);
+  exact_.emplace_back();
+  incident_points_.emplace_back();
+  return uint32_t(size() - 1);
+}
+
+void PlaneSet::pop_last() {
+  rep_.pop_back();
+  nx_.pop_back(); ny_.pop_back(); nz_.pop_back(); d_.pop_back();
+  enx_.pop_back(); eny_.pop_back(); enz_.pop_back(); ed_.pop_back();
+  opposite_.pop_back();
+  exact_.pop_back();
+  incident_points_.pop_back();
+}
+
+const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
+  if (!exact_[i]) {
+    auto p = std::make_unique<PlaneCoef<Expansion>>();
+    if (explicit_plane(i)) {
+      p->n[0] = Expansion(nx_[i]); p->n[1] = Expansion(ny_[i]); p->n[2] = Expansion(nz_[i]);
+      p->d = Expansion(d_[i]);
+    } else {
+      *p = plane_from_points<Expansion>(point(rep_[i][0]), point(rep_[i][1]), point(rep_[i][2]));
+    }
+    exact_[i] = std::move(p);
+  }
+  return *exact_[i];
+}
+
+bool PlaneSet::point_on_plane(uint32_t pt, uint32_t plane) const {
+  if (pt >= planes_through_point_.size()) return false;
+  const auto& l = planes_through_point_[pt];
+  return std::binary_search(l.begin(), l.end(), plane);
+}
+
+int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
+  int s = det3_normals(ps.approx(a), ps.approx(b), ps.approx(c)).sign();
+  if (s != 2) return s;
+  ++ps.exact_fallbacks;
+  return det3_normals(ps.exact(a), ps.exact(b), ps.exact(c)).sign();
+}
+
+bool normals_parallel(const PlaneSet& ps, uint32_t a, uint32_t b) {
+  auto x = cross_normals(ps.approx(a), ps.approx(b));
+  if (x[0].certain() || x[1].certain() || x[2].certain()) return false;
+  ++ps.exact_fallbacks;
+  auto e = cross_normals(ps.exact(a), ps.exact(b));
+  return e[0].sign() == 0 && e[1].sign() == 0 && e[2].sign() == 0;
+}
+
+int sign_det3_vector(const PlaneSet& ps, const double v[3], uint32_t a, uint32_t b) {
+  auto pa = ps.approx(a), pb = ps.approx(b);
+  int s = det3(Approx(v[0]), Approx(v[1]), Approx(v[2]), pa.n[0], pa.n[1], pa.n[2], pb.n[0], pb.n[1], pb.n[2]).sign();
+  if (s != 2) return s;
+  ++ps.exact_fallbacks;
+  const auto &ea = ps.exact(a), &eb = ps.exact(b);
+  return det3(Expansion(v[0]), Expansion(v[1]), Expansion(v[2]), ea.n[0], ea.n[1], ea.n[2], eb.n[0], eb.n[1], eb.n[2]).sign();
+}
+
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
+  VertexGeom v;
+  v.basis[0] = a; v.basis[1] = b; v.basis[2] = c;
+  v.det_sign = sign_det3_normals(ps, a, b, c);
+  assert(v.det_sign != 0 && "make_vertex: planes with dependent normals");
+
+  // An input vertex on all three planes by construction is the vertex itself.
+  if (!ps.explicit_plane(a) && !ps.explicit_plane(b) && !ps.explicit_plane(c)) {
+    const uint32_t planes[3] = {a, b, c};
+    int smallest = 0;
+    for (int i = 1; i < 3; ++i)
+      if (ps.points_on(planes[i]).size() < ps.points_on(planes[smallest]).size()) smallest = i;
+    for (uint32_t p : ps.points_on(planes[smallest])) {
+      bool on_all = true;
+      for (int i = 0; i < 3 && on_all; ++i)
+        if (i != smallest && !ps.point_on_plane(p, planes[i])) on_all = false;
+      if (on_all) {
+        v.mesh_point = int32_t(p);
+        const double* x = ps.point(p);
+        for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);
+        return v;
+      }
+    }
+  }
+
+  Approx num[3], den;
+  cramer(ps.approx(a), ps.approx(b), ps.approx(c), num, den);
+  bool good = den.certain();
+  if (good) {
+    for (int k = 0; k < 3; ++k) {
+      v.x[k] = num[k] / den;
+      // Coordinates feed the side filter; poorly conditioned ones are recomputed exactly.
+      if (v.x[k].e > 1e-10 * (std::fabs(v.x[k].v) + 1e-3)) good = false;
+    }
+  }
+  if (!good) {
+    ++ps.exact_fallbacks;
+    Expansion enm[3], eden;
+    cramer(ps.exact(a), ps.exact(b), ps.exact(c), enm, eden);
+    double dd = eden.estimate();
+    for (int k = 0; k < 3; ++k) {
+      double x = enm[k].estimate() / dd;
+      v.x[k] = Approx(x, 8 * exact::kEps * std::fabs(x) + exact::kUnderflowFloor);
+    }
+  }
+  return v;
+}
+
+int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
+  if (v.mesh_point != kNoPoint) {
+    uint32_t p = uint32_t(v.mesh_point);
+    if (ps.point_on_plane(p, l)) return 0;
+    if (!ps.explicit_plane(l)) {
+      const auto& r = ps.rep(l);
+      return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p));
+    }
+  }
+  auto pl = ps.approx(l);
+  Approx f = pl.n[0] * v.x[0] + pl.n[1] * v.x[1] + pl.n[2] * v.x[2] + pl.d;
+  int s = f.sign();
+  if (s != 2) return s;
+  ++ps.exact_fallbacks;
+  if (v.mesh_point != kNoPoint) {  // explicit plane at an input point: exact coordinates
+    const auto& e = ps.exact(l);
+    const double* x = ps.point(uint32_t(v.mesh_point));
+    return (e.n[0] * Expansion(x[0]) + e.n[1] * Expansion(x[1]) + e.n[2] * Expansion(x[2]) + e.d).sign();
+  }
+  int s4 = det4_planes(ps.exact(v.basis[0]), ps.exact(v.basis[1]), ps.exact(v.basis[2]), ps.exact(l)).sign();
+  return s4 * v.det_sign;
+}
+
+int orient3d(const double* a, const double* b, const double* c, const double* p) {
+  int s = orient3d_formula<Approx>(a, b, c, p).sign();
+  if (s != 2) return s;
+  return orient3d_formula<Expansion>(a, b, c, p).sign();
+}
+
+bool collinear(const double* a, const double* b, const double* c) {
+  auto pa = plane_from_points<Approx>(a, b, c);
+  if (pa.n[0].certain() || pa.n[1].certain() || pa.n[2].certain()) return false;
+  auto pe = plane_from_points<Expansion>(a, b, c);
+  return pe.n[0].sign() == 0 && pe.n[1].sign() == 0 && pe.n[2].sign() == 0;
+}
+
+namespace {
+template <class T>
+T edge_in_facet_formula(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>& h, const PlaneCoef<T>& s) {
+  auto dir = cross_normals(p, q);
+  auto w = cross_normals(h, s);
+  return dir[0] * w[0] + dir[1] * w[1] + dir[2] * w[2];
+}
+}  // namespace
+
+int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, uint32_t s) {
+  int r = edge_in_facet_formula(ps.approx(p), ps.approx(q), ps.approx(h), ps.approx(s)).sign();
+  if (r != 2) return r;
+  ++ps.exact_fallbacks;
+  return edge_in_facet_formula(ps.exact(p), ps.exact(q), ps.exact(h), ps.exact(s)).sign();
+}
+
+}  // namespace kergen

@@ -1,0 +1,126 @@
+// Plane store and the exact predicates on planes.
+//
+// A plane is either defined by three input points (a, b, c) of a representative triangle —
+// never by rounded coefficients, so incidences of the input survive — or by explicit double
+// coefficients that are exact as given (bounding-box planes). Inside is f(x) = n.x + d <= 0 with
+// n = (b - a) x (c - a), d = -n.a (outward normal).
+//
+// Coefficients are kept twice: as doubles with a rigorous error bound (structure of arrays, for
+// the filters and the float scans) and, lazily, as exact expansions (for the rare undecided sign).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "exact.h"
+
+namespace kergen {
+
+using exact::Approx;
+using exact::Expansion;
+
+template <class T>
+struct PlaneCoef {
+  T n[3];
+  T d;
+};
+
+constexpr uint32_t kNoPlane = 0xffffffffu;
+constexpr int32_t kNoPoint = -1;
+
+class PlaneSet {
+ public:
+  // Input points (already scaled), referenced by index.
+  explicit PlaneSet(const std::vector<double>* points) : points_(points) {}
+
+  uint32_t add_from_points(uint32_t a, uint32_t b, uint32_t c);
+  uint32_t add_explicit(double nx, double ny, double nz, double d);
+  void pop_last();  // removes the most recently added plane
+
+  size_t size() const { return nx_.size(); }
+  bool explicit_plane(uint32_t i) const { return rep_[i][0] == kNoPlane; }
+  const std::array<uint32_t, 3>& rep(uint32_t i) const { return rep_[i]; }
+
+  // Opposite plane (same geometric plane, inner side reversed), or kNoPlane.
+  uint32_t opposite(uint32_t i) const { return opposite_[i]; }
+  void set_opposite(uint32_t i, uint32_t j) { opposite_[i] = j; opposite_[j] = i; }
+
+  // Mesh vertices lying on the plane by construction (vertices of its faces), sorted.
+  std::vector<std::vector<uint32_t>>& incident_points() { return incident_points_; }
+  const std::vector<uint32_t>& points_on(uint32_t i) const { return incident_points_[i]; }
+  // Planes through each mesh vertex by construction, sorted.
+  std::vector<std::vector<uint32_t>>& planes_through_point() { return planes_through_point_; }
+  bool point_on_plane(uint32_t point, uint32_t plane) const;
+
+  PlaneCoef<Approx> approx(uint32_t i) const {
+    return {{Approx(nx_[i], enx_[i]), Approx(ny_[i], eny_[i]), Approx(nz_[i], enz_[i])}, Approx(d_[i], ed_[i])};
+  }
+  const PlaneCoef<Expansion>& exact(uint32_t i) const;
+  template <class T> PlaneCoef<T> coef(uint32_t i) const;
+
+  const double* point(uint32_t p) const { return &(*points_)[3 * size_t(p)]; }
+  size_t num_points() const { return points_->size() / 3; }
+
+  // Structure-of-arrays doubles for scans.
+  const double* nx() const { return nx_.data(); }
+  const double* ny() const { return ny_.data(); }
+  const double* nz() const { return nz_.data(); }
+  const double* d() const { return d_.data(); }
+
+  mutable size_t exact_fallbacks = 0;
+
+ private:
+  const std::vector<double>* points_;
+  std::vector<std::array<uint32_t, 3>> rep_;
+  std::vector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
+  std::vector<uint32_t> opposite_;
+  std::vector<std::vector<uint32_t>> incident_points_;
+  std::vector<std::vector<uint32_t>> planes_through_point_;
+  mutable std::vector<std::unique_ptr<PlaneCoef<Expansion>>> exact_;
+};
+
+template <>
+inline PlaneCoef<Approx> PlaneSet::coef<Approx>(uint32_t i) const { return approx(i); }
+template <>
+inline PlaneCoef<Expansion> PlaneSet::coef<Expansion>(uint32_t i) const { return exact(i); }
+
+// ---- generic formulas (written once, evaluated with Approx then Expansion) -----------------
+template <class T>
+T det3(const T& a0, const T& a1, const T& a2, const T& b0, const T& b1, const T& b2, const T& c0,
+       const T& c1, const T& c2) {
+  return a0 * (b1 * c2 - b2 * c1) - a1 * (b0 * c2 - b2 * c0) + a2 * (b0 * c1 - b1 * c0);
+}
+template <class T>
+T det3_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>& r) {
+  return det3(p.n[0], p.n[1], p.n[2], q.n[0], q.n[1], q.n[2], r.n[0], r.n[1], r.n[2]);
+}
+
+// A point defined by three planes (Cramer's rule), or an input point (exact coordinates).
+struct VertexGeom {
+  uint32_t basis[3] = {kNoPlane, kNoPlane, kNoPlane};
+  int32_t mesh_point = kNoPoint;  // when the three planes meet at an input vertex
+  int det_sign = 0;               // sign of det3 of the basis normals
+  Approx x[3];                    // coordinates with error bounds (exact when mesh_point)
+};
+
+// ---- predicates (exact signs) ----------------------------------------------------------------
+// sign of det3(n_a, n_b, n_c)
+int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c);
+// whether n_a x n_b == 0 exactly
+bool normals_parallel(const PlaneSet& ps, uint32_t a, uint32_t b);
+// sign of det3(v, n_a, n_b) for an exact double vector v (objective directions)
+int sign_det3_vector(const PlaneSet& ps, const double v[3], uint32_t a, uint32_t b);
+// Builds the vertex of three planes with independent normals (caller checked the sign != 0).
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c);
+// sign of f_l at the vertex: > 0 outside plane l, 0 on it, < 0 inside.
+int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v);
+// sign of orient(a,b,c,p) = ((b-a) x (c-a)) . (p-a) for input points.
+int orient3d(const double* a, const double* b, const double* c, const double* p);
+// Whether the input triangle (a,b,c) has exactly collinear vertices.
+bool collinear(const double* a, const double* b, const double* c);
+// sign of dir . (n_h x n_s) where dir = n_p x n_q (edge orientation in facet h).
+int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, uint32_t s);
+
+}  // namespace kergen

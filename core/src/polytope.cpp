@@ -1,0 +1,126 @@
+// Polytope assembly. Edge (v, w) lies on plane h iff h contains the edge's line; a plane holding
+// three or more edges is a facet (a supporting plane through two non-collinear edges touches a
+// 2D face). Each facet's edges are oriented exactly: along edge e with direction sigma (n_p x n_q),
+// facet h is counter-clockwise seen from outside iff sigma (n_p x n_q) . (n_h x n_s) > 0 for any
+// other plane s through e that is not h or its opposite (the projection of n_s on h points out
+// of the facet).
+#include "polytope.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace kergen {
+
+bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, double unscale, Kernel& out,
+                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume) {
+  scaled_volume = 0;
+  const size_t V = trace.vertices.size(), E = trace.edges.size();
+  out.vertices.resize(3 * V);
+  for (size_t i = 0; i < V; ++i)
+    for (int k = 0; k < 3; ++k) out.vertices[3 * i + k] = trace.vertices[i].geom.x[k].v * unscale;
+  out.edges.resize(2 * E);
+  for (size_t i = 0; i < E; ++i) { out.edges[2 * i] = trace.edges[i].a; out.edges[2 * i + 1] = trace.edges[i].b; }
+
+  if (V == 0) { out.type = KernelType::Empty; return true; }
+  if (V == 1) { out.type = KernelType::Point; return true; }
+  if (V == 2 && E <= 1) { out.type = KernelType::Segment; return true; }
+
+  // Flat: some opposite pair is tight at a vertex (then it is tight everywhere).
+  uint32_t flat_plane = kNoPlane;
+  for (uint32_t p : trace.vertices[0].tight) {
+    uint32_t o = ps.opposite(p);
+    if (o != kNoPlane && std::binary_search(trace.vertices[0].tight.begin(), trace.vertices[0].tight.end(), o)) {
+      flat_plane = std::min(p, o);
+      break;
+    }
+  }
+  out.type = flat_plane != kNoPlane ? KernelType::Polygon : KernelType::Polyhedron;
+
+  // Edges per plane.
+  std::unordered_map<uint32_t, std::vector<uint32_t>> by_plane;
+  for (uint32_t e = 0; e < E; ++e)
+    for (uint32_t h : trace.edges[e].planes) by_plane[h].push_back(e);
+  std::vector<uint32_t> facets;
+  if (flat_plane != kNoPlane) {
+    facets.push_back(flat_plane);
+  } else {
+    for (const auto& [h, list] : by_plane)
+      if (list.size() >= 3) facets.push_back(h);
+    std::sort(facets.begin(), facets.end());
+  }
+
+  bool announce = true, ok = true;
+  std::vector<uint32_t> next(V, kNoPlane);
+  for (uint32_t h : facets) {
+    const auto& list = by_plane[h];
+    std::vector<uint32_t> touched;
+    bool valid = true;
+    for (uint32_t e : list) {
+      const TracedEdge& te = trace.edges[e];
+      uint32_t s = kNoPlane;
+      for (uint32_t c : te.planes)
+        if (c != h && c != ps.opposite(h)) { s = c; break; }
+      if (s == kNoPlane) { valid = false; break; }
+      int sg = te.sigma * sign_edge_in_facet(ps, te.p, te.q, h, s);
+      uint32_t from = sg > 0 ? te.a : te.b, to = sg > 0 ? te.b : te.a;
+      if (sg == 0 || next[from] != kNoPlane) { valid = false; break; }
+      next[from] = to;
+      touched.push_back(from);
+    }
+    std::vector<uint32_t> loop;
+    if (valid) {
+      uint32_t start = touched[0], v = start;
+      do {
+        loop.push_back(v);
+        v = next[v];
+      } while (v != kNoPlane && v != start && loop.size() <= touched.size());
+      valid = v == start && loop.size() == touched.size();
+    }
+    for (uint32_t t : touched) next[t] = kNoPlane;
+    if (!valid) {
+      // A stopped run leaves facets open; a complete run must not.
+      if (trace.complete) ok = false;
+      continue;
+    }
+    uint32_t fid = uint32_t(out.face_sizes.size());
+    out.face_sizes.push_back(uint32_t(loop.size()));
+    out.face_indices.insert(out.face_indices.end(), loop.begin(), loop.end());
+    for (size_t i = 1; i + 1 < loop.size(); ++i) {
+      out.triangles.push_back(loop[0]);
+      out.triangles.push_back(loop[i]);
+      out.triangles.push_back(loop[i + 1]);
+    }
+    if (announce && emit_face) {
+      StepEvent ev;
+      ev.kind = StepEvent::Kind::Face;
+      ev.id = fid;
+      ev.loop = out.face_indices.data() + (out.face_indices.size() - loop.size());
+      ev.loop_size = uint32_t(loop.size());
+      announce = emit_face(ev);
+    }
+  }
+
+  // Area and volume (divergence theorem about the vertex centroid), in the scaled units of the
+  // plane set so that huge or tiny inputs neither overflow nor underflow before the ratio.
+  auto P = [&](uint32_t v, int k) { return trace.vertices[v].geom.x[k].v; };
+  double c[3] = {0, 0, 0};
+  for (uint32_t i = 0; i < V; ++i)
+    for (int k = 0; k < 3; ++k) c[k] += P(i, k) / double(V);
+  double area = 0, vol6 = 0;
+  for (size_t t = 0; t < out.triangles.size(); t += 3) {
+    uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
+    double u[3], w[3], r[3];
+    for (int k = 0; k < 3; ++k) { u[k] = P(b, k) - P(a, k); w[k] = P(d, k) - P(a, k); r[k] = P(a, k) - c[k]; }
+    double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    vol6 += n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+  }
+  scaled_volume = (out.type == KernelType::Polyhedron && trace.complete) ? vol6 / 6 : 0;
+  out.area = area * unscale * unscale;
+  out.volume = scaled_volume * unscale * unscale * unscale;
+  if (out.type == KernelType::Polyhedron && trace.complete && V + out.face_sizes.size() != E + 2) ok = false;
+  return ok;
+}
+
+}  // namespace kergen

@@ -1,0 +1,258 @@
+// Kernel edge tracing on exact predicates.
+//  - A vertex is identified by its exact tight plane set; its coordinates always come from a
+//    defining plane triple (or are an input point), never accumulated along the walk.
+//  - Valid directions at v: for tight planes p, q, the ray sigma * (n_p x n_q) stays in the kernel
+//    iff sigma * det3(n_r, n_p, n_q) <= 0 for every other tight r. A ray is keyed by the planes
+//    containing it, so each kernel edge is traced once, however many planes meet along it.
+//  - Nearest plane along a ray: a double scan (structure of arrays, no exactness needed) proposes
+//    a winner; an exact certification of the candidate vertex either returns its complete tight
+//    set or a plane that cuts the segment earlier, which becomes the next candidate.
+#include "tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <queue>
+#include <unordered_set>
+
+namespace kergen {
+
+uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
+                        const std::vector<char>& known_tight_mark, std::vector<uint32_t>& tight) {
+  tight.clear();
+  for (uint32_t l : active) {
+    if (!known_tight_mark.empty() && known_tight_mark[l]) { tight.push_back(l); continue; }
+    int s = side(ps, l, w);
+    if (s > 0) return l;
+    if (s == 0) tight.push_back(l);
+  }
+  std::sort(tight.begin(), tight.end());
+  return kNoPlane;
+}
+
+namespace {
+
+struct Ray {
+  uint32_t from;
+  uint32_t p, q;
+  int sigma;
+  std::vector<uint32_t> planes;  // planes containing the ray's line
+  uint64_t key;
+};
+
+uint64_t line_key(const PlaneSet& ps, const std::vector<uint32_t>& planes) {
+  // Two non-parallel planes determine the line; among planes through one line the only
+  // parallel pairs are opposite planes. Canonical choice: the smallest id and the smallest
+  // id that is neither it nor its opposite.
+  uint32_t a = planes[0];
+  uint32_t b = kNoPlane;
+  for (size_t i = 1; i < planes.size(); ++i)
+    if (planes[i] != ps.opposite(a)) { b = planes[i]; break; }
+  return (uint64_t(a) << 32) | b;
+}
+
+class Tracer {
+ public:
+  Tracer(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceOptions& opt)
+      : ps_(ps), active_(active), opt_(opt), mark_(ps.size(), 0) {
+    // Compact structure-of-arrays copy of the active planes for the scan.
+    size_t n = active.size();
+    ax_.resize(n); ay_.resize(n); az_.resize(n); ad_.resize(n);
+    slot_.assign(ps.size(), kNoPlane);
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t l = active[i];
+      ax_[i] = ps.nx()[l]; ay_[i] = ps.ny()[l]; az_[i] = ps.nz()[l]; ad_[i] = ps.d()[l];
+      slot_[l] = uint32_t(i);
+    }
+  }
+
+  TraceResult run(const VertexGeom& start) {
+    std::vector<uint32_t> tight;
+    std::vector<char> none;
+    if (certify_vertex(ps_, active_, start, none, tight) != kNoPlane) {
+      res_.internal_error = true;
+      return std::move(res_);
+    }
+    if (!add_vertex(start, tight)) return finish();
+    while (!queue_.empty()) {
+      uint32_t idx = pop();
+      Ray ray = std::move(rays_[idx]);
+      if (traced_.count(ray.key)) continue;
+      if (!trace(ray)) return finish();
+    }
+    return finish();
+  }
+
+ private:
+  TraceResult finish() { return std::move(res_); }
+
+  bool emit(const StepEvent& e) {
+    if (opt_.steps) ++*opt_.steps;
+    bool go = true;
+    if (opt_.on_step && *opt_.on_step) go = (*opt_.on_step)(e);
+    if (opt_.max_steps && opt_.steps && *opt_.steps >= opt_.max_steps) go = false;
+    if (!go) res_.complete = false;
+    return go;
+  }
+
+  // Adds a vertex, emits it and queues its untraced rays. Returns false to stop.
+  bool add_vertex(const VertexGeom& g, const std::vector<uint32_t>& tight) {
+    uint32_t id = uint32_t(res_.vertices.size());
+    res_.vertices.push_back({g, tight});
+    vertex_ids_.emplace(tight, id);
+    StepEvent e;
+    e.kind = StepEvent::Kind::Vertex;
+    e.id = id;
+    for (int k = 0; k < 3; ++k) e.position[k] = g.x[k].v * opt_.unscale;
+    bool go = emit(e);
+    queue_rays(id);
+    return go;
+  }
+
+  void queue_rays(uint32_t v) {
+    const std::vector<uint32_t>& G = res_.vertices[v].tight;
+    std::unordered_set<uint64_t> seen;
+    std::vector<int> s(G.size());
+    for (size_t i = 0; i < G.size(); ++i)
+      for (size_t j = i + 1; j < G.size(); ++j) {
+        uint32_t p = G[i], q = G[j];
+        if (ps_.opposite(p) == q) continue;
+        bool pos = false, neg = false;
+        for (size_t k = 0; k < G.size() && !(pos && neg); ++k) {
+          if (k == i || k == j) { s[k] = 0; continue; }
+          s[k] = sign_det3_normals(ps_, G[k], p, q);
+          pos |= s[k] > 0;
+          neg |= s[k] < 0;
+        }
+        if (pos && neg) continue;
+        if (!pos && !neg) continue;  // every tight plane contains the line: not a vertex (unreachable)
+        Ray ray;
+        ray.from = v; ray.p = p; ray.q = q;
+        ray.sigma = pos ? -1 : 1;
+        for (size_t k = 0; k < G.size(); ++k)
+          if (k == i || k == j || s[k] == 0) ray.planes.push_back(G[k]);
+        ray.key = line_key(ps_, ray.planes);
+        if (traced_.count(ray.key) || !seen.insert(ray.key).second) continue;
+        push(std::move(ray));
+      }
+  }
+
+  void push(Ray&& r) {
+    uint32_t idx = uint32_t(rays_.size());
+    double prio = 0;
+    if (opt_.has_from) {
+      const VertexGeom& g = res_.vertices[r.from].geom;
+      for (int k = 0; k < 3; ++k) prio += (g.x[k].v - opt_.from[k]) * (g.x[k].v - opt_.from[k]);
+    } else {
+      prio = double(idx);  // breadth-first: discovery order
+    }
+    rays_.push_back(std::move(r));
+    queue_.push({prio, idx});
+  }
+  uint32_t pop() {
+    uint32_t idx = queue_.top().second;
+    queue_.pop();
+    return idx;
+  }
+
+  // Nearest plane along the ray from its vertex (double scan; exactness comes after).
+  uint32_t scan(const Ray& ray) {
+    const VertexGeom& g = res_.vertices[ray.from].geom;
+    auto pp = ps_.approx(ray.p), pq = ps_.approx(ray.q);
+    double u[3] = {pp.n[1].v * pq.n[2].v - pp.n[2].v * pq.n[1].v, pp.n[2].v * pq.n[0].v - pp.n[0].v * pq.n[2].v,
+                   pp.n[0].v * pq.n[1].v - pp.n[1].v * pq.n[0].v};
+    for (double& c : u) c *= ray.sigma;
+    const double x = g.x[0].v, y = g.x[1].v, z = g.x[2].v;
+    // Planes through the vertex never cut the ray (exactly); hide them from the scan.
+    const auto& G = res_.vertices[ray.from].tight;
+    for (uint32_t l : G) {
+      uint32_t i = slot_[l];
+      saved_.push_back({ax_[i], ay_[i], az_[i], ad_[i]});
+      ax_[i] = ay_[i] = az_[i] = 0;
+      ad_[i] = -1;
+    }
+    const size_t n = ax_.size();
+    const double* ax = ax_.data(); const double* ay = ay_.data();
+    const double* az = az_.data(); const double* ad = ad_.data();
+    double best = std::numeric_limits<double>::infinity();
+    size_t bi = n;
+    for (size_t i = 0; i < n; ++i) {
+      double a = ax[i] * u[0] + ay[i] * u[1] + az[i] * u[2];
+      double f = ax[i] * x + ay[i] * y + az[i] * z + ad[i];
+      double t = a > 0 ? -f / a : std::numeric_limits<double>::infinity();
+      if (t < best) { best = t; bi = i; }
+    }
+    for (size_t k = 0; k < G.size(); ++k) {
+      uint32_t i = slot_[G[k]];
+      ax_[i] = saved_[k][0]; ay_[i] = saved_[k][1]; az_[i] = saved_[k][2]; ad_[i] = saved_[k][3];
+    }
+    saved_.clear();
+    if (bi < n) return active_[bi];
+    // The double scan saw no approaching plane: ask exactly.
+    for (uint32_t l : active_)
+      if (!std::binary_search(G.begin(), G.end(), l) && ray.sigma * sign_det3_normals(ps_, l, ray.p, ray.q) > 0) return l;
+    return kNoPlane;
+  }
+
+  bool trace(const Ray& ray) {
+    ++res_.traced_lines;
+    uint32_t r = scan(ray);
+    if (r == kNoPlane) { res_.internal_error = true; return false; }  // unbounded ray
+    for (uint32_t l : ray.planes) mark_[l] = 1;
+    std::vector<uint32_t> tight;
+    VertexGeom w;
+    for (int guard = 0;; ++guard) {
+      w = make_vertex(ps_, ray.p, ray.q, r);
+      uint32_t violator = certify_vertex(ps_, active_, w, mark_, tight);
+      if (violator == kNoPlane) break;
+      r = violator;  // cuts the segment before the candidate: strictly closer
+      if (guard > 1000000) { res_.internal_error = true; break; }
+    }
+    for (uint32_t l : ray.planes) mark_[l] = 0;
+    if (res_.internal_error) return false;
+
+    bool go = true;
+    uint32_t to;
+    auto it = vertex_ids_.find(tight);
+    if (it == vertex_ids_.end()) {
+      to = uint32_t(res_.vertices.size());
+      go = add_vertex(w, tight);
+    } else {
+      to = it->second;
+    }
+    traced_.insert(ray.key);
+    TracedEdge e;
+    e.a = ray.from; e.b = to; e.p = ray.p; e.q = ray.q; e.sigma = ray.sigma; e.planes = ray.planes;
+    uint32_t eid = uint32_t(res_.edges.size());
+    res_.edges.push_back(std::move(e));
+    if (!go) return false;
+    StepEvent ev;
+    ev.kind = StepEvent::Kind::Edge;
+    ev.id = eid; ev.a = ray.from; ev.b = to;
+    return emit(ev);
+  }
+
+  const PlaneSet& ps_;
+  const std::vector<uint32_t>& active_;
+  TraceOptions opt_;
+  std::vector<char> mark_;
+  std::vector<double> ax_, ay_, az_, ad_;
+  std::vector<uint32_t> slot_;
+  std::vector<std::array<double, 4>> saved_;
+  TraceResult res_;
+  std::map<std::vector<uint32_t>, uint32_t> vertex_ids_;
+  std::unordered_set<uint64_t> traced_;
+  std::vector<Ray> rays_;
+  std::priority_queue<std::pair<double, uint32_t>, std::vector<std::pair<double, uint32_t>>, std::greater<>> queue_;
+};
+
+}  // namespace
+
+TraceResult trace_kernel_edges(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& start,
+                               const TraceOptions& options) {
+  Tracer t(ps, active, options);
+  return t.run(start);
+}
+
+}  // namespace kergen

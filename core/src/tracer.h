@@ -1,0 +1,54 @@
+// Additive kernel tracing (KerGen, Asiler & Sahillioglu 2024, Alg. 2): from a kernel vertex,
+// follow every line where two of its tight planes meet and that stays in the kernel, find the
+// nearest plane along it, add the new vertex, until every kernel edge was traced once.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "kergen/kergen.h"
+#include "planes.h"
+
+namespace kergen {
+
+struct TracedVertex {
+  VertexGeom geom;
+  std::vector<uint32_t> tight;  // every plane through the vertex, sorted (its identity)
+};
+
+struct TracedEdge {
+  uint32_t a = 0, b = 0;       // traced from a to b
+  uint32_t p = 0, q = 0;       // the direction is sigma * (n_p x n_q)
+  int sigma = 1;
+  std::vector<uint32_t> planes;  // every plane containing the edge, sorted
+};
+
+struct TraceResult {
+  std::vector<TracedVertex> vertices;
+  std::vector<TracedEdge> edges;
+  bool complete = true;        // false when the step callback or max_steps stopped the run
+  bool internal_error = false; // a certification failed (never expected; reported, not hidden)
+  size_t traced_lines = 0;
+};
+
+struct TraceOptions {
+  const StepCallback* on_step = nullptr;
+  uint64_t max_steps = 0;
+  uint64_t* steps = nullptr;   // events emitted so far (shared with the face events after)
+  bool has_from = false;       // expand the vertex nearest to `from` first
+  double from[3] = {0, 0, 0};  // in the scaled units of the plane set
+  double unscale = 1;          // multiply coordinates by this for events
+};
+
+// `active` lists the planes that may touch the kernel (all of them, or the survivors of culling);
+// `start` must be a kernel vertex on planes of `active`.
+TraceResult trace_kernel_edges(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& start,
+                               const TraceOptions& options);
+
+// The complete tight set of `w` over `active` (planes in `known_tight` are not re-evaluated), or
+// the first violated plane. Returns kNoPlane when w is a kernel point.
+uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
+                        const std::vector<char>& known_tight_mark, std::vector<uint32_t>& tight);
+
+}  // namespace kergen

@@ -1,0 +1,247 @@
+// Small analytic fixture meshes shared by the core tests; every one has a kernel known in closed form.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "kergen/kergen.h"
+
+namespace kergen_test {
+
+using kergen::Mesh;
+
+inline uint32_t add_point(Mesh& m, double x, double y, double z) {
+  m.positions.insert(m.positions.end(), {x, y, z});
+  return uint32_t(m.positions.size() / 3 - 1);
+}
+// Adds a polygon face (CCW seen from outside). A mesh stays triangles-only (face_sizes empty)
+// until its first non-triangle face; from then on every face's size is recorded.
+inline void add_face(Mesh& m, const std::vector<uint32_t>& loop) {
+  bool polygons = !m.face_sizes.empty();
+  if (!polygons && loop.size() != 3) {
+    m.face_sizes.assign(m.indices.size() / 3, 3);
+    polygons = true;
+  }
+  m.indices.insert(m.indices.end(), loop.begin(), loop.end());
+  if (polygons) m.face_sizes.push_back(uint32_t(loop.size()));
+}
+inline void add_face(Mesh& m, std::initializer_list<uint32_t> loop) { add_face(m, std::vector<uint32_t>(loop)); }
+
+// Axis-aligned box as 12 triangles.
+inline Mesh box(double x0, double y0, double z0, double x1, double y1, double z1) {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) add_point(m, i & 1 ? x1 : x0, i & 2 ? y1 : y0, i & 4 ? z1 : z0);
+  const uint32_t q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : q) {
+    add_face(m, {f[0], f[1], f[2]});
+    add_face(m, {f[0], f[2], f[3]});
+  }
+  return m;
+}
+inline Mesh unit_cube() { return box(0, 0, 0, 1, 1, 1); }
+
+inline Mesh transformed(Mesh m, double scale, double tx, double ty, double tz) {
+  for (size_t i = 0; i < m.positions.size(); i += 3) {
+    m.positions[i] = m.positions[i] * scale + tx;
+    m.positions[i + 1] = m.positions[i + 1] * scale + ty;
+    m.positions[i + 2] = m.positions[i + 2] * scale + tz;
+  }
+  return m;
+}
+
+inline Mesh flipped(Mesh m) {
+  size_t off = 0;
+  for (size_t f = 0; f < m.num_faces(); ++f) {
+    size_t k = m.face_sizes.empty() ? 3 : m.face_sizes[f];
+    std::reverse(m.indices.begin() + off, m.indices.begin() + off + k);
+    off += k;
+  }
+  return m;
+}
+
+// Unit cube with every face split into n x n quads, two triangles each (shared vertices).
+inline Mesh tessellated_cube(int n) {
+  Mesh m;
+  std::map<std::tuple<int, int, int>, uint32_t> ids;
+  auto id = [&](int x, int y, int z) {
+    auto key = std::make_tuple(x, y, z);
+    auto it = ids.find(key);
+    if (it != ids.end()) return it->second;
+    uint32_t v = add_point(m, double(x) / n, double(y) / n, double(z) / n);
+    ids[key] = v;
+    return v;
+  };
+  // For each face: origin corner, two in-face axes (u, v) with u x v = outward normal.
+  struct F { int o[3], u[3], v[3]; };
+  const F faces[6] = {{{n, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                      {{0, n, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}},
+                      {{0, 0, n}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}};
+  for (const F& f : faces)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        auto P = [&](int a, int b) {
+          return id(f.o[0] + a * f.u[0] + b * f.v[0], f.o[1] + a * f.u[1] + b * f.v[1], f.o[2] + a * f.u[2] + b * f.v[2]);
+        };
+        uint32_t a = P(i, j), b = P(i + 1, j), c = P(i + 1, j + 1), d = P(i, j + 1);
+        add_face(m, {a, b, c});
+        add_face(m, {a, c, d});
+      }
+  return m;
+}
+
+// Prism over a simple polygon given CCW in the xy plane, z in [0, h]; caps are single polygons,
+// sides are quads (polygon faces exercise planar-polygon handling, also non-convex caps).
+inline Mesh prism(const std::vector<std::array<double, 2>>& poly, double h = 1) {
+  Mesh m;
+  const uint32_t n = uint32_t(poly.size());
+  for (const auto& p : poly) add_point(m, p[0], p[1], 0);
+  for (const auto& p : poly) add_point(m, p[0], p[1], h);
+  std::vector<uint32_t> bottom, top;
+  for (uint32_t i = 0; i < n; ++i) { bottom.push_back(n - 1 - i); top.push_back(n + i); }
+  m.indices.insert(m.indices.end(), bottom.begin(), bottom.end());
+  m.face_sizes.push_back(n);
+  add_face(m, top);
+  for (uint32_t i = 0; i < n; ++i) {
+    uint32_t j = (i + 1) % n;
+    add_face(m, {i, j, n + j, n + i});
+  }
+  return m;
+}
+
+// L: kernel is the unit square corner [0,1]^2 x [0,1] (volume 1).
+inline Mesh l_prism() { return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}); }
+// Plus with arm half-width w and arm reach 1: kernel is the central square, volume 4 w^2.
+inline Mesh plus_prism(double w) {
+  return prism({{w, -w}, {1, -w}, {1, w}, {w, w}, {w, 1}, {-w, 1}, {-w, w}, {-1, w}, {-1, -w}, {-w, -w}, {-w, -1}, {w, -1}});
+}
+// S/Z: two bars meeting along y = 1: kernel is the rectangle {y = 1, 1 <= x <= 2} x [0, 1].
+inline Mesh s_prism() { return prism({{1, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 2}, {0, 2}, {0, 1}, {1, 1}}); }
+// Pinwheel of four arms around the origin: kernel is the segment {(0,0)} x [0, 1].
+inline Mesh pinwheel_prism() {
+  return prism({{2, 0}, {2, 1}, {0, 1}, {0, 2}, {-1, 2}, {-1, 0}, {-2, 0}, {-2, -1}, {0, -1}, {0, -2}, {1, -2}, {1, 0}});
+}
+// U: not star-shaped.
+inline Mesh u_prism() { return prism({{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}}); }
+
+// Unit cube whose top is a pyramidal dent to (0.5, 0.5, 0.6): kernel has 9 vertices, 9 faces,
+// volume 1/3 (the part of the cube below all four dent planes).
+inline Mesh dented_cube() {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) add_point(m, i & 1 ? 1 : 0, i & 2 ? 1 : 0, i & 4 ? 1 : 0);
+  uint32_t apex = add_point(m, 0.5, 0.5, 0.6);
+  const uint32_t q[5][4] = {{0, 2, 3, 1}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : q) {
+    add_face(m, {f[0], f[1], f[2]});
+    add_face(m, {f[0], f[2], f[3]});
+  }
+  // Top ring 4 -> 5 -> 7 -> 6 (CCW from above); the dent faces point up-and-in.
+  add_face(m, {4, 5, apex});
+  add_face(m, {5, 7, apex});
+  add_face(m, {7, 6, apex});
+  add_face(m, {6, 4, apex});
+  return m;
+}
+
+// Pyramid over a regular n-gon (convex: its kernel is itself, apex of degree n).
+inline Mesh pyramid(int n, double radius = 1, double height = 1) {
+  Mesh m;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i < n; ++i) add_point(m, radius * std::cos(2 * pi * i / n), radius * std::sin(2 * pi * i / n), 0);
+  uint32_t apex = add_point(m, 0, 0, height);
+  std::vector<uint32_t> base;
+  for (int i = n - 1; i >= 0; --i) base.push_back(uint32_t(i));
+  add_face(m, base);
+  for (int i = 0; i < n; ++i) add_face(m, {uint32_t(i), uint32_t((i + 1) % n), apex});
+  return m;
+}
+
+// Torus (genus 1): not star-shaped.
+inline Mesh torus(int nu = 16, int nv = 8, double R = 2, double r = 0.5) {
+  Mesh m;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      double u = 2 * pi * i / nu, v = 2 * pi * j / nv;
+      add_point(m, (R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+    }
+  auto id = [&](int i, int j) { return uint32_t((i % nu) * nv + (j % nv)); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      add_face(m, {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      add_face(m, {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+// Random convex polyhedron: a bipyramid over a convex polygon (random angles on a random
+// ellipse in z = 0) with apexes above and below random points near the centre. Every face is a
+// triangle; the shape is convex, so its kernel is the shape itself (n + 2 vertices, 2n faces,
+// volume = polygon area * (h_top + h_bottom) / 3).
+struct RandomConvex {
+  Mesh mesh;
+  double volume;
+  int n;
+};
+inline RandomConvex random_convex(uint32_t seed, int n = 12) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  const double pi = 3.14159265358979323846;
+  double a = 1 + U(rng), b = 0.5 + U(rng);
+  RandomConvex r;
+  r.n = n;
+  Mesh& m = r.mesh;
+  std::vector<double> ang;
+  for (int i = 0; i < n; ++i) ang.push_back(2 * pi * (i + 0.15 + 0.7 * U(rng)) / n);
+  for (double t : ang) add_point(m, a * std::cos(t), b * std::sin(t), 0);
+  double h1 = 0.5 + U(rng), h2 = 0.5 + U(rng);
+  uint32_t top = add_point(m, 0.2 * (U(rng) - 0.5), 0.2 * (U(rng) - 0.5), h1);
+  uint32_t bottom = add_point(m, 0.2 * (U(rng) - 0.5), 0.2 * (U(rng) - 0.5), -h2);
+  double area2 = 0;
+  for (int i = 0; i < n; ++i) {
+    uint32_t j = uint32_t((i + 1) % n);
+    add_face(m, {uint32_t(i), j, top});
+    add_face(m, {j, uint32_t(i), bottom});
+    const double* p = &m.positions[3 * size_t(i)];
+    const double* q = &m.positions[3 * size_t(j)];
+    area2 += p[0] * q[1] - p[1] * q[0];
+  }
+  r.volume = 0.5 * area2 * (h1 + h2) / 3;
+  return r;
+}
+
+// Unit cube without its top: open.
+inline Mesh open_cube() {
+  Mesh c = unit_cube();
+  Mesh m;
+  m.positions = c.positions;
+  for (size_t t = 0; t < c.indices.size(); t += 3) {
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top &= c.positions[3 * c.indices[t + k] + 2] == 1;
+    if (!top) m.indices.insert(m.indices.end(), c.indices.begin() + t, c.indices.begin() + t + 3);
+  }
+  return m;
+}
+
+// Two unit cubes sharing only the edge x = 1, y = 1 (same vertex ids): non-manifold.
+inline Mesh cubes_sharing_edge() {
+  Mesh a = unit_cube();
+  Mesh b = box(1, 1, 0, 2, 2, 1);
+  // b's vertices 0 (1,1,0) and 4 (1,1,1) are a's vertices 3 and 7.
+  const uint32_t remap_shared[8] = {3, 0, 0, 0, 7, 0, 0, 0};
+  std::vector<uint32_t> remap(8);
+  for (uint32_t i = 0; i < 8; ++i) {
+    if (i == 0 || i == 4) remap[i] = remap_shared[i];
+    else remap[i] = add_point(a, b.positions[3 * i], b.positions[3 * i + 1], b.positions[3 * i + 2]);
+  }
+  for (uint32_t v : b.indices) a.indices.push_back(remap[v]);
+  return a;
+}
+
+}  // namespace kergen_test
