@@ -1,0 +1,416 @@
+// kergen_bench: end-to-end kernel timings of kergen::compute_kernel against CGAL's
+// halfspace_intersection_3 (Epick and Epeck), one table row (or JSON object) per mesh.
+// See bench/README.md for the columns.
+//
+//   kergen_bench [options] [mesh files...]
+//     --runs N                timed runs per measurement, the median is reported (default 5)
+//     --json                  one JSON object per row instead of the table
+//     --quick                 small default list, 1 run (smoke test)
+//     --no-epeck / --no-epick skip a baseline
+//     --epeck-max-faces N     skip the Epeck baseline above N input faces (default: no limit)
+//     --epick-max-faces N     skip the Epick baseline above N input faces (default: no limit)
+//     --baseline-budget-ms T  stop repeating a baseline once one run took longer than T (default 2000)
+//     --meshes DIR            shared mesh folder for the default list (default: the build's KERGEN_SHARED_MESHES)
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+#include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
+#include <CGAL/version.h>
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "kergen/io.h"
+#include "kergen/kergen.h"
+
+namespace fs = std::filesystem;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+
+#ifndef KERGEN_SHARED_MESHES
+#define KERGEN_SHARED_MESHES "../shared/meshes"
+#endif
+
+namespace {
+
+struct Args {
+  int runs = 5;
+  bool json = false, quick = false, epeck = true, epick = true;
+  size_t epeck_max_faces = std::numeric_limits<size_t>::max();
+  size_t epick_max_faces = std::numeric_limits<size_t>::max();
+  double baseline_budget_ms = 2000;
+  std::string meshes = KERGEN_SHARED_MESHES;
+  std::vector<std::string> files;
+};
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string compiler_string() {
+#if defined(__clang__)
+  return std::string("clang++ ") + __clang_version__;
+#elif defined(__GNUC__)
+  return std::string("g++ ") + __VERSION__;
+#else
+  return "unknown compiler";
+#endif
+}
+
+std::string cpu_string() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      auto p = line.find(':');
+      if (p != std::string::npos) return line.substr(p + 2);
+    }
+  return "unknown CPU";
+}
+
+struct Baseline {
+  bool ran = false;
+  std::string skipped;   // reason when not run
+  double ms = 0;         // median
+  int runs = 0;
+  size_t raw_vertices = 0;  // output vertices as CGAL returns them (degree-k vertices repeated)
+};
+
+struct Row {
+  std::string mesh;
+  size_t faces = 0, planes = 0;
+  std::string type;
+  std::string error;
+  size_t V = 0, E = 0, F = 0;
+  double volume = 0;
+  double ours_ms = 0;
+  kergen::Stats stats;
+  Baseline epick, epeck;
+  bool star = false;
+  std::string reference;   // non-star: the star mesh our time is compared with
+  double reference_ms = 0;
+};
+
+// One plane per face from its first non-collinear vertex triple (what a CGAL user would build);
+// the planes are part of the timed baseline.
+template <class K>
+std::vector<typename K::Plane_3> face_planes(const kergen::Mesh& m, bool flip) {
+  std::vector<typename K::Point_3> pts;
+  pts.reserve(m.num_vertices());
+  for (size_t v = 0; v < m.num_vertices(); ++v)
+    pts.emplace_back(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]);
+  std::vector<typename K::Plane_3> planes;
+  planes.reserve(m.num_faces());
+  size_t off = 0;
+  for (size_t f = 0; f < m.num_faces(); ++f) {
+    const size_t k = m.face_sizes.empty() ? 3 : m.face_sizes[f];
+    const uint32_t* loop = m.indices.data() + off;
+    off += k;
+    for (size_t j = 1; j + 1 < k; ++j) {
+      const auto &a = pts[loop[0]], &b = pts[loop[j]], &c = pts[loop[j + 1]];
+      if (CGAL::collinear(a, b, c)) continue;
+      planes.push_back(flip ? typename K::Plane_3(a, c, b) : typename K::Plane_3(a, b, c));
+      break;
+    }
+  }
+  return planes;
+}
+
+template <class K>
+Baseline run_baseline(const kergen::Mesh& m, bool flip, const std::array<double, 3>& o, const Args& args) {
+  Baseline b;
+  std::vector<double> times;
+  for (int r = 0; r < args.runs; ++r) {
+    const double t0 = now_ms();
+    const auto planes = face_planes<K>(m, flip);
+    CGAL::Surface_mesh<typename K::Point_3> out;
+    const typename K::Point_3 origin(o[0], o[1], o[2]);
+    try {
+      CGAL::halfspace_intersection_3(planes.begin(), planes.end(), out,
+                                     boost::optional<typename K::Point_3>(origin));
+    } catch (const std::exception& e) {
+      b.skipped = std::string("failed: ") + e.what();
+      return b;
+    }
+    benchmark::DoNotOptimize(out);
+    const double ms = now_ms() - t0;
+    times.push_back(ms);
+    b.raw_vertices = out.number_of_vertices();
+    if (r == 0) {
+      // Not timed: the origin must be strictly inside every plane (exact predicate).
+      for (const auto& p : planes)
+        if (!p.has_on_negative_side(origin)) {
+          b.skipped = "origin not strictly inside (kernel too thin for a double centroid)";
+          return b;
+        }
+    }
+    if (ms > args.baseline_budget_ms) break;
+  }
+  b.ran = true;
+  b.ms = median(times);
+  b.runs = int(times.size());
+  return b;
+}
+
+Row bench_mesh(const std::string& path, const std::string& label, const Args& args) {
+  Row row;
+  row.mesh = label;
+  kergen::ReadResult rr = kergen::read_mesh_file(path);
+  if (!rr.ok()) {
+    row.error = rr.message;
+    return row;
+  }
+  row.faces = rr.mesh.num_faces();
+  const kergen::MeshView view = rr.mesh.view();
+  std::vector<double> times;
+  std::vector<kergen::Kernel> results;
+  for (int r = 0; r < args.runs; ++r) {
+    const double t0 = now_ms();
+    kergen::Kernel k = kergen::compute_kernel(view);
+    benchmark::DoNotOptimize(k);
+    times.push_back(now_ms() - t0);
+    results.push_back(std::move(k));
+  }
+  // The run whose time is the median supplies the phase split.
+  std::vector<size_t> order(times.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return times[a] < times[b]; });
+  const kergen::Kernel& k = results[order[order.size() / 2]];
+  row.ours_ms = median(times);
+  row.stats = k.stats;
+  row.planes = k.stats.distinct_planes;
+  if (!k.ok()) {
+    row.error = std::string(kergen::error_name(k.error)) + ": " + k.message;
+    return row;
+  }
+  row.type = kergen::kernel_type_name(k.type);
+  row.V = k.num_vertices();
+  row.E = k.num_edges();
+  row.F = k.num_faces();
+  row.volume = k.volume;
+  row.star = k.type != kergen::KernelType::Empty;
+  if (k.type != kergen::KernelType::Polyhedron) {
+    const char* why = k.type == kergen::KernelType::Empty ? "n/a (empty kernel)" : "n/a (not full-dimensional)";
+    row.epick.skipped = row.epeck.skipped = why;
+    return row;
+  }
+  // Interior point for CGAL: centroid of our kernel's vertices (not timed).
+  std::array<double, 3> c{0, 0, 0};
+  for (size_t v = 0; v < k.num_vertices(); ++v)
+    for (int a = 0; a < 3; ++a) c[a] += k.vertices[3 * v + a];
+  for (int a = 0; a < 3; ++a) c[a] /= double(k.num_vertices());
+  bool flip = false;
+  for (const auto& w : k.warnings) flip |= w.kind == kergen::Warning::Kind::OrientationFlipped;
+
+  if (!args.epick) row.epick.skipped = "skipped (--no-epick)";
+  else if (row.faces > args.epick_max_faces) row.epick.skipped = "skipped (> --epick-max-faces)";
+  else row.epick = run_baseline<Epick>(rr.mesh, flip, c, args);
+  if (!args.epeck) row.epeck.skipped = "skipped (--no-epeck)";
+  else if (row.faces > args.epeck_max_faces) row.epeck.skipped = "skipped (> --epeck-max-faces)";
+  else row.epeck = run_baseline<Epeck>(rr.mesh, flip, c, args);
+  return row;
+}
+
+std::vector<std::pair<std::string, std::string>> default_list(const Args& args) {
+  std::vector<std::pair<std::string, std::string>> list;  // (path, label)
+  const fs::path root = args.meshes;
+  auto add = [&](const std::string& rel) { list.emplace_back((root / rel).string(), rel); };
+  if (args.quick) {
+    for (const char* f : {"princeton/350.off", "princeton/200.off", "refinements/spiral1.off",
+                          "refinements/vase1.off", "polyhedra/tet10/0.off", "polyhedra/voro/0.off"})
+      add(f);
+    return list;
+  }
+  for (const char* p : {"325", "326", "337", "350", "1", "10", "100", "200", "300"})
+    add(std::string("princeton/") + p + ".off");
+  for (const char* s : {"spiral", "vase"})
+    for (int i = 1; i <= 6; ++i) add(std::string("refinements/") + s + std::to_string(i) + ".off");
+  for (const char* d : {"tet10", "tet20", "tet30", "voro"})
+    for (const char* i : {"0", "500"}) add(std::string("polyhedra/") + d + "/" + i + ".off");
+  return list;
+}
+
+std::string fmt(double v, int prec = 2) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", prec, v);
+  return buf;
+}
+
+std::string baseline_cell(const Baseline& b) {
+  if (b.ran) return fmt(b.ms);
+  if (b.skipped.rfind("n/a", 0) == 0) return "n/a";
+  return "skip";
+}
+std::string ratio_cell(const Baseline& b, double ours) {
+  return b.ran && ours > 0 ? fmt(b.ms / ours, 1) + "x" : "-";
+}
+
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') o += '\\';
+    if (static_cast<unsigned char>(ch) < 0x20) { o += ' '; continue; }
+    o += ch;
+  }
+  return o;
+}
+
+std::string json_baseline(const Baseline& b, double ours) {
+  std::ostringstream os;
+  os << "{\"ran\":" << (b.ran ? "true" : "false");
+  if (b.ran) os << ",\"ms\":" << b.ms << ",\"runs\":" << b.runs << ",\"ratio\":" << (ours > 0 ? b.ms / ours : 0)
+                << ",\"raw_vertices\":" << b.raw_vertices;
+  else os << ",\"skipped\":\"" << json_escape(b.skipped) << "\"";
+  os << "}";
+  return os.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--runs") args.runs = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--json") args.json = true;
+    else if (a == "--quick") args.quick = true;
+    else if (a == "--no-epeck") args.epeck = false;
+    else if (a == "--no-epick") args.epick = false;
+    else if (a == "--epeck-max-faces") args.epeck_max_faces = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--epick-max-faces") args.epick_max_faces = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--baseline-budget-ms") args.baseline_budget_ms = std::atof(next().c_str());
+    else if (a == "--meshes") args.meshes = next();
+    else if (a == "-h" || a == "--help") {
+      std::printf("usage: kergen_bench [--runs N] [--json] [--quick] [--no-epeck] [--no-epick]\n"
+                  "                    [--epeck-max-faces N] [--epick-max-faces N] [--baseline-budget-ms T]\n"
+                  "                    [--meshes DIR] [mesh files...]\n");
+      return 0;
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
+      return 2;
+    } else args.files.push_back(a);
+  }
+  int quick_runs = args.runs;
+  if (args.quick) {
+    bool runs_given = false;
+    for (int i = 1; i < argc; ++i) runs_given |= std::strcmp(argv[i], "--runs") == 0;
+    if (!runs_given) quick_runs = 1;
+  }
+  args.runs = quick_runs;
+
+  std::vector<std::pair<std::string, std::string>> list;
+  if (!args.files.empty())
+    for (const auto& f : args.files) list.emplace_back(f, f);
+  else {
+    if (!fs::is_directory(args.meshes)) {
+      std::fprintf(stderr, "mesh folder %s not found: pass --meshes DIR or mesh files\n", args.meshes.c_str());
+      return 1;
+    }
+    list = default_list(args);
+  }
+
+  const std::string compiler = compiler_string();
+  if (!args.json) {
+    std::printf("# kergen_bench | %s | CGAL %s | %s | median of %d run(s) | times in ms, end to end (parse excluded)\n",
+                compiler.c_str(), CGAL_VERSION_STR, cpu_string().c_str(), args.runs);
+    std::fflush(stdout);
+  }
+
+  std::vector<Row> rows;
+  for (const auto& [path, label] : list) {
+    rows.push_back(bench_mesh(path, label, args));
+    if (!args.json) {
+      std::fprintf(stderr, "  done %s (%.1f ms)\n", label.c_str(), rows.back().ours_ms);
+    }
+  }
+  // Non-star meshes: compare with our full run on the star mesh of closest size.
+  for (Row& r : rows) {
+    if (!r.error.empty() || r.star) continue;
+    const Row* best = nullptr;
+    for (const Row& s : rows)
+      if (s.error.empty() && s.type == "POLYHEDRON" &&
+          (!best || std::llabs((long long)s.faces - (long long)r.faces) < std::llabs((long long)best->faces - (long long)r.faces)))
+        best = &s;
+    if (best) {
+      r.reference = best->mesh;
+      r.reference_ms = best->ours_ms;
+    }
+  }
+
+  if (args.json) {
+    for (const Row& r : rows) {
+      std::ostringstream os;
+      os << "{\"mesh\":\"" << json_escape(r.mesh) << "\",\"compiler\":\"" << json_escape(compiler) << "\",\"runs\":" << args.runs;
+      if (!r.error.empty()) {
+        os << ",\"error\":\"" << json_escape(r.error) << "\"}";
+        std::printf("%s\n", os.str().c_str());
+        continue;
+      }
+      const auto& s = r.stats;
+      os << ",\"faces\":" << r.faces << ",\"distinct_planes\":" << r.planes << ",\"active_planes\":" << s.active_planes
+         << ",\"type\":\"" << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F
+         << ",\"volume\":" << r.volume << ",\"ours_ms\":" << r.ours_ms << ",\"phases_ms\":{\"validate\":" << s.ms_validate
+         << ",\"planes\":" << s.ms_planes << ",\"lp\":" << s.ms_lp << ",\"trace\":" << s.ms_trace
+         << ",\"assemble\":" << s.ms_assemble << ",\"total\":" << s.ms_total << "}"
+         << ",\"traced_lines\":" << s.traced_lines << ",\"exact_fallbacks\":" << s.exact_fallbacks
+         << ",\"cgal_epick\":" << json_baseline(r.epick, r.ours_ms) << ",\"cgal_epeck\":" << json_baseline(r.epeck, r.ours_ms);
+      if (!r.reference.empty())
+        os << ",\"star_reference\":\"" << json_escape(r.reference) << "\",\"star_reference_ms\":" << r.reference_ms
+           << ",\"ratio_to_star_reference\":" << (r.reference_ms > 0 ? r.ours_ms / r.reference_ms : 0);
+      os << "}";
+      std::printf("%s\n", os.str().c_str());
+    }
+    return 0;
+  }
+
+  std::printf("| mesh | faces | planes | kernel | V | E | F | ours | Epick | Epeck | Epick/ours | Epeck/ours | validate | planes | lp | trace | assemble | note |\n");
+  std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  for (const Row& r : rows) {
+    if (!r.error.empty()) {
+      std::printf("| %s | %zu | | ERROR | | | | %s | | | | | | | | | | %s |\n", r.mesh.c_str(), r.faces,
+                  r.ours_ms > 0 ? fmt(r.ours_ms).c_str() : "", r.error.c_str());
+      continue;
+    }
+    const auto& s = r.stats;
+    std::string note;
+    if (!r.reference.empty())
+      note = "non-star: " + fmt(100.0 * r.ours_ms / std::max(1e-9, r.reference_ms), 1) + "% of " + r.reference + " (" +
+             fmt(r.reference_ms) + " ms)";
+    for (const Baseline* b : {&r.epick, &r.epeck})
+      if (!b->ran && b->skipped.rfind("n/a", 0) != 0 && !b->skipped.empty())
+        note += std::string(note.empty() ? "" : "; ") + (b == &r.epick ? "Epick " : "Epeck ") + b->skipped;
+    std::printf("| %s | %zu | %zu | %s | %zu | %zu | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+                r.mesh.c_str(), r.faces, r.planes, r.type.c_str(), r.V, r.E, r.F, fmt(r.ours_ms).c_str(),
+                baseline_cell(r.epick).c_str(), baseline_cell(r.epeck).c_str(), ratio_cell(r.epick, r.ours_ms).c_str(),
+                ratio_cell(r.epeck, r.ours_ms).c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(),
+                fmt(s.ms_lp).c_str(), fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), note.c_str());
+  }
+  return 0;
+}

@@ -1,0 +1,327 @@
+// kergen::compute_kernel against an exact CGAL reference (cgal_oracle.h) and against the star
+// labels of the shared mesh sets (labels.tsv). Every disagreement is a failure naming the file;
+// each test ends with a summary of the set (counts, every mismatch, time spent on each side).
+//
+// Default run: fixtures/*.off, princeton/*.off, refinements/*.off up to kMaxDefaultFaces faces,
+// every 8th file of each polyhedra/ folder (500 meshes) and the labels.tsv verdicts (same face
+// limit). The DISABLED_ tests (ctest label "long") cover the rest: refinements above the limit
+// and all 4000 polyhedra.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cgal_oracle.h"
+#include "kergen/io.h"
+#include "kergen/kergen.h"
+
+namespace fs = std::filesystem;
+using kergen_oracle::Verdict;
+
+namespace {
+
+const fs::path kMeshes = KERGEN_SHARED_MESHES;
+// Above this many faces the oracle's exact LP takes seconds (vase5: 8 s, vase6: 22 s on the
+// 2-core test machine); such meshes run in the "long" tests only.
+constexpr size_t kMaxDefaultFaces = 40000;
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// labels.tsv: relative path -> star_shaped column ("yes", "no", "skip(...)", "None").
+const std::map<std::string, std::string>& labels() {
+  static const std::map<std::string, std::string> table = [] {
+    std::map<std::string, std::string> t;
+    std::ifstream in(kMeshes / "labels.tsv");
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+      std::vector<std::string> cols;
+      std::stringstream ss(line);
+      std::string c;
+      while (std::getline(ss, c, '\t')) cols.push_back(c);
+      if (cols.size() >= 7) t[cols[0]] = cols[6];
+    }
+    return t;
+  }();
+  return table;
+}
+
+std::string label_of(const std::string& rel) {
+  auto it = labels().find(rel);
+  return it == labels().end() ? std::string() : it->second;
+}
+
+Verdict verdict_of(kergen::KernelType t) {
+  switch (t) {
+    case kergen::KernelType::Empty: return Verdict::Empty;
+    case kergen::KernelType::Polyhedron: return Verdict::Full;
+    default: return Verdict::Flat;  // Point, Segment, Polygon (Unbounded is reported separately)
+  }
+}
+
+bool is_input_error(kergen::Error e) {
+  using kergen::Error;
+  return e == Error::OpenMesh || e == Error::NonManifoldEdge || e == Error::InconsistentOrientation ||
+         e == Error::MultipleComponents || e == Error::DegenerateInput;
+}
+
+struct SetReport {
+  std::string name;
+  size_t meshes = 0, agree = 0, rejected = 0, empty = 0, flat = 0, full = 0, deferred = 0;
+  double ms_ours = 0, ms_oracle = 0;
+  double worst_rel_volume = 0;
+  std::string worst_file;
+  std::vector<std::string> mismatches;
+  std::vector<std::string> notes;
+
+  // Every mismatch is a test failure naming the file, and is listed again in the summary.
+  void mismatch(const std::string& file, const std::string& what) {
+    ADD_FAILURE() << file << ": " << what;
+    mismatches.push_back(file + ": " + what);
+  }
+  void print() const {
+    std::ostringstream os;
+    os << "[" << name << "] " << meshes << " meshes: " << agree << " agree with the oracle, "
+       << mismatches.size() << " mismatches; verdicts empty/flat/full = " << empty << "/" << flat << "/"
+       << full << ", rejected by validation " << rejected;
+    if (deferred) os << ", " << deferred << " above " << kMaxDefaultFaces << " faces left to the long test";
+    os << "\n  time: ours " << ms_ours << " ms, oracle " << ms_oracle << " ms";
+    if (!worst_file.empty()) os << "\n  largest relative volume difference " << worst_rel_volume << " (" << worst_file << ")";
+    for (const auto& n : notes) os << "\n  note: " << n;
+    for (const auto& m : mismatches) os << "\n  MISMATCH " << m;
+    std::printf("%s\n", os.str().c_str());
+  }
+};
+
+// Checks one mesh file: our kernel vs the oracle, and both vs labels.tsv when it has a verdict.
+void check_mesh(const fs::path& file, SetReport& rep, size_t max_faces) {
+  const std::string rel = fs::relative(file, kMeshes).generic_string();
+  kergen::ReadResult rr = kergen::read_mesh_file(file.string());
+  if (!rr.ok()) {
+    rep.mismatch(rel, "read failed: " + rr.message);
+    return;
+  }
+  if (rr.mesh.num_faces() > max_faces) {
+    ++rep.deferred;
+    return;
+  }
+  ++rep.meshes;
+  const std::string label = label_of(rel);
+
+  double t0 = now_ms();
+  const kergen::Kernel ours = kergen::compute_kernel(rr.mesh.view());
+  rep.ms_ours += now_ms() - t0;
+  t0 = now_ms();
+  const kergen_oracle::OracleResult ref = kergen_oracle::oracle_kernel(rr.mesh);
+  rep.ms_oracle += now_ms() - t0;
+  const size_t before = rep.mismatches.size();
+
+  if (!ours.ok()) {
+    ++rep.rejected;
+    // Rejections are allowed only for input errors, and only on meshes that the labels mark as
+    // unusable or that the oracle's own topology check refuses.
+    const bool bad = label.rfind("skip", 0) == 0 || !ref.ok;
+    if (!is_input_error(ours.error) || !bad)
+      rep.mismatch(rel, std::string("rejected with ") + kergen::error_name(ours.error) + ": " + ours.message +
+                            (is_input_error(ours.error) ? "" : " (not an input error)") +
+                            (bad ? "" : "; labels.tsv says '" + label + "' and the oracle accepted the mesh"));
+    else {
+      rep.notes.push_back(rel + " rejected: " + kergen::error_name(ours.error) + " (" + ours.message +
+                          "); oracle: " + (ref.ok ? "accepted" : ref.message));
+      ++rep.agree;
+    }
+    return;
+  }
+
+  if (!ref.ok) {
+    rep.mismatch(rel, "accepted by us (" + std::string(kergen::kernel_type_name(ours.type)) +
+                          "), refused by the oracle: " + ref.message);
+    return;
+  }
+  const Verdict v = verdict_of(ours.type);
+  (ref.verdict == Verdict::Empty ? rep.empty : ref.verdict == Verdict::Flat ? rep.flat : rep.full)++;
+  if (v != ref.verdict || ours.type == kergen::KernelType::Unbounded || !ours.complete)
+    rep.mismatch(rel, std::string("ours ") + kergen::kernel_type_name(ours.type) + (ours.complete ? "" : " (incomplete)") +
+                          ", oracle " + kergen_oracle::verdict_name(ref.verdict) + " (t* = " + std::to_string(ref.t_star) + ")");
+
+  if (v == Verdict::Full && ref.verdict == Verdict::Full && ref.has_polyhedron) {
+    const double diag = kergen_oracle::bbox_diagonal(rr.mesh);
+    const double diff = std::fabs(ours.volume - ref.volume);
+    const double tol = std::max(1e-9 * std::fabs(ref.volume), 1e-12 * diag * diag * diag);
+    const double rel_diff = ref.volume != 0 ? diff / std::fabs(ref.volume) : diff;
+    if (rep.worst_file.empty() || rel_diff > rep.worst_rel_volume) {
+      rep.worst_rel_volume = rel_diff;
+      rep.worst_file = rel;
+    }
+    std::ostringstream os;
+    if (diff > tol) os << " volume " << ours.volume << " vs " << ref.volume << ";";
+    if (ours.num_vertices() != ref.vertices) os << " V " << ours.num_vertices() << " vs " << ref.vertices << ";";
+    if (ours.num_faces() != ref.facets) os << " F " << ours.num_faces() << " vs " << ref.facets << ";";
+    if (ours.num_edges() != ref.vertices + ref.facets - 2)
+      os << " E " << ours.num_edges() << " vs " << ref.vertices + ref.facets - 2 << ";";
+    if (!os.str().empty()) rep.mismatch(rel, "polyhedron differs:" + os.str());
+  } else if (v != Verdict::Full) {
+    if (ours.volume != 0.0) rep.mismatch(rel, "a kernel that is not a polyhedron has volume " + std::to_string(ours.volume));
+  }
+
+  if (label == "yes" || label == "no") {
+    const bool star = label == "yes";
+    if ((v != Verdict::Empty) != star) rep.mismatch(rel, "ours disagrees with labels.tsv star_shaped=" + label);
+    if ((ref.verdict != Verdict::Empty) != star) rep.mismatch(rel, "oracle disagrees with labels.tsv star_shaped=" + label);
+  }
+  if (rep.mismatches.size() == before) ++rep.agree;
+}
+
+std::vector<fs::path> files_in(const fs::path& dir, const std::string& ext) {
+  std::vector<fs::path> out;
+  if (!fs::is_directory(dir)) return out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.is_regular_file() && e.path().extension() == ext) out.push_back(e.path());
+  // Numeric names (polyhedra/N.off) in numeric order, others alphabetically.
+  std::sort(out.begin(), out.end(), [](const fs::path& a, const fs::path& b) {
+    const std::string sa = a.stem().string(), sb = b.stem().string();
+    const bool na = !sa.empty() && std::all_of(sa.begin(), sa.end(), ::isdigit);
+    const bool nb = !sb.empty() && std::all_of(sb.begin(), sb.end(), ::isdigit);
+    if (na && nb) return std::stoul(sa) < std::stoul(sb);
+    return a.filename() < b.filename();
+  });
+  return out;
+}
+
+#define REQUIRE_MESHES(sub)                                                                     \
+  if (!fs::is_directory(kMeshes / (sub)))                                                      \
+  GTEST_SKIP() << "shared mesh folder " << (kMeshes / (sub)).string()                           \
+               << " not found (set -DKERGEN_SHARED_MESHES=...); oracle test not run"
+
+void run_set(const std::string& name, const std::vector<fs::path>& files, size_t max_faces) {
+  SetReport rep;
+  rep.name = name;
+  ASSERT_FALSE(files.empty()) << name << ": no mesh files found";
+  for (const auto& f : files) check_mesh(f, rep, max_faces);
+  rep.print();
+  EXPECT_GT(rep.meshes, 0u);
+}
+
+std::vector<fs::path> polyhedra(size_t stride) {
+  std::vector<fs::path> out;
+  for (const char* d : {"tet10", "tet20", "tet30", "voro"}) {
+    auto files = files_in(kMeshes / "polyhedra" / d, ".off");
+    for (size_t i = 0; i < files.size(); i += stride) out.push_back(files[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(OracleFixtures, ClosedOffFiles) {
+  REQUIRE_MESHES("fixtures");
+  run_set("fixtures/*.off", files_in(kMeshes / "fixtures", ".off"), SIZE_MAX);
+}
+
+TEST(OraclePrinceton, All) {
+  REQUIRE_MESHES("princeton");
+  run_set("princeton/*.off", files_in(kMeshes / "princeton", ".off"), SIZE_MAX);
+}
+
+TEST(OracleRefinements, UpToFaceLimit) {
+  REQUIRE_MESHES("refinements");
+  run_set("refinements/*.off (<= limit)", files_in(kMeshes / "refinements", ".off"), kMaxDefaultFaces);
+}
+
+TEST(OracleRefinements, DISABLED_All) {
+  REQUIRE_MESHES("refinements");
+  run_set("refinements/*.off (all)", files_in(kMeshes / "refinements", ".off"), SIZE_MAX);
+}
+
+TEST(OraclePolyhedra, EveryEighth) {
+  REQUIRE_MESHES("polyhedra");
+  const auto files = polyhedra(8);
+  EXPECT_GE(files.size(), 500u);
+  run_set("polyhedra (every 8th)", files, SIZE_MAX);
+}
+
+TEST(OraclePolyhedra, DISABLED_All) {
+  REQUIRE_MESHES("polyhedra");
+  const auto files = polyhedra(1);
+  EXPECT_EQ(files.size(), 4000u);
+  run_set("polyhedra (all)", files, SIZE_MAX);
+}
+
+// Every row of labels.tsv with a yes/no verdict, whatever the format (OFF/OBJ/STL; other formats
+// are listed as not readable here): the oracle's LP verdict and our find_kernel_point must both
+// agree with the label. Rows marked skip must be rejected by our validation.
+namespace {
+void run_labels(size_t max_faces) {
+  size_t checked = 0, skipped_rows = 0, unreadable = 0, deferred = 0;
+  std::vector<std::string> mismatches;
+  for (const auto& [rel, label] : labels()) {
+    const fs::path file = kMeshes / rel;
+    if (kergen::format_from_path(file.string()) == kergen::MeshFormat::Unknown) {
+      ++unreadable;
+      continue;
+    }
+    kergen::ReadResult rr = kergen::read_mesh_file(file.string());
+    const bool has_verdict = label == "yes" || label == "no";
+    if (!rr.ok()) {
+      // The only rows that may fail to read are those without a verdict.
+      EXPECT_FALSE(has_verdict) << rel << ": labelled " << label << " but unreadable: " << rr.message;
+      if (has_verdict) mismatches.push_back(rel + ": unreadable: " + rr.message);
+      ++skipped_rows;
+      continue;
+    }
+    if (rr.mesh.num_faces() > max_faces) {
+      ++deferred;
+      continue;
+    }
+    const kergen::KernelPoint kp = kergen::find_kernel_point(rr.mesh.view());
+    if (!has_verdict) {
+      ++skipped_rows;
+      if (label.rfind("skip", 0) == 0) {
+        EXPECT_TRUE(is_input_error(kp.error)) << rel << " (" << label << "): expected an input error, got "
+                                              << kergen::error_name(kp.error);
+        if (!is_input_error(kp.error)) mismatches.push_back(rel + ": labelled skip, our verdict " + kergen::error_name(kp.error));
+      }
+      continue;
+    }
+    ++checked;
+    kergen_oracle::OracleOptions lp_only;
+    lp_only.build_polyhedron = false;
+    const auto ref = kergen_oracle::oracle_kernel(rr.mesh, lp_only);
+    const bool star = label == "yes";
+    EXPECT_TRUE(ref.ok) << rel << ": " << ref.message;
+    EXPECT_EQ(ref.ok && ref.verdict != Verdict::Empty, star) << rel << ": oracle vs label " << label;
+    EXPECT_EQ(kp.error, kergen::Error::Ok) << rel << ": " << kp.message;
+    EXPECT_EQ(kp.star_shaped, star) << rel << ": ours vs label " << label;
+    if (!ref.ok || (ref.verdict != Verdict::Empty) != star) mismatches.push_back(rel + ": oracle vs label " + label);
+    if (kp.error != kergen::Error::Ok || kp.star_shaped != star)
+      mismatches.push_back(rel + ": ours (" + kergen::error_name(kp.error) + ", star=" + (kp.star_shaped ? "yes" : "no") +
+                           ") vs label " + label);
+  }
+  std::printf("[labels.tsv] %zu verdicts checked, %zu rows without verdict, %zu in formats we do not read, "
+              "%zu above %zu faces deferred; %zu mismatches\n",
+              checked, skipped_rows, unreadable, deferred, max_faces, mismatches.size());
+  for (const auto& m : mismatches) std::printf("  MISMATCH %s\n", m.c_str());
+  EXPECT_GT(checked, 0u);
+}
+}  // namespace
+
+TEST(OracleLabels, StarVerdicts) {
+  REQUIRE_MESHES("");
+  if (!fs::exists(kMeshes / "labels.tsv")) GTEST_SKIP() << "labels.tsv not found in " << kMeshes;
+  run_labels(kMaxDefaultFaces);
+}
+
+TEST(OracleLabels, DISABLED_AllStarVerdicts) {
+  REQUIRE_MESHES("");
+  if (!fs::exists(kMeshes / "labels.tsv")) GTEST_SKIP() << "labels.tsv not found in " << kMeshes;
+  run_labels(SIZE_MAX);
+}
