@@ -732,14 +732,20 @@ void parse_stl(std::string_view bytes, const std::string& name, Mesh& mesh) {
 // ---------------------------------------------------------------------------------------------
 // Writers.
 
-// %.17g round-trips every double. The C locale might have been changed by the host program, so a
-// decimal comma is turned back into a point.
+// %.17g round-trips every double. std::to_chars gives the same text without the locale (and
+// faster); where it is missing, snprintf's decimal comma, if the host program set such a locale,
+// is turned back into a point.
 void append_double(std::string& out, double value) {
   char buf[40];
+#if KERGEN_FROM_CHARS_DOUBLE
+  auto converted = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
+  out.append(buf, converted.ptr);
+#else
   int n = std::snprintf(buf, sizeof buf, "%.17g", value);
   for (int i = 0; i < n; ++i)
     if (buf[i] == ',') buf[i] = '.';
   out.append(buf, static_cast<size_t>(n));
+#endif
 }
 
 void append_uint(std::string& out, uint64_t value) {
