@@ -156,13 +156,29 @@ class Tracer {
     return idx;
   }
 
+  // Direction sigma * (n_p x n_q) as doubles; when cancellation makes the double cross product
+  // unreliable (nearly parallel planes) it is rounded from the exact one instead.
+  void direction(const Ray& ray, double u[3]) const {
+    auto pp = ps_.approx(ray.p), pq = ps_.approx(ray.q);
+    Approx c[3] = {pp.n[1] * pq.n[2] - pp.n[2] * pq.n[1], pp.n[2] * pq.n[0] - pp.n[0] * pq.n[2],
+                   pp.n[0] * pq.n[1] - pp.n[1] * pq.n[0]};
+    double len = std::fabs(c[0].v) + std::fabs(c[1].v) + std::fabs(c[2].v);
+    double err = c[0].e + c[1].e + c[2].e;
+    if (err <= 1e-8 * len) {
+      for (int k = 0; k < 3; ++k) u[k] = ray.sigma * c[k].v;
+      return;
+    }
+    const auto &ep = ps_.exact(ray.p), &eq = ps_.exact(ray.q);
+    u[0] = ray.sigma * (ep.n[1] * eq.n[2] - ep.n[2] * eq.n[1]).estimate();
+    u[1] = ray.sigma * (ep.n[2] * eq.n[0] - ep.n[0] * eq.n[2]).estimate();
+    u[2] = ray.sigma * (ep.n[0] * eq.n[1] - ep.n[1] * eq.n[0]).estimate();
+  }
+
   // Nearest plane along the ray from its vertex (double scan; exactness comes after).
   uint32_t scan(const Ray& ray) {
     const VertexGeom& g = res_.vertices[ray.from].geom;
-    auto pp = ps_.approx(ray.p), pq = ps_.approx(ray.q);
-    double u[3] = {pp.n[1].v * pq.n[2].v - pp.n[2].v * pq.n[1].v, pp.n[2].v * pq.n[0].v - pp.n[0].v * pq.n[2].v,
-                   pp.n[0].v * pq.n[1].v - pp.n[1].v * pq.n[0].v};
-    for (double& c : u) c *= ray.sigma;
+    double u[3];
+    direction(ray, u);
     const double x = g.x[0].v, y = g.x[1].v, z = g.x[2].v;
     // Planes through the vertex never cut the ray (exactly); hide them from the scan.
     const auto& G = res_.vertices[ray.from].tight;
@@ -188,11 +204,28 @@ class Tracer {
       ax_[i] = saved_[k][0]; ay_[i] = saved_[k][1]; az_[i] = saved_[k][2]; ad_[i] = saved_[k][3];
     }
     saved_.clear();
-    if (bi < n) return active_[bi];
-    // The double scan saw no approaching plane: ask exactly.
-    for (uint32_t l : active_)
-      if (!std::binary_search(G.begin(), G.end(), l) && ray.sigma * sign_det3_normals(ps_, l, ray.p, ray.q) > 0) return l;
-    return kNoPlane;
+    if (bi < n && approaching(ray, active_[bi])) return active_[bi];
+    return exact_scan(ray);
+  }
+
+  bool approaching(const Ray& ray, uint32_t l) const {
+    const auto& G = res_.vertices[ray.from].tight;
+    return !std::binary_search(G.begin(), G.end(), l) && ray.sigma * sign_det3_normals(ps_, l, ray.p, ray.q) > 0;
+  }
+
+  // The nearest plane by exact comparisons only (a tournament over the approaching planes):
+  // the fallback when the double scan cannot be trusted.
+  uint32_t exact_scan(const Ray& ray) {
+    uint32_t r = kNoPlane;
+    VertexGeom w;
+    for (uint32_t l : active_) {
+      if (!approaching(ray, l)) continue;
+      if (r == kNoPlane || side(ps_, l, w) > 0) {
+        r = l;
+        w = make_vertex(ps_, ray.p, ray.q, r);
+      }
+    }
+    return r;
   }
 
   bool trace(const Ray& ray) {
@@ -202,12 +235,18 @@ class Tracer {
     for (uint32_t l : ray.planes) mark_[l] = 1;
     std::vector<uint32_t> tight;
     VertexGeom w;
-    for (int guard = 0;; ++guard) {
+    bool exact_done = false;
+    for (;;) {
       w = make_vertex(ps_, ray.p, ray.q, r);
       uint32_t violator = certify_vertex(ps_, active_, w, mark_, tight);
       if (violator == kNoPlane) break;
-      r = violator;  // cuts the segment before the candidate: strictly closer
-      if (guard > 1000000) { res_.internal_error = true; break; }
+      // A violator cuts the segment before the candidate, so it approaches along the ray and is
+      // strictly closer. Anything else means the candidate came from an unreliable scan.
+      if (approaching(ray, violator)) { r = violator; continue; }
+      if (exact_done) { res_.internal_error = true; break; }
+      r = exact_scan(ray);
+      exact_done = true;
+      if (r == kNoPlane) { res_.internal_error = true; break; }
     }
     for (uint32_t l : ray.planes) mark_[l] = 0;
     if (res_.internal_error) return false;

@@ -7,6 +7,7 @@
 // Writers: OBJ, OFF, STL (binary) of a polygon mesh (STL fan-triangulates).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -25,7 +26,7 @@ enum class MeshFormat { Unknown, Off, Obj, Stl };
 MeshFormat format_from_path(const std::string& path);  // by extension, case-insensitive
 
 // Reads a file; the format comes from the extension.
-ReadResult read_mesh_file(const std::string& path, size_t max_bytes = size_t(4) << 30);
+ReadResult read_mesh_file(const std::string& path, size_t max_bytes = SIZE_MAX);  // 0 = no limit
 // Parses bytes already in memory; `name` is used in messages.
 ReadResult read_mesh(std::string_view bytes, MeshFormat format, const std::string& name = "<memory>");
 ReadResult read_off(std::string_view text, const std::string& name = "<memory>");
