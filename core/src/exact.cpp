@@ -40,13 +40,12 @@ inline void two_product(double a, double b, double& x, double& y) {
   y = alo * blo - err3;
 }
 
-// h = e + f (zero-eliminating), Shewchuk's fast_expansion_sum_zeroelim.
-void expansion_sum(const std::vector<double>& e, const std::vector<double>& f, std::vector<double>& h) {
-  h.clear();
-  size_t elen = e.size(), flen = f.size();
-  if (elen == 0) { h = f; return; }
-  if (flen == 0) { h = e; return; }
-  h.reserve(elen + flen);
+// h = e + f (zero-eliminating), Shewchuk's fast_expansion_sum_zeroelim; h has room for
+// elen + flen components and may not alias e or f. Returns the length of h.
+size_t expansion_sum(const double* e, size_t elen, const double* f, size_t flen, double* h) {
+  if (elen == 0) { for (size_t i = 0; i < flen; ++i) h[i] = f[i]; return flen; }
+  if (flen == 0) { for (size_t i = 0; i < elen; ++i) h[i] = e[i]; return elen; }
+  size_t hlen = 0;
   double Q, Qnew, hh;
   size_t ei = 0, fi = 0;
   double enow = e[0], fnow = f[0];
@@ -56,106 +55,106 @@ void expansion_sum(const std::vector<double>& e, const std::vector<double>& f, s
     if ((fnow > enow) == (fnow > -enow)) { fast_two_sum(enow, Q, Qnew, hh); enow = (++ei < elen) ? e[ei] : 0; }
     else { fast_two_sum(fnow, Q, Qnew, hh); fnow = (++fi < flen) ? f[fi] : 0; }
     Q = Qnew;
-    if (hh != 0) h.push_back(hh);
+    if (hh != 0) h[hlen++] = hh;
     while (ei < elen && fi < flen) {
       if ((fnow > enow) == (fnow > -enow)) { two_sum(Q, enow, Qnew, hh); enow = (++ei < elen) ? e[ei] : 0; }
       else { two_sum(Q, fnow, Qnew, hh); fnow = (++fi < flen) ? f[fi] : 0; }
       Q = Qnew;
-      if (hh != 0) h.push_back(hh);
+      if (hh != 0) h[hlen++] = hh;
     }
   }
   while (ei < elen) {
     two_sum(Q, enow, Qnew, hh);
     enow = (++ei < elen) ? e[ei] : 0;
     Q = Qnew;
-    if (hh != 0) h.push_back(hh);
+    if (hh != 0) h[hlen++] = hh;
   }
   while (fi < flen) {
     two_sum(Q, fnow, Qnew, hh);
     fnow = (++fi < flen) ? f[fi] : 0;
     Q = Qnew;
-    if (hh != 0) h.push_back(hh);
+    if (hh != 0) h[hlen++] = hh;
   }
-  if (Q != 0 || h.empty()) h.push_back(Q);
-  if (h.size() == 1 && h[0] == 0) h.clear();
+  if (Q != 0) h[hlen++] = Q;
+  return hlen;
 }
 
-// h = e * b (zero-eliminating), Shewchuk's scale_expansion_zeroelim.
-void scale_expansion(const std::vector<double>& e, double b, std::vector<double>& h) {
-  h.clear();
-  if (e.empty() || b == 0) return;
-  h.reserve(2 * e.size());
+// h = e * b (zero-eliminating), Shewchuk's scale_expansion_zeroelim; h has room for 2 * elen.
+size_t scale_expansion(const double* e, size_t elen, double b, double* h) {
+  if (elen == 0 || b == 0) return 0;
+  size_t hlen = 0;
   double Q, sum, hh, product1, product0;
   two_product(e[0], b, Q, hh);
-  if (hh != 0) h.push_back(hh);
-  for (size_t i = 1; i < e.size(); ++i) {
+  if (hh != 0) h[hlen++] = hh;
+  for (size_t i = 1; i < elen; ++i) {
     two_product(e[i], b, product1, product0);
     two_sum(Q, product0, sum, hh);
-    if (hh != 0) h.push_back(hh);
+    if (hh != 0) h[hlen++] = hh;
     fast_two_sum(product1, sum, Q, hh);
-    if (hh != 0) h.push_back(hh);
+    if (hh != 0) h[hlen++] = hh;
   }
-  if (Q != 0 || h.empty()) h.push_back(Q);
-  if (h.size() == 1 && h[0] == 0) h.clear();
+  if (Q != 0) h[hlen++] = Q;
+  return hlen;
 }
 
 }  // namespace
 
 void Expansion::compress() {
   // Shewchuk's compress: shortens the expansion without changing its value.
-  size_t n = c_.size();
+  size_t n = n_;
   if (n < 2) return;
-  std::vector<double> g(n);
-  double Q = c_[n - 1], q, Qnew;
+  double small[kInline * 2];
+  std::vector<double> big;
+  double* g = n <= kInline * 2 ? small : (big.resize(n), big.data());
+  double Q = p_[n - 1], q, Qnew;
   size_t bottom = n - 1;
   for (size_t i = n - 1; i-- > 0;) {
-    fast_two_sum(Q, c_[i], Qnew, q);
+    fast_two_sum(Q, p_[i], Qnew, q);
     if (q != 0) { g[bottom--] = Qnew; Q = q; }
     else Q = Qnew;
   }
-  g[bottom] = Q;
   size_t top = 0;
-  std::vector<double> h;
-  h.reserve(n);
   for (size_t i = bottom + 1; i < n; ++i) {
     fast_two_sum(g[i], Q, Qnew, q);
     Q = Qnew;
-    if (q != 0) h.push_back(q);
+    if (q != 0) p_[top++] = q;
   }
-  (void)top;
-  h.push_back(Q);
-  if (h.size() == 1 && h[0] == 0) h.clear();
-  c_.swap(h);
+  p_[top++] = Q;
+  n_ = (top == 1 && p_[0] == 0) ? 0 : top;
 }
 
 double Expansion::estimate() const {
   double s = 0;
-  for (double x : c_) s += x;
+  for (size_t i = 0; i < n_; ++i) s += p_[i];
   return s;
 }
 
 Expansion operator+(const Expansion& a, const Expansion& b) {
   Expansion r;
-  expansion_sum(a.c_, b.c_, r.c_);
+  r.n_ = expansion_sum(a.p_, a.n_, b.p_, b.n_, r.reserve(a.n_ + b.n_));
   return r;
 }
 Expansion Expansion::operator-() const {
   Expansion r = *this;
-  for (double& x : r.c_) x = -x;
+  for (size_t i = 0; i < r.n_; ++i) r.p_[i] = -r.p_[i];
   return r;
 }
-Expansion operator-(const Expansion& a, const Expansion& b) { return a + (-b); }
+Expansion operator-(const Expansion& a, const Expansion& b) {
+  Expansion nb = -b;
+  return a + nb;
+}
 
 Expansion operator*(const Expansion& a, const Expansion& b) {
   const Expansion& small = a.size() <= b.size() ? a : b;
   const Expansion& large = a.size() <= b.size() ? b : a;
-  Expansion acc, term, next;
-  for (double s : small.c_) {
-    scale_expansion(large.c_, s, term.c_);
-    expansion_sum(acc.c_, term.c_, next.c_);
-    acc.c_.swap(next.c_);
+  Expansion acc, next, term;
+  double* t = term.reserve(2 * large.n_);
+  for (size_t i = 0; i < small.n_; ++i) {
+    term.n_ = scale_expansion(large.p_, large.n_, small.p_[i], t);
+    next.n_ = expansion_sum(acc.p_, acc.n_, term.p_, term.n_, next.reserve(acc.n_ + term.n_));
+    std::swap(acc, next);
   }
-  if (acc.c_.size() > 4) acc.compress();
+  if (acc.n_ > 4) acc.compress();
   return acc;
 }
 
@@ -163,16 +162,16 @@ Expansion Expansion::difference(double a, double b) {
   Expansion r;
   double x, y;
   two_sum(a, -b, x, y);
-  if (y != 0) r.c_.push_back(y);
-  if (x != 0) r.c_.push_back(x);
+  if (y != 0) r.p_[r.n_++] = y;
+  if (x != 0) r.p_[r.n_++] = x;
   return r;
 }
 Expansion Expansion::product(double a, double b) {
   Expansion r;
   double x, y;
   two_product(a, b, x, y);
-  if (y != 0) r.c_.push_back(y);
-  if (x != 0) r.c_.push_back(x);
+  if (y != 0) r.p_[r.n_++] = y;
+  if (x != 0) r.p_[r.n_++] = x;
   return r;
 }
 

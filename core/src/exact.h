@@ -26,12 +26,16 @@ constexpr double kUnderflowFloor = 1e-290;
 class Expansion {
  public:
   Expansion() = default;
-  explicit Expansion(double x) { if (x != 0) c_.push_back(x); }
+  explicit Expansion(double x) { if (x != 0) { p_[0] = x; n_ = 1; } }
+  Expansion(const Expansion& o) { assign(o.p_, o.n_); }
+  Expansion(Expansion&& o) noexcept { take(std::move(o)); }
+  Expansion& operator=(const Expansion& o) { if (this != &o) assign(o.p_, o.n_); return *this; }
+  Expansion& operator=(Expansion&& o) noexcept { if (this != &o) take(std::move(o)); return *this; }
 
-  int sign() const { return c_.empty() ? 0 : (c_.back() > 0 ? 1 : -1); }
+  int sign() const { return n_ == 0 ? 0 : (p_[n_ - 1] > 0 ? 1 : -1); }
   double estimate() const;  // the value rounded (nearly correctly) to a double
-  size_t size() const { return c_.size(); }
-  const std::vector<double>& components() const { return c_; }
+  size_t size() const { return n_; }
+  const double* data() const { return p_; }
 
   friend Expansion operator+(const Expansion& a, const Expansion& b);
   friend Expansion operator-(const Expansion& a, const Expansion& b);
@@ -42,8 +46,28 @@ class Expansion {
   static Expansion product(double a, double b);     // a * b exactly
 
  private:
+  // Components live inline up to kInline (no allocation for the common small predicates).
+  static constexpr size_t kInline = 24;
+  double* reserve(size_t cap) {
+    if (cap <= kInline) { p_ = buf_; }
+    else { if (heap_.size() < cap) heap_.resize(cap); p_ = heap_.data(); }
+    return p_;
+  }
+  void assign(const double* src, size_t n) {
+    double* dst = reserve(n);
+    for (size_t i = 0; i < n; ++i) dst[i] = src[i];
+    n_ = n;
+  }
+  void take(Expansion&& o) {
+    if (o.p_ == o.buf_) { assign(o.p_, o.n_); }
+    else { heap_ = std::move(o.heap_); p_ = heap_.data(); n_ = o.n_; o.p_ = o.buf_; o.n_ = 0; }
+  }
   void compress();
-  std::vector<double> c_;  // increasing magnitude, non-overlapping, no zeros
+
+  double buf_[kInline];
+  double* p_ = buf_;
+  size_t n_ = 0;
+  std::vector<double> heap_;
 };
 
 struct Approx {
