@@ -11,9 +11,23 @@
 // events) and are replayed in order through onStep on the main thread.
 import { KergenError } from './errors.js';
 
-function toTransferable(arr, copy, transfer) {
+function isDetached(buffer) {
+  if (buffer.byteLength !== 0) return false;
+  try {
+    new Uint8Array(buffer); // throws on a detached buffer
+    return false;
+  } catch {
+    return true;
+  }
+}
+
+function toTransferable(name, arr, copy, transfer) {
   if (arr == null) return arr;
   if (!ArrayBuffer.isView(arr)) return arr; // plain arrays are structured-cloned
+  if (isDetached(arr.buffer)) {
+    throw new KergenError('INVALID_ARGUMENT', `compute: ${name} is detached: its buffer was transferred to the worker by an earlier compute() (pass { copy: true } to keep using an array)`);
+  }
+  if (arr.byteLength === 0) return arr;
   const whole = arr.byteOffset === 0 && arr.byteLength === arr.buffer.byteLength;
   const shared = typeof SharedArrayBuffer !== 'undefined' && arr.buffer instanceof SharedArrayBuffer;
   if (copy || !whole || shared) return arr.slice(); // never detach a buffer we do not fully own
@@ -149,14 +163,14 @@ export class KernelWorker {
         type: 'compute',
         id: this._nextId++,
         wasmUrl: this._wasmUrl,
-        positions: toTransferable(positions, copy, transfer),
-        indices: toTransferable(indices, copy, transfer),
-        faceSizes: toTransferable(faceSizes, copy, transfer),
+        positions: toTransferable('positions', positions, copy, transfer),
+        indices: toTransferable('indices', indices, copy, transfer),
+        faceSizes: toTransferable('faceSizes', faceSizes, copy, transfer),
         options: plain,
         wantSteps: typeof onStep === 'function',
       };
     } catch (err) {
-      return Promise.reject(new KergenError('INVALID_ARGUMENT', `compute: ${err.message}`));
+      return Promise.reject(err instanceof KergenError ? err : new KergenError('INVALID_ARGUMENT', `compute: ${err.message}`));
     }
     return new Promise((resolve, reject) => {
       const job = { id: message.id, resolve, reject, onStep, onProgress };

@@ -1,6 +1,6 @@
 // `npm pack` produces a tarball with only the runtime files, and that tarball installs offline
 // into an empty folder and computes a kernel from plain Node.
-import { test, before } from 'node:test';
+import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -17,6 +17,10 @@ before(() => {
   tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-pack-'));
   const out = execFileSync('npm', ['pack', '--json', '--pack-destination', tmp], { cwd: repoRoot, encoding: 'utf8', env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
   packInfo = JSON.parse(out.slice(out.indexOf('[')))[0];
+});
+
+after(() => {
+  if (tmp) fs.rmSync(tmp, { recursive: true, force: true });
 });
 
 test('the tarball holds the runtime files only', (t) => {
@@ -68,6 +72,3 @@ test('npm install <tarball> --offline into an empty folder, then compute a cube 
   assert.ok(out.wasmPath.endsWith('/node_modules/kergen-wasm/dist/kergen.wasm'), out.wasmPath);
 });
 
-test('cleanup', () => {
-  fs.rmSync(tmp, { recursive: true, force: true });
-});

@@ -7,7 +7,8 @@ export const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)
 export const distWasm = path.join(repoRoot, 'dist', 'kergen.wasm');
 export const distGlue = path.join(repoRoot, 'dist', 'kergen.mjs');
 export const sharedMeshes = path.resolve(repoRoot, '..', 'shared', 'meshes');
-export const nativeCli = path.join(repoRoot, 'build', 'kergen');
+// The native CLI to compare with (override with KERGEN_CLI=/path/to/kergen).
+export const nativeCli = process.env.KERGEN_CLI || path.join(repoRoot, 'build', 'kergen');
 
 export function assertBuilt() {
   for (const f of [distWasm, distGlue]) {

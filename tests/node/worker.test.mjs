@@ -1,0 +1,155 @@
+// kergen-wasm/worker: the KernelWorker helper and its module worker script, run in Node through a
+// small Web Worker shim over worker_threads (the browser path is covered by the e2e tests).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { assertBuilt } from './lib/env.mjs';
+import { installWorkerShim, WebWorkerShim } from './lib/web-worker-shim.mjs';
+import { box, extrude, plusPrism } from './lib/geometry.mjs';
+
+let K;
+let W;
+const workers = [];
+before(async () => {
+  assertBuilt();
+  installWorkerShim();
+  K = await import('../../wasm/index.js');
+  W = await import('../../wasm/worker.js');
+  await K.init();
+});
+after(() => {
+  for (const w of workers) w.dispose();
+});
+
+function newWorker(options) {
+  const w = new W.KernelWorker(options);
+  workers.push(w);
+  return w;
+}
+
+function starPrism(n, inner) {
+  const poly = [];
+  for (let i = 0; i < 2 * n; i++) {
+    const r = i % 2 ? inner : 1;
+    poly.push([r * Math.cos((Math.PI * i) / n), r * Math.sin((Math.PI * i) / n)]);
+  }
+  return extrude(poly, 0, 1);
+}
+
+test('spawns a module worker from kergen-worker.js next to worker.js', () => {
+  const before = WebWorkerShim.spawned.length;
+  newWorker();
+  const spawned = WebWorkerShim.spawned.slice(before);
+  assert.equal(spawned.length, 1);
+  assert.match(spawned[0].url, /\/wasm\/kergen-worker\.js$/);
+});
+
+test('compute in the worker equals computeKernelSync; step events replay in order; progress ends with done', async () => {
+  const m = starPrism(9, 0.5);
+  const syncEvents = [];
+  const expected = K.computeKernelSync(m.positions, m.indices, { onStep: (e) => void syncEvents.push(e) });
+  const events = [];
+  const progress = [];
+  const kw = newWorker();
+  const r = await kw.compute(m.positions, m.indices, { copy: true, onStep: (e) => void events.push(e), onProgress: (p) => progress.push(p) });
+  assert.equal(r.status, expected.status);
+  assert.equal(r.volume, expected.volume);
+  assert.deepEqual(Array.from(r.vertices), Array.from(expected.vertices));
+  assert.deepEqual(r.faces.map((f) => Array.from(f)), expected.faces.map((f) => Array.from(f)));
+  assert.deepEqual(Array.from(r.triangles), Array.from(expected.triangles));
+  assert.deepEqual(r.stats.inputFaces, expected.stats.inputFaces);
+  assert.deepEqual(events, syncEvents);
+  assert.ok(progress.length >= 2);
+  assert.deepEqual(progress[0], { phase: 'loading', steps: 0 });
+  assert.deepEqual(progress.at(-1), { phase: 'done', steps: syncEvents.length });
+  for (let i = 1; i < progress.length; i++) assert.ok(progress[i].steps >= progress[i - 1].steps, 'steps never decrease');
+});
+
+test('input buffers are transferred (detached) unless copy: true; views of larger buffers are copied', async () => {
+  const kw = newWorker();
+  const m = plusPrism(0.3, 1);
+  const positions = Float64Array.from(m.positions);
+  const indices = Uint32Array.from(m.indices);
+  const r1 = await kw.compute(positions, indices);
+  assert.equal(r1.status, 'POLYHEDRON');
+  assert.equal(positions.byteLength, 0, 'positions detached');
+  assert.equal(indices.byteLength, 0, 'indices detached');
+
+  const p2 = Float64Array.from(m.positions);
+  const i2 = Uint32Array.from(m.indices);
+  const r2 = await kw.compute(p2, i2, { copy: true });
+  assert.equal(p2.length, m.positions.length, 'kept with copy: true');
+  assert.deepEqual(Array.from(i2), Array.from(m.indices));
+  assert.equal(r2.volume, r1.volume);
+
+  const big = new Float64Array(m.positions.length + 6);
+  big.set(m.positions, 3);
+  const view = big.subarray(3, 3 + m.positions.length);
+  const r3 = await kw.compute(view, Array.from(m.indices));
+  assert.equal(big.byteLength, (m.positions.length + 6) * 8, 'a partial view never detaches its buffer');
+  assert.equal(r3.volume, r1.volume);
+});
+
+test('step events arrive in batches of at most 256', async () => {
+  const kw = newWorker();
+  const m = starPrism(150, 0.8);
+  let count = 0;
+  const r = await kw.compute(m.positions, m.indices, { onStep: () => void count++ });
+  const total = r.vertices.length / 3 + r.edges.length / 2 + r.faces.length;
+  assert.equal(count, total, 'every event delivered');
+  assert.ok(total > 1000, `a large kernel (${total} events)`);
+  const shim = WebWorkerShim.spawned.find((s) => s.received.some((msg) => msg.type === 'result' && msg.result.vertices.length === r.vertices.length));
+  const batches = shim.received.filter((msg) => msg.type === 'steps');
+  assert.ok(batches.length >= Math.ceil(total / 256), `${batches.length} batches`);
+  assert.ok(batches.length < total / 4, `${batches.length} batches for ${total} events: batched, not one message per event`);
+  assert.ok(batches.every((b) => b.events.length <= 256));
+});
+
+test('errors cross as KergenError with the core code', async () => {
+  const kw = newWorker();
+  const m = box();
+  await assert.rejects(kw.compute(m.positions, m.indices.subarray(0, 33)), (err) => err instanceof W.KergenError && err.code === 'OPEN_MESH' && err.message.length > 3);
+  assert.equal(m.positions.byteLength, 0, 'transferred');
+  // Reusing a transferred (detached) array is reported, not silently lost.
+  await assert.rejects(kw.compute(m.positions, box().indices), (err) => err.code === 'INVALID_ARGUMENT' && /detached/.test(err.message));
+  await assert.rejects(kw.compute(m.positions, box().indices, { copy: true }), (err) => err.code === 'INVALID_ARGUMENT' && /detached/.test(err.message));
+  const fresh = box();
+  await assert.rejects(kw.compute(fresh.positions, fresh.indices, { copy: true, maxSteps: -3 }), (err) => err.code === 'INVALID_ARGUMENT');
+  await assert.rejects(kw.compute(new Float64Array(0), new Uint32Array(0)), (err) => err.code === 'EMPTY_INPUT');
+  const r = await kw.compute(fresh.positions, fresh.indices);
+  assert.equal(r.status, 'POLYHEDRON', 'the worker keeps working after errors');
+});
+
+test('cancel() rejects running and queued computations with CANCELLED and respawns the worker', async () => {
+  const kw = newWorker();
+  const m = starPrism(2000, 0.9);
+  const running = kw.compute(m.positions, m.indices, { copy: true });
+  const queued = kw.compute(m.positions, m.indices, { copy: true });
+  const spawnedBefore = WebWorkerShim.spawned.length;
+  kw.cancel();
+  await assert.rejects(running, (err) => err instanceof W.KergenError && err.code === 'CANCELLED');
+  await assert.rejects(queued, (err) => err.code === 'CANCELLED');
+  assert.equal(WebWorkerShim.spawned.length, spawnedBefore + 1, 'a fresh worker was started');
+  assert.ok(WebWorkerShim.spawned[spawnedBefore - 1].terminated, 'the busy worker was terminated');
+  const small = box();
+  const r = await kw.compute(small.positions, small.indices);
+  assert.equal(r.volume, 1);
+});
+
+test('onStep returning false cancels the worker computation', async () => {
+  const kw = newWorker();
+  const m = starPrism(40, 0.6);
+  let n = 0;
+  await assert.rejects(kw.compute(m.positions, m.indices, { onStep: () => ++n < 10 }), (err) => err.code === 'CANCELLED');
+  assert.equal(n, 10, 'no events delivered after false');
+  const small = box();
+  assert.equal((await kw.compute(small.positions, small.indices)).volume, 1);
+});
+
+test('dispose() terminates for good', async () => {
+  const kw = newWorker();
+  const m = box();
+  const pending = kw.compute(m.positions, m.indices, { copy: true });
+  kw.dispose();
+  await assert.rejects(pending, (err) => err.code === 'CANCELLED');
+  await assert.rejects(kw.compute(m.positions, m.indices), (err) => err.code === 'DISPOSED');
+});
