@@ -1,6 +1,8 @@
 // Public entry points: validation -> exact planes -> LP start vertex -> tracing -> polytope.
 #include "kergen/kergen.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -107,6 +109,44 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_lp = ms_since(t);
 }
 
+// Centre of the largest ball inside the kernel: bisection on the inward offset r of the facet
+// planes (unit normals, double coefficients taken as exact), each step one exact LP that says
+// whether the offset polytope is non-empty. The last feasible LP vertex is within the bisection
+// tolerance of a centre (any point of the final offset polytope is one when it is not unique).
+bool deepest_point(const PlaneSet& ps, const std::vector<uint32_t>& facets, const double bbox_min[3],
+                   const double bbox_max[3], double point[3], double& radius) {
+  if (facets.size() < 4) return false;
+  std::vector<double> no_points;
+  std::vector<std::array<double, 4>> unit;
+  for (uint32_t h : facets) {
+    double n[3] = {ps.nx()[h], ps.ny()[h], ps.nz()[h]};
+    double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0)) return false;
+    unit.push_back({n[0] / len, n[1] / len, n[2] / len, ps.d()[h] / len});
+  }
+  double hi = 0;
+  for (int k = 0; k < 3; ++k) hi = std::max(hi, 0.5 * (bbox_max[k] - bbox_min[k]));
+  double lo = 0;
+  const double dir[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
+  bool found = false;
+  for (int it = 0; it < 60 && hi - lo > 1e-15 * std::max(hi, 1e-300); ++it) {
+    double r = 0.5 * (lo + hi);
+    PlaneSet shrunk(&no_points);
+    std::vector<uint32_t> ids;
+    for (const auto& u : unit) ids.push_back(shrunk.add_explicit(u[0], u[1], u[2], u[3] + r));
+    LpResult lp = solve_lp(shrunk, ids, dir, kLpBound, 7);
+    if (lp.outcome == LpResult::Outcome::Optimal) {
+      lo = r;
+      for (int k = 0; k < 3; ++k) point[k] = lp.vertex.x[k].v;
+      found = true;
+    } else {
+      hi = r;
+    }
+  }
+  radius = lo;
+  return found;
+}
+
 }  // namespace
 
 Kernel compute_kernel(const MeshView& mesh, const Options& options) {
@@ -173,6 +213,25 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     for (const auto& v : tr.vertices)
       for (uint32_t p : v.tight)
         if (s.is_box[p]) out.type = KernelType::Unbounded;
+    if (options.deepest_point && out.type == KernelType::Polyhedron && out.complete) {
+      std::vector<uint32_t> facets;
+      for (const auto& e : tr.edges)
+        for (uint32_t h : e.planes) facets.push_back(h);
+      std::sort(facets.begin(), facets.end());
+      std::vector<uint32_t> counted;
+      for (size_t i = 0; i < facets.size();) {
+        size_t j = i;
+        while (j < facets.size() && facets[j] == facets[i]) ++j;
+        if (j - i >= 3) counted.push_back(facets[i]);
+        i = j;
+      }
+      double p[3], r = 0;
+      if (deepest_point(*s.planes, counted, s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
+        out.has_deepest_point = true;
+        for (int k = 0; k < 3; ++k) out.deepest_point[k] = p[k] * unscale;
+        out.inscribed_radius = r * unscale;
+      }
+    }
     out.stats.ms_assemble = ms_since(t);
     out.volume_ratio = s.mesh.volume > 0 ? scaled_volume / s.mesh.volume : 0;
   }

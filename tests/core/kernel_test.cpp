@@ -394,3 +394,49 @@ TEST(Kernel, ZeroAreaFacesAreDroppedAndReported) {
 }
 
 }  // namespace
+
+namespace {
+using namespace kergen;
+using namespace kergen_test;
+
+TEST(Kernel, DeepestPoint) {
+  Options o;
+  o.deepest_point = true;
+  Kernel k = compute_kernel(unit_cube().view(), o);
+  ASSERT_TRUE(k.has_deepest_point);
+  EXPECT_NEAR(k.inscribed_radius, 0.5, 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(k.deepest_point[i], 0.5, 1e-12);
+  // A 2 x 1 x 1 box: radius 0.5, centre anywhere on the segment y = z = 0.5, 0.5 <= x <= 1.5.
+  k = compute_kernel(box(0, 0, 0, 2, 1, 1).view(), o);
+  ASSERT_TRUE(k.has_deepest_point);
+  EXPECT_NEAR(k.inscribed_radius, 0.5, 1e-12);
+  EXPECT_NEAR(k.deepest_point[1], 0.5, 1e-12);
+  EXPECT_NEAR(k.deepest_point[2], 0.5, 1e-12);
+  EXPECT_GE(k.deepest_point[0], 0.5 - 1e-12);
+  EXPECT_LE(k.deepest_point[0], 1.5 + 1e-12);
+  // Plus prism: kernel is the w x w x 1 central block, largest ball radius w.
+  k = compute_kernel(plus_prism(0.2).view(), o);
+  ASSERT_TRUE(k.has_deepest_point);
+  EXPECT_NEAR(k.inscribed_radius, 0.2, 1e-12);
+}
+
+TEST(Kernel, FromStartsAtTheExtremeVertexTowardsThePoint) {
+  Mesh m = pyramid(24);
+  Options o;
+  o.has_from = true;
+  o.from = {0, 0, 5};  // above the apex: the apex is the extreme vertex in that direction
+  std::vector<std::array<double, 3>> order;
+  o.on_step = [&](const StepEvent& e) {
+    if (e.kind == StepEvent::Kind::Vertex) order.push_back(e.position);
+    return true;
+  };
+  Kernel k = compute_kernel(m.view(), o);
+  ASSERT_TRUE(k.ok());
+  ASSERT_FALSE(order.empty());
+  EXPECT_EQ(order[0][2], 1.0);
+  EXPECT_EQ(order.size(), 25u);
+  // Vertices nearest to `from` are expanded first: the first edges leave the apex.
+  EXPECT_EQ(k.edges[0], 0u);
+}
+
+}  // namespace

@@ -1,0 +1,85 @@
+// Exact arithmetic and predicates against integer arithmetic (__int128) as the independent truth.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "exact.h"
+#include "planes.h"
+
+namespace {
+
+using kergen::exact::Approx;
+using kergen::exact::Expansion;
+
+// orient3d on small integer coordinates is exact in __int128.
+int orient_int(const int64_t* a, const int64_t* b, const int64_t* c, const int64_t* p) {
+  __int128 u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k) { u[k] = b[k] - a[k]; v[k] = c[k] - a[k]; w[k] = p[k] - a[k]; }
+  __int128 d = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+  return d > 0 ? 1 : (d < 0 ? -1 : 0);
+}
+
+TEST(Exact, ExpansionCancellation) {
+  Expansion big(1e100), one(1.0);
+  Expansion s = (big + one) - big;
+  EXPECT_EQ(s.sign(), 1);
+  EXPECT_EQ(s.estimate(), 1.0);
+  Expansion z = (big + one) - one - big;
+  EXPECT_EQ(z.sign(), 0);
+  // (1 + 2^-60)^2 - 1 - 2^-59 = 2^-120 > 0 exactly, invisible in double.
+  double e = std::ldexp(1.0, -60);
+  Expansion x = Expansion(1.0) + Expansion(e);
+  Expansion r = x * x - Expansion(1.0) - Expansion(2 * e);
+  EXPECT_EQ(r.sign(), 1);
+  EXPECT_EQ(r.estimate(), std::ldexp(1.0, -120));
+}
+
+TEST(Exact, ApproxBoundsContainTheExactValue) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int i = 0; i < 2000; ++i) {
+    double a = U(rng), b = U(rng), c = U(rng), d = U(rng);
+    Approx v = Approx(a) * Approx(b) - Approx(c) * Approx(d);
+    Expansion e = Expansion(a) * Expansion(b) - Expansion(c) * Expansion(d);
+    Expansion diff = e - Expansion(v.v);
+    EXPECT_LE(std::fabs(diff.estimate()), v.e);
+  }
+}
+
+TEST(Exact, Orient3dMatchesIntegerArithmetic) {
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int64_t> I(-(int64_t(1) << 25), int64_t(1) << 25);
+  int zeros = 0;
+  for (int i = 0; i < 20000; ++i) {
+    int64_t q[4][3];
+    for (auto& p : q)
+      for (auto& c : p) c = I(rng);
+    if (i % 2 == 0) {  // force coplanarity: p = a + s (b - a) + t (c - a) with small integers
+      int64_t s = I(rng) % 5, t = I(rng) % 5;
+      for (int k = 0; k < 3; ++k) q[3][k] = q[0][k] + s * (q[1][k] - q[0][k]) + t * (q[2][k] - q[0][k]);
+    }
+    double d[4][3];
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 3; ++k) d[j][k] = double(q[j][k]) * std::ldexp(1.0, -30);  // exact scaling
+    int expect = orient_int(q[0], q[1], q[2], q[3]);
+    zeros += expect == 0;
+    ASSERT_EQ(kergen::orient3d(d[0], d[1], d[2], d[3]), expect) << i;
+  }
+  EXPECT_GT(zeros, 5000);
+}
+
+TEST(Exact, CollinearIsExact) {
+  double a[3] = {0.1, 0.2, 0.3}, b[3] = {0.1 + 1.0, 0.2 + 2.0, 0.3 + 3.0};
+  double c[3] = {a[0] + 2 * (b[0] - a[0]), a[1] + 2 * (b[1] - a[1]), a[2] + 2 * (b[2] - a[2])};
+  // c is computed in double: collinear only if the arithmetic was exact, which orient decides.
+  bool truth = (Expansion::difference(c[0], a[0]) * Expansion::difference(b[1], a[1]) -
+                Expansion::difference(c[1], a[1]) * Expansion::difference(b[0], a[0])).sign() == 0 &&
+               (Expansion::difference(c[1], a[1]) * Expansion::difference(b[2], a[2]) -
+                Expansion::difference(c[2], a[2]) * Expansion::difference(b[1], a[1])).sign() == 0;
+  EXPECT_EQ(kergen::collinear(a, b, c), truth);
+  double p[3] = {0, 0, 0}, q[3] = {1, 1, 1}, r[3] = {3, 3, 3}, s[3] = {3, 3, 3.0000000000000004};
+  EXPECT_TRUE(kergen::collinear(p, q, r));
+  EXPECT_FALSE(kergen::collinear(p, q, s));
+}
+
+}  // namespace
