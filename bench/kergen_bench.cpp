@@ -262,7 +262,9 @@ std::string baseline_cell(const Baseline& b) {
   return "skip";
 }
 std::string ratio_cell(const Baseline& b, double ours) {
-  return b.ran && ours > 0 ? fmt(b.ms / ours, 1) + "x" : "-";
+  if (!b.ran || ours <= 0) return "-";
+  const double r = b.ms / ours;
+  return fmt(r, r < 1 ? 2 : 1) + "x";
 }
 
 std::string json_escape(const std::string& s) {

@@ -325,3 +325,83 @@ TEST(OracleLabels, DISABLED_AllStarVerdicts) {
   if (!fs::exists(kMeshes / "labels.tsv")) GTEST_SKIP() << "labels.tsv not found in " << kMeshes;
   run_labels(SIZE_MAX);
 }
+
+// ---- the oracle itself against analytic answers (meshes built here, no shared data needed) ----
+namespace {
+// Prism over a simple CCW polygon in the xy-plane, z in [0, h], scaled by s then translated by t.
+kergen::Mesh prism(const std::vector<std::array<double, 2>>& poly, double h, double s = 1, double t = 0) {
+  kergen::Mesh m;
+  const uint32_t n = uint32_t(poly.size());
+  for (double z : {0.0, h})
+    for (const auto& p : poly) m.positions.insert(m.positions.end(), {p[0] * s + t, p[1] * s + t, z * s + t});
+  for (uint32_t i = n; i-- > 0;) m.indices.push_back(i);  // bottom, seen from below
+  m.face_sizes.push_back(n);
+  for (uint32_t i = 0; i < n; ++i) m.indices.push_back(n + i);  // top
+  m.face_sizes.push_back(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t j = (i + 1) % n;
+    m.indices.insert(m.indices.end(), {i, j, n + j, n + i});
+    m.face_sizes.push_back(4);
+  }
+  return m;
+}
+
+struct Analytic {
+  std::string name;
+  kergen::Mesh mesh;
+  Verdict verdict;
+  double volume;
+  size_t V, F;
+};
+
+std::vector<Analytic> analytic_cases() {
+  const std::vector<std::array<double, 2>> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  // L: kernel is the unit square at the corner -> unit cube.
+  const std::vector<std::array<double, 2>> ell{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  // Step (two offset rectangles): the 2D kernel is the segment y = 1, 1 <= x <= 2 -> a rectangle.
+  const std::vector<std::array<double, 2>> step{{0, 0}, {2, 0}, {2, 1}, {3, 1}, {3, 2}, {1, 2}, {1, 1}, {0, 1}};
+  // U: the inner walls face away from each other (x >= 2 and x <= 1) -> empty.
+  const std::vector<std::array<double, 2>> u{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  // Plus with arm half-width w = 0.25 (arms to +-1): kernel is the central square -> 4 w^2 * h.
+  const double w = 0.25;
+  const std::vector<std::array<double, 2>> plus{{w, -1}, {w, -w}, {1, -w}, {1, w}, {w, w}, {w, 1},
+                                                {-w, 1}, {-w, w}, {-1, w}, {-1, -w}, {-w, -w}, {-w, -1}};
+  std::vector<Analytic> c;
+  c.push_back({"unit cube", prism(square, 1), Verdict::Full, 1.0, 8, 6});
+  // Scale and offset are powers of two, so the coordinates stay exact.
+  c.push_back({"cube / 2^10 + 2^20", prism(square, 1, 1.0 / 1024, 1048576.0), Verdict::Full, 1.0 / (1 << 30), 8, 6});
+  c.push_back({"cube x1e3", prism(square, 1, 1e3), Verdict::Full, 1e9, 8, 6});
+  c.push_back({"L-prism", prism(ell, 1), Verdict::Full, 1.0, 8, 6});
+  c.push_back({"plus-prism", prism(plus, 2), Verdict::Full, 4 * w * w * 2, 8, 6});
+  c.push_back({"step-prism", prism(step, 1), Verdict::Flat, 0, 0, 0});
+  c.push_back({"U-prism", prism(u, 1), Verdict::Empty, 0, 0, 0});
+  kergen::Mesh inverted = prism(square, 1);  // every face clockwise seen from outside
+  for (size_t f = 0, off = 0; f < inverted.num_faces(); off += inverted.face_sizes[f++])
+    std::reverse(inverted.indices.begin() + off, inverted.indices.begin() + off + inverted.face_sizes[f]);
+  c.push_back({"inverted cube", inverted, Verdict::Full, 1.0, 8, 6});
+  return c;
+}
+}  // namespace
+
+TEST(OracleSelfCheck, AnalyticMeshes) {
+  for (const Analytic& a : analytic_cases()) {
+    const auto ref = kergen_oracle::oracle_kernel(a.mesh);
+    ASSERT_TRUE(ref.ok) << a.name << ": " << ref.message;
+    EXPECT_EQ(std::string(kergen_oracle::verdict_name(ref.verdict)), kergen_oracle::verdict_name(a.verdict)) << a.name;
+    if (a.verdict == Verdict::Full) {
+      EXPECT_NEAR(ref.volume, a.volume, 1e-12 * a.volume) << a.name;
+      EXPECT_EQ(ref.vertices, a.V) << a.name;
+      EXPECT_EQ(ref.facets, a.F) << a.name;
+    }
+    // The same meshes through our code (the analytic answer, not the oracle, is the reference).
+    const kergen::Kernel ours = kergen::compute_kernel(a.mesh.view());
+    ASSERT_TRUE(ours.ok()) << a.name << ": " << ours.message;
+    EXPECT_EQ(std::string(kergen_oracle::verdict_name(verdict_of(ours.type))), kergen_oracle::verdict_name(a.verdict))
+        << a.name << ": ours " << kergen::kernel_type_name(ours.type);
+    if (a.verdict == Verdict::Full) {
+      EXPECT_NEAR(ours.volume, a.volume, 1e-12 * a.volume) << a.name;
+      EXPECT_EQ(ours.num_vertices(), a.V) << a.name;
+      EXPECT_EQ(ours.num_faces(), a.F) << a.name;
+    }
+  }
+}
