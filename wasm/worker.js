@@ -65,11 +65,17 @@ export class KernelWorker {
   }
 
   _spawn() {
+    if (typeof Worker !== 'function') {
+      throw new KergenError('WORKER_ERROR', 'KernelWorker needs Web Workers (a browser, a worker or Deno); in Node call computeKernel() directly');
+    }
     const worker = new Worker(new URL('./kergen-worker.js', import.meta.url), { type: 'module' });
     worker.onmessage = (e) => this._onMessage(e.data);
     worker.onerror = (e) => {
       if (e && typeof e.preventDefault === 'function') e.preventDefault();
-      const message = e && e.message ? e.message : 'the kergen worker failed to start or crashed';
+      const message =
+        e && e.message
+          ? `the kergen worker failed: ${e.message}`
+          : 'the kergen worker failed to start or crashed (under a dev server, exclude kergen-wasm from dependency pre-bundling, e.g. Vite optimizeDeps.exclude)';
       this._failAll(new KergenError('WORKER_ERROR', message));
       this._restart();
     };

@@ -19,6 +19,8 @@ before(() => {
     path.join(app, 'main.js'),
     `import { computeKernel } from 'kergen-wasm';
      import { KernelWorker } from 'kergen-wasm/worker';
+     import wasmUrl from 'kergen-wasm/kergen.wasm?url';
+     console.log(wasmUrl);
      const cube = [0,0,0, 1,0,0, 0,1,0, 1,1,0, 0,0,1, 1,0,1, 0,1,1, 1,1,1];
      const idx = [0,2,3,0,3,1, 4,5,7,4,7,6, 0,1,5,0,5,4, 2,6,7,2,7,3, 0,4,6,0,6,2, 1,3,7,1,7,5];
      const kw = new KernelWorker();
@@ -54,6 +56,8 @@ test('vite build: worker chunk + hashed .wasm, no Node built-ins in the web bund
   const mainFiles = files.filter((f) => f.endsWith('.js') && !workerFiles.includes(f));
   const allJs = [...mainFiles, ...workerFiles].map((f) => fs.readFileSync(path.join(out, f), 'utf8')).join('\n');
   assert.ok(allJs.includes(workerFiles[0]), 'the main bundle spawns the worker chunk');
+  const mainJs = mainFiles.map((f) => fs.readFileSync(path.join(out, f), 'utf8')).join('\n');
+  assert.ok(mainJs.includes(wasmFiles[0]), "the 'kergen-wasm/kergen.wasm?url' import builds and names the same single asset");
   assert.ok(!allJs.includes('__vite-browser-external'), 'no Node built-in was pulled into the web bundle');
   assert.deepEqual(warnings.filter((w) => /externalized|node:|Critical/i.test(w)), [], 'no bundler warnings about Node modules');
 });
