@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "culling.h"
 #include "lp.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
@@ -57,7 +58,8 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 struct Setup {
   PreparedMesh mesh;
   std::unique_ptr<PlaneSet> planes;
-  std::vector<uint32_t> active;
+  std::vector<uint32_t> active;  // the LP's constraints: the mesh planes (+ the box for open meshes)
+  std::vector<uint32_t> box;
   std::vector<char> is_box;
   LpResult lp;
   double center[3] = {0, 0, 0};
@@ -81,15 +83,16 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.distinct_planes = s.planes->size();
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
   for (int k = 0; k < 3; ++k) s.center[k] = 0.5 * (s.mesh.bbox_min[k] + s.mesh.bbox_max[k]);
-  if (options.allow_open && s.mesh.boundary_edges > 0) {
-    // A box twice the size of the data bounds what the open surface leaves unbounded.
-    for (int k = 0; k < 3; ++k)
-      for (int sgn = -1; sgn <= 1; sgn += 2) {
-        double n[3] = {0, 0, 0};
-        n[k] = sgn;
-        s.active.push_back(s.planes->add_explicit(n[0], n[1], n[2], -2.0));
-      }
-  }
+  // A box twice the size of the data (scaled coordinates are below 1): it bounds what an open
+  // surface leaves unbounded, and the subset kernels of culling. A closed mesh's kernel never
+  // reaches it.
+  for (int k = 0; k < 3; ++k)
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      double n[3] = {0, 0, 0};
+      n[k] = sgn;
+      s.box.push_back(s.planes->add_explicit(n[0], n[1], n[2], -2.0));
+    }
+  if (s.mesh.boundary_edges > 0) s.active.insert(s.active.end(), s.box.begin(), s.box.end());
   s.is_box.assign(s.planes->size(), 0);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.is_box[i] = s.planes->explicit_plane(i);
   stats.ms_planes = ms_since(t);
@@ -184,7 +187,12 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       topt.has_from = true;
       for (int k = 0; k < 3; ++k) topt.from[k] = options.from[k] * s.mesh.scale;
     }
-    TraceResult tr = trace_kernel_edges(*s.planes, s.active, s.lp.vertex, topt);
+    std::vector<uint32_t> mesh_planes;
+    for (uint32_t i = 0; i < s.planes->size(); ++i)
+      if (!s.is_box[i]) mesh_planes.push_back(i);
+    CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
+    TraceResult& tr = ct.trace;
+    out.stats.active_planes = ct.active.size();
     out.stats.ms_trace = ms_since(t);
     out.stats.traced_lines = tr.traced_lines;
     out.complete = tr.complete;

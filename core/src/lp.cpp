@@ -86,10 +86,11 @@ class SeidelLp {
     uint32_t ahead = kNoPlane, behind = kNoPlane;
     VertexGeom va, vb;
     parallel_.clear();
+    const LineDirection line(ps_, h, g);
     for (size_t i = 0; i < n; ++i) {
       uint32_t m = cons[i];
       if (m == h || m == g) continue;
-      int r = sign_det3_normals(ps_, m, h, g) * sigma;
+      int r = line.rate_sign(ps_, m) * sigma;
       if (r > 0) {
         if (ahead == kNoPlane || side(ps_, m, va) > 0) { ahead = m; va = make_vertex(ps_, h, g, m); }
       } else if (r < 0) {

@@ -44,10 +44,19 @@ PlaneCoef<Expansion> plane_from_points<Expansion>(const double* a, const double*
   return p;
 }
 
+// det3(b - a, c - a, p - a). The differences of nearby input points are usually exact in
+// double, so the exact evaluation mostly works on one-component expansions (no growth).
+inline Approx difference(Approx*, double x, double y) { return Approx(x) - Approx(y); }
+inline Expansion difference(Expansion*, double x, double y) { return Expansion::difference(x, y); }
 template <class T>
 T orient3d_formula(const double* a, const double* b, const double* c, const double* p) {
-  PlaneCoef<T> pl = plane_from_points<T>(a, b, c);
-  return pl.n[0] * T(p[0]) + pl.n[1] * T(p[1]) + pl.n[2] * T(p[2]) + pl.d;
+  T u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = difference((T*)nullptr, b[k], a[k]);
+    v[k] = difference((T*)nullptr, c[k], a[k]);
+    w[k] = difference((T*)nullptr, p[k], a[k]);
+  }
+  return det3(u[0], u[1], u[2], v[0], v[1], v[2], w[0], w[1], w[2]);
 }
 
 template <class T>
@@ -150,6 +159,18 @@ int sign_det3_vector(const PlaneSet& ps, const double v[3], uint32_t a, uint32_t
   ++ps.exact_fallbacks;
   const auto &ea = ps.exact(a), &eb = ps.exact(b);
   return det3(Expansion(v[0]), Expansion(v[1]), Expansion(v[2]), ea.n[0], ea.n[1], ea.n[2], eb.n[0], eb.n[1], eb.n[2]).sign();
+}
+
+LineDirection::LineDirection(const PlaneSet& ps, uint32_t p, uint32_t q) : p(p), q(q) {
+  auto cp = cross_normals(ps.approx(p), ps.approx(q));
+  for (int k = 0; k < 3; ++k) u[k] = cp[k];
+}
+
+int LineDirection::rate_sign(const PlaneSet& ps, uint32_t m) const {
+  auto pm = ps.approx(m);
+  int s = (pm.n[0] * u[0] + pm.n[1] * u[1] + pm.n[2] * u[2]).sign();
+  if (s != 2) return s;
+  return sign_det3_normals(ps, m, p, q);
 }
 
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {

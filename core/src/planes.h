@@ -112,6 +112,15 @@ int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c);
 bool normals_parallel(const PlaneSet& ps, uint32_t a, uint32_t b);
 // sign of det3(v, n_a, n_b) for an exact double vector v (objective directions)
 int sign_det3_vector(const PlaneSet& ps, const double v[3], uint32_t a, uint32_t b);
+// The line of planes p and q with its direction n_p x n_q precomputed (filtered): rate_sign(m)
+// is the exact sign of n_m . (n_p x n_q) = det3(n_m, n_p, n_q), the rate of change of f_m along it.
+struct LineDirection {
+  LineDirection(const PlaneSet& ps, uint32_t p, uint32_t q);
+  int rate_sign(const PlaneSet& ps, uint32_t m) const;
+  uint32_t p, q;
+  Approx u[3];
+};
+
 // Builds the vertex of three planes with independent normals (caller checked the sign != 0).
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c);
 // sign of f_l at the vertex: > 0 outside plane l, 0 on it, < 0 inside.

@@ -119,9 +119,10 @@ class Tracer {
         uint32_t p = G[i], q = G[j];
         if (ps_.opposite(p) == q) continue;
         bool pos = false, neg = false;
+        const LineDirection line(ps_, p, q);
         for (size_t k = 0; k < G.size() && !(pos && neg); ++k) {
           if (k == i || k == j) { s[k] = 0; continue; }
-          s[k] = sign_det3_normals(ps_, G[k], p, q);
+          s[k] = line.rate_sign(ps_, G[k]);
           pos |= s[k] > 0;
           neg |= s[k] < 0;
         }
