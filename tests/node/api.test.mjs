@@ -122,9 +122,7 @@ test('polygon input with faceSizes equals the triangulated input', async () => {
   assert.equal(b.stats.inputFaces, 12);
 });
 
-// Marked todo while the core does not implement Options::deepest_point yet (kergen.cpp has no
-// Chebyshev-centre LP at the time of writing); remove the todo when it lands.
-test('deepestPoint: centre of the largest inscribed ball of a box', { todo: 'core: Options::deepest_point not implemented yet' }, async () => {
+test('deepestPoint: centre of the largest inscribed ball of a box', async () => {
   const m = box([0, 0, 0], [4, 2, 6]);
   const r = await K.computeKernel(m.positions, m.indices, { deepestPoint: true });
   assert.ok(Array.isArray(r.deepestPoint), 'deepest point present');
