@@ -156,6 +156,8 @@ export interface MemoryStats {
   heapSize: number;
   /** Bytes currently allocated by the C++ side. */
   heapUsed: number;
+  /** JS values currently held by the C++ side (0 between calls). */
+  jsHandles: number;
 }
 
 /** Loads the module (idempotent; the async functions call it for you). */

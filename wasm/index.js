@@ -302,8 +302,11 @@ export async function isStarShaped(positions, indices, options = {}) {
 
 /**
  * Wasm heap figures: `heapSize` = bytes of WebAssembly memory (only grows), `heapUsed` = bytes
- * currently allocated by the C++ side (returns to its level after every call: nothing leaks).
+ * currently allocated by the C++ side (returns to its level after every call: nothing leaks),
+ * `jsHandles` = JS values currently held by the C++ side (0 between calls).
  */
 export function memoryStats() {
-  return requireModule('memoryStats').memoryStats();
+  const m = requireModule('memoryStats');
+  const stats = m.memoryStats();
+  return { heapSize: stats.heapSize, heapUsed: stats.heapUsed, jsHandles: m.count_emval_handles() };
 }

@@ -24,6 +24,7 @@ test('heapUsed rises during a call and returns to its level after it', async () 
   assert.equal(r.status, 'POLYHEDRON');
   assert.ok(during > before, `the call allocates (${during} > ${before}): the probe measures something`);
   assert.equal(K.memoryStats().heapUsed, before);
+  assert.equal(K.memoryStats().jsHandles, 0);
 });
 
 test('1000 mixed calls leave heapUsed and heapSize unchanged', async () => {
@@ -76,4 +77,5 @@ test('1000 mixed calls leave heapUsed and heapSize unchanged', async () => {
   const end = K.memoryStats();
   assert.equal(end.heapUsed, start.heapUsed, `heapUsed ${start.heapUsed} → ${end.heapUsed}`);
   assert.equal(end.heapSize, start.heapSize, `heapSize ${start.heapSize} → ${end.heapSize}`);
+  assert.equal(end.jsHandles, 0, 'no JS value is left held by the C++ side');
 });
