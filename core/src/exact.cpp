@@ -99,6 +99,37 @@ size_t scale_expansion(const double* e, size_t elen, double b, double* h) {
 
 }  // namespace
 
+int orient3d_exact_differences(const double* a, const double* b, const double* c, const double* p) {
+  double u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    double t;
+    two_sum(b[k], -a[k], u[k], t);
+    if (t != 0) return 2;
+    two_sum(c[k], -a[k], v[k], t);
+    if (t != 0) return 2;
+    two_sum(p[k], -a[k], w[k], t);
+    if (t != 0) return 2;
+  }
+  // det3(u, v, w) = u0 (v1 w2 - v2 w1) - u1 (v0 w2 - v2 w0) + u2 (v0 w1 - v1 w0), each minor an
+  // exact 4-component expansion, each term at most 8 components, the sum at most 24.
+  auto minor = [](double a1, double b2, double a2, double b1, double* out) {
+    double x[2], y[2];
+    two_product(a1, b2, x[1], x[0]);
+    two_product(-a2, b1, y[1], y[0]);
+    return expansion_sum(x, 2, y, 2, out);
+  };
+  double m0[4], m1[4], m2[4], t0[8], t1[8], t2[8], s01[16], all[24];
+  size_t n0 = minor(v[1], w[2], v[2], w[1], m0);
+  size_t n1 = minor(v[0], w[2], v[2], w[0], m1);
+  size_t n2 = minor(v[0], w[1], v[1], w[0], m2);
+  size_t k0 = scale_expansion(m0, n0, u[0], t0);
+  size_t k1 = scale_expansion(m1, n1, -u[1], t1);
+  size_t k2 = scale_expansion(m2, n2, u[2], t2);
+  size_t k01 = expansion_sum(t0, k0, t1, k1, s01);
+  size_t kall = expansion_sum(s01, k01, t2, k2, all);
+  return kall == 0 ? 0 : (all[kall - 1] > 0 ? 1 : -1);
+}
+
 void Expansion::compress() {
   // Shewchuk's compress: shortens the expansion without changing its value.
   size_t n = n_;

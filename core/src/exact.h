@@ -104,6 +104,10 @@ inline Approx operator/(Approx a, Approx b) {
   return {x, e * kBoundScale * kBoundScale + kUnderflowFloor};
 }
 
+// Exact sign of det3(b - a, c - a, p - a) when every coordinate difference is exact in double
+// (the common case for nearby points); 2 when some difference is not (use the general path).
+int orient3d_exact_differences(const double* a, const double* b, const double* c, const double* p);
+
 inline int sign_of(const Approx& a) { return a.sign(); }
 inline int sign_of(const Expansion& a) { return a.sign(); }
 

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
 #include "planes.h"
 
@@ -129,33 +128,46 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   const size_t cf = clean_offsets.size() - 1;
   if (cf == 0) return fail(m, Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
 
-  // Edge use: key = (min, max); count each direction and remember the faces.
-  struct EdgeUse { uint32_t forward = 0, backward = 0, face0 = 0, face1 = 0; };
-  std::unordered_map<uint64_t, EdgeUse> edges;
-  edges.reserve(clean.size());
-  for (size_t f = 0; f < cf; ++f) {
-    size_t b = clean_offsets[f], e = clean_offsets[f + 1];
-    for (size_t i = b; i < e; ++i) {
-      uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : b];
-      uint32_t lo = std::min(u, v), hi = std::max(u, v);
-      EdgeUse& use = edges[(uint64_t(lo) << 32) | hi];
-      uint32_t n = use.forward + use.backward;
-      if (n == 0) use.face0 = uint32_t(f);
-      else if (n == 1) use.face1 = uint32_t(f);
-      (u < v ? use.forward : use.backward)++;
+  // Edge use, bucketed by the lower vertex id (counting sort, no hashing): each bucket is small
+  // (the vertex's degree), sorted by the upper id, then each run of equal edges is inspected.
+  struct HalfEdge { uint32_t hi; uint32_t face; uint32_t forward; };
+  std::vector<uint32_t> bucket(nv + 1, 0);
+  for (size_t f = 0; f < cf; ++f)
+    for (size_t i = clean_offsets[f], e = clean_offsets[f + 1]; i < e; ++i) {
+      uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : clean_offsets[f]];
+      bucket[std::min(u, v) + 1]++;
     }
+  for (size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
+  std::vector<HalfEdge> half(bucket[nv]);
+  {
+    std::vector<uint32_t> fill(bucket.begin(), bucket.end() - 1);
+    for (size_t f = 0; f < cf; ++f)
+      for (size_t i = clean_offsets[f], e = clean_offsets[f + 1]; i < e; ++i) {
+        uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : clean_offsets[f]];
+        half[fill[std::min(u, v)]++] = {std::max(u, v), uint32_t(f), u < v ? 1u : 0u};
+      }
   }
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
   uint64_t open_ex = 0, nonmanifold_ex = 0, inconsistent_ex = 0;
   UnionFind components(cf);
   std::vector<std::array<uint32_t, 2>> face_pairs;
-  face_pairs.reserve(edges.size());
-  for (const auto& [key, use] : edges) {
-    uint32_t n = use.forward + use.backward;
-    if (n == 1) { if (!open++) open_ex = key; }
-    else if (n > 2) { if (!nonmanifold++) nonmanifold_ex = key; }
-    else if (use.forward != 1) { if (!inconsistent++) inconsistent_ex = key; }
-    else { components.unite(use.face0, use.face1); face_pairs.push_back({use.face0, use.face1}); }
+  face_pairs.reserve(half.size() / 2);
+  for (size_t lo = 0; lo < nv; ++lo) {
+    HalfEdge* b = half.data() + bucket[lo];
+    HalfEdge* e = half.data() + bucket[lo + 1];
+    std::sort(b, e, [](const HalfEdge& x, const HalfEdge& y) { return x.hi < y.hi; });
+    for (HalfEdge* r = b; r != e;) {
+      HalfEdge* q = r;
+      uint32_t forward = 0;
+      while (q != e && q->hi == r->hi) forward += q->forward, ++q;
+      size_t n = size_t(q - r);
+      uint64_t key = (uint64_t(lo) << 32) | r->hi;
+      if (n == 1) { if (!open++) open_ex = key; }
+      else if (n > 2) { if (!nonmanifold++) nonmanifold_ex = key; }
+      else if (forward != 1) { if (!inconsistent++) inconsistent_ex = key; }
+      else { components.unite(r[0].face, r[1].face); face_pairs.push_back({r[0].face, r[1].face}); }
+      r = q;
+    }
   }
   auto edge_name = [](uint64_t k) {
     return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";

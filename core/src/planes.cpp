@@ -92,7 +92,6 @@ uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c) {
   d_.push_back(p.d.v); ed_.push_back(p.d.e);
   opposite_.push_back(kNoPlane);
   exact_.emplace_back();
-  incident_points_.emplace_back();
   return uint32_t(size() - 1);
 }
 
@@ -104,7 +103,6 @@ uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
   d_.push_back(d); ed_.push_back(0);
   opposite_.push_back(kNoPlane);
   exact_.emplace_back();
-  incident_points_.emplace_back();
   return uint32_t(size() - 1);
 }
 
@@ -114,7 +112,6 @@ void PlaneSet::pop_last() {
   enx_.pop_back(); eny_.pop_back(); enz_.pop_back(); ed_.pop_back();
   opposite_.pop_back();
   exact_.pop_back();
-  incident_points_.pop_back();
 }
 
 const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
@@ -131,10 +128,31 @@ const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
   return *exact_[i];
 }
 
+void PlaneSet::set_incidence(std::vector<uint32_t> plane_offsets, std::vector<uint32_t> plane_points,
+                             std::vector<uint32_t> point_offsets, std::vector<uint32_t> point_planes) {
+  plane_offsets_ = std::move(plane_offsets);
+  plane_points_ = std::move(plane_points);
+  point_offsets_ = std::move(point_offsets);
+  point_planes_ = std::move(point_planes);
+}
+
+PlaneSet::Span PlaneSet::points_on(uint32_t plane) const {
+  if (size_t(plane) + 1 >= plane_offsets_.size()) return {};
+  return {plane_points_.data() + plane_offsets_[plane], plane_points_.data() + plane_offsets_[plane + 1]};
+}
+
 bool PlaneSet::point_on_plane(uint32_t pt, uint32_t plane) const {
-  if (pt >= planes_through_point_.size()) return false;
-  const auto& l = planes_through_point_[pt];
-  return std::binary_search(l.begin(), l.end(), plane);
+  if (size_t(pt) + 1 >= point_offsets_.size()) return false;
+  const uint32_t* b = point_planes_.data() + point_offsets_[pt];
+  const uint32_t* e = point_planes_.data() + point_offsets_[pt + 1];
+  return std::binary_search(b, e, plane);
+}
+
+PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c) {
+  return plane_from_points<Approx>(a, b, c);
+}
+PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c) {
+  return plane_from_points<Expansion>(a, b, c);
 }
 
 int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
@@ -246,6 +264,8 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
 
 int orient3d(const double* a, const double* b, const double* c, const double* p) {
   int s = orient3d_formula<Approx>(a, b, c, p).sign();
+  if (s != 2) return s;
+  s = exact::orient3d_exact_differences(a, b, c, p);
   if (s != 2) return s;
   return orient3d_formula<Expansion>(a, b, c, p).sign();
 }

@@ -47,11 +47,19 @@ class PlaneSet {
   uint32_t opposite(uint32_t i) const { return opposite_[i]; }
   void set_opposite(uint32_t i, uint32_t j) { opposite_[i] = j; opposite_[j] = i; }
 
-  // Mesh vertices lying on the plane by construction (vertices of its faces), sorted.
-  std::vector<std::vector<uint32_t>>& incident_points() { return incident_points_; }
-  const std::vector<uint32_t>& points_on(uint32_t i) const { return incident_points_[i]; }
-  // Planes through each mesh vertex by construction, sorted.
-  std::vector<std::vector<uint32_t>>& planes_through_point() { return planes_through_point_; }
+  // Incidence known by construction, as compressed rows (sorted, unique): the mesh vertices on
+  // each plane (vertices of its faces) and the planes through each mesh vertex. Planes added
+  // after set_incidence (bounding planes) have no incident points.
+  struct Span {
+    const uint32_t* b = nullptr;
+    const uint32_t* e = nullptr;
+    const uint32_t* begin() const { return b; }
+    const uint32_t* end() const { return e; }
+    size_t size() const { return size_t(e - b); }
+  };
+  void set_incidence(std::vector<uint32_t> plane_offsets, std::vector<uint32_t> plane_points,
+                     std::vector<uint32_t> point_offsets, std::vector<uint32_t> point_planes);
+  Span points_on(uint32_t plane) const;
   bool point_on_plane(uint32_t point, uint32_t plane) const;
 
   PlaneCoef<Approx> approx(uint32_t i) const {
@@ -76,8 +84,7 @@ class PlaneSet {
   std::vector<std::array<uint32_t, 3>> rep_;
   std::vector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
   std::vector<uint32_t> opposite_;
-  std::vector<std::vector<uint32_t>> incident_points_;
-  std::vector<std::vector<uint32_t>> planes_through_point_;
+  std::vector<uint32_t> plane_offsets_, plane_points_, point_offsets_, point_planes_;
   mutable std::vector<std::unique_ptr<PlaneCoef<Expansion>>> exact_;
 };
 
@@ -104,6 +111,10 @@ struct VertexGeom {
   int det_sign = 0;               // sign of det3 of the basis normals
   Approx x[3];                    // coordinates with error bounds (exact when mesh_point)
 };
+
+// Plane of an input triangle with error bounds, without adding it to a set.
+PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c);
+PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c);
 
 // ---- predicates (exact signs) ----------------------------------------------------------------
 // sign of det3(n_a, n_b, n_c)

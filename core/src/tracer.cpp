@@ -59,18 +59,22 @@ class Tracer {
     // Compact structure-of-arrays copy of the active planes for the scan.
     size_t n = active.size();
     ax_.resize(n); ay_.resize(n); az_.resize(n); ad_.resize(n);
+    bn1_.resize(n); ben_.resize(n); be0_.resize(n);
     slot_.assign(ps.size(), kNoPlane);
     for (size_t i = 0; i < n; ++i) {
       uint32_t l = active[i];
       ax_[i] = ps.nx()[l]; ay_[i] = ps.ny()[l]; az_[i] = ps.nz()[l]; ad_[i] = ps.d()[l];
+      auto c = ps.approx(l);
+      bn1_[i] = std::fabs(ax_[i]) + std::fabs(ay_[i]) + std::fabs(az_[i]);
+      ben_[i] = c.n[0].e + c.n[1].e + c.n[2].e;
+      be0_[i] = c.d.e + 4 * exact::kEps * std::fabs(ad_[i]) + exact::kUnderflowFloor;
       slot_[l] = uint32_t(i);
     }
   }
 
   TraceResult run(const VertexGeom& start) {
     std::vector<uint32_t> tight;
-    std::vector<char> none;
-    if (certify_vertex(ps_, active_, start, none, tight) != kNoPlane) {
+    if (certify(start, tight) != kNoPlane) {
       res_.internal_error = true;
       return std::move(res_);
     }
@@ -229,6 +233,36 @@ class Tracer {
     return r;
   }
 
+  // certify_vertex over the compact arrays: a double pass with a rigorous per-plane error bound
+  // (plane coefficient errors, vertex coordinate errors, rounding) decides almost every plane;
+  // only the undecided ones, and planes known to contain the current line, go further.
+  uint32_t certify(const VertexGeom& w, std::vector<uint32_t>& tight) {
+    tight.clear();
+    cand_.clear();
+    const double x = w.x[0].v, y = w.x[1].v, z = w.x[2].v;
+    double xm = 0, dx = 0;
+    for (int k = 0; k < 3; ++k) { xm = std::max(xm, std::fabs(w.x[k].v)); dx = std::max(dx, w.x[k].e); }
+    const double c1 = (xm + 2 * dx) * exact::kBoundScale, c2 = (dx + 4 * exact::kEps * xm) * exact::kBoundScale;
+    const size_t n = ax_.size();
+    const double* ax = ax_.data(); const double* ay = ay_.data();
+    const double* az = az_.data(); const double* ad = ad_.data();
+    const double* bn1 = bn1_.data(); const double* ben = ben_.data(); const double* be0 = be0_.data();
+    for (size_t i = 0; i < n; ++i) {
+      double f = ax[i] * x + ay[i] * y + az[i] * z + ad[i];
+      double b = ben[i] * c1 + bn1[i] * c2 + be0[i];
+      if (f >= -b * exact::kBoundScale) cand_.push_back(uint32_t(i));
+    }
+    for (uint32_t i : cand_) {
+      uint32_t l = active_[i];
+      if (mark_[l]) { tight.push_back(l); continue; }
+      int sgn = side(ps_, l, w);
+      if (sgn > 0) return l;
+      if (sgn == 0) tight.push_back(l);
+    }
+    std::sort(tight.begin(), tight.end());
+    return kNoPlane;
+  }
+
   bool trace(const Ray& ray) {
     ++res_.traced_lines;
     uint32_t r = scan(ray);
@@ -239,7 +273,7 @@ class Tracer {
     bool exact_done = false;
     for (;;) {
       w = make_vertex(ps_, ray.p, ray.q, r);
-      uint32_t violator = certify_vertex(ps_, active_, w, mark_, tight);
+      uint32_t violator = certify(w, tight);
       if (violator == kNoPlane) break;
       // A violator cuts the segment before the candidate, so it approaches along the ray and is
       // strictly closer. Anything else means the candidate came from an unreliable scan.
@@ -278,6 +312,8 @@ class Tracer {
   TraceOptions opt_;
   std::vector<char> mark_;
   std::vector<double> ax_, ay_, az_, ad_;
+  std::vector<double> bn1_, ben_, be0_;  // per plane: |n|_1, coefficient error of n, of d + rounding
+  std::vector<uint32_t> cand_;
   std::vector<uint32_t> slot_;
   std::vector<std::array<double, 4>> saved_;
   TraceResult res_;
