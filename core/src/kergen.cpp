@@ -166,7 +166,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   }
   const double unscale = 1.0 / s.mesh.scale;
   out.shape_volume = s.mesh.volume * unscale * unscale * unscale;
-  out.stats.active_planes = s.active.size();
+  out.stats.active_planes = s.planes->size() - s.box.size();
 
   if (s.lp.outcome == LpResult::Outcome::Infeasible) {
     out.type = KernelType::Empty;
@@ -192,7 +192,8 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       if (!s.is_box[i]) mesh_planes.push_back(i);
     CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
     TraceResult& tr = ct.trace;
-    out.stats.active_planes = ct.active.size();
+    out.stats.active_planes = 0;
+    for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];
     out.stats.ms_trace = ms_since(t);
     out.stats.traced_lines = tr.traced_lines;
     out.complete = tr.complete;
