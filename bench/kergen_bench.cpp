@@ -31,6 +31,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "kergen/io.h"
@@ -69,7 +70,9 @@ double median(std::vector<double> v) {
 
 std::string compiler_string() {
 #if defined(__clang__)
-  return std::string("clang++ ") + __clang_version__;
+  std::string v = __clang_version__;
+  while (!v.empty() && v.back() == ' ') v.pop_back();
+  return "clang++ " + v;
 #elif defined(__GNUC__)
   return std::string("g++ ") + __VERSION__;
 #else
@@ -86,6 +89,13 @@ std::string cpu_string() {
       if (p != std::string::npos) return line.substr(p + 2);
     }
   return "unknown CPU";
+}
+
+// 1-minute load average: timings on a busy machine are not comparable with a quiet one.
+std::string loadavg_string() {
+  std::ifstream in("/proc/loadavg");
+  std::string a;
+  return (in >> a) ? a : std::string("?");
 }
 
 struct Baseline {
@@ -339,9 +349,12 @@ int main(int argc, char** argv) {
   }
 
   const std::string compiler = compiler_string();
+  const std::string load_at_start = loadavg_string();
   if (!args.json) {
-    std::printf("# kergen_bench | %s | CGAL %s | %s | median of %d run(s) | times in ms, end to end (parse excluded)\n",
-                compiler.c_str(), CGAL_VERSION_STR, cpu_string().c_str(), args.runs);
+    std::printf("# kergen_bench | %s | CGAL %s | %s, %u threads, load average %s at start | median of %d run(s) | "
+                "times in ms, end to end (parse excluded)\n",
+                compiler.c_str(), CGAL_VERSION_STR, cpu_string().c_str(), std::thread::hardware_concurrency(),
+                load_at_start.c_str(), args.runs);
     std::fflush(stdout);
   }
 
@@ -369,7 +382,8 @@ int main(int argc, char** argv) {
   if (args.json) {
     for (const Row& r : rows) {
       std::ostringstream os;
-      os << "{\"mesh\":\"" << json_escape(r.mesh) << "\",\"compiler\":\"" << json_escape(compiler) << "\",\"runs\":" << args.runs;
+      os << "{\"mesh\":\"" << json_escape(r.mesh) << "\",\"compiler\":\"" << json_escape(compiler)
+         << "\",\"loadavg_at_start\":\"" << load_at_start << "\",\"runs\":" << args.runs;
       if (!r.error.empty()) {
         os << ",\"error\":\"" << json_escape(r.error) << "\"}";
         std::printf("%s\n", os.str().c_str());
