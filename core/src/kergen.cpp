@@ -234,7 +234,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
         if (j - i >= 3) counted.push_back(facets[i]);
         i = j;
       }
-      double p[3], r = 0;
+      double p[3] = {0, 0, 0}, r = 0;
       if (deepest_point(*s.planes, counted, s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
         out.has_deepest_point = true;
         for (int k = 0; k < 3; ++k) out.deepest_point[k] = p[k] * unscale;

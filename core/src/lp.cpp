@@ -7,7 +7,9 @@
 // bounded; their corner is the optimum of the empty constraint set.
 #include "lp.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace kergen {
 
@@ -155,6 +157,33 @@ class SeidelLp {
 
 }  // namespace
 
+namespace {
+
+// Planes of `planes` outside `skip` that the vertex violates: a double pass with a rigorous
+// per-plane error bound, the exact predicate only where that is undecided.
+void violated_planes(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<char>& skip,
+                     const VertexGeom& v, std::vector<uint32_t>& out) {
+  out.clear();
+  double xm = 0, dx = 0;
+  for (int k = 0; k < 3; ++k) { xm = std::max(xm, std::fabs(v.x[k].v)); dx = std::max(dx, v.x[k].e); }
+  const double c1 = (xm + 2 * dx) * exact::kBoundScale, c2 = (dx + 4 * exact::kEps * xm) * exact::kBoundScale;
+  const double x = v.x[0].v, y = v.x[1].v, z = v.x[2].v;
+  for (uint32_t l : planes) {
+    if (skip[l]) continue;
+    auto c = ps.approx(l);
+    double f = c.n[0].v * x + c.n[1].v * y + c.n[2].v * z + c.d.v;
+    double b = (c.n[0].e + c.n[1].e + c.n[2].e) * c1 +
+               (std::fabs(c.n[0].v) + std::fabs(c.n[1].v) + std::fabs(c.n[2].v)) * c2 + c.d.e +
+               4 * exact::kEps * std::fabs(c.d.v) + exact::kUnderflowFloor;
+    if (f < -b * exact::kBoundScale) continue;
+    if (f > b * exact::kBoundScale || side(ps, l, v) > 0) out.push_back(l);
+  }
+}
+
+constexpr size_t kSamplingThreshold = 2000;
+
+}  // namespace
+
 LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const double direction[3], double bound,
                   uint64_t seed) {
   uint32_t bounds[3];
@@ -163,16 +192,35 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
     n[i] = direction[i] < 0 ? -1 : 1;
     bounds[i] = ps.add_explicit(n[0], n[1], n[2], -bound);
   }
-  std::vector<uint32_t> cons;
-  cons.reserve(planes.size() + 3);
-  cons.insert(cons.end(), bounds, bounds + 3);
-  std::vector<uint32_t> order = planes;
-  shuffle(order, seed);
-  cons.insert(cons.end(), order.begin(), order.end());
   LpResult r;
   {
     SeidelLp lp(ps, direction, bounds);
-    r = lp.solve(cons);
+    auto run = [&](const std::vector<uint32_t>& subset, uint64_t s) {
+      std::vector<uint32_t> cons(bounds, bounds + 3);
+      std::vector<uint32_t> order = subset;
+      shuffle(order, s);
+      cons.insert(cons.end(), order.begin(), order.end());
+      return lp.solve(cons);
+    };
+    if (planes.size() <= kSamplingThreshold) {
+      r = run(planes, seed);
+    } else {
+      // Clarkson's sampling: solve exactly on a random subset plus the planes its optimum
+      // violated so far; when the optimum violates nothing it is the optimum of all planes.
+      std::vector<char> in_subset(ps.size(), 0);
+      std::vector<uint32_t> subset, violated;
+      std::vector<uint32_t> pool = planes;
+      shuffle(pool, seed ^ 0x5eed);
+      size_t sample = std::min(planes.size(), size_t(6 * std::sqrt(double(planes.size()))));
+      for (size_t i = 0; i < sample; ++i) { subset.push_back(pool[i]); in_subset[pool[i]] = 1; }
+      for (uint64_t round = 0;; ++round) {
+        r = run(subset, seed + round);
+        if (r.outcome == LpResult::Outcome::Infeasible) break;  // a subset is already infeasible
+        violated_planes(ps, planes, in_subset, r.vertex, violated);
+        if (violated.empty()) break;
+        for (uint32_t l : violated) { subset.push_back(l); in_subset[l] = 1; }
+      }
+    }
   }
   for (int i = 0; i < 3; ++i) ps.pop_last();
   return r;

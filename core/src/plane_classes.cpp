@@ -71,8 +71,11 @@ std::array<double, 4> plane_key(const PreparedMesh& m, const std::array<uint32_t
   return {n[0] / len, n[1] / len, n[2] / len, d / len};
 }
 
-constexpr double kCell = 1.0 / (1 << 20);
-constexpr double kBorder = 1e-9;  // far above the key's rounding error (~1e-15), far below kCell
+// Cells of ~2e-10 keep nearly-but-not-exactly coplanar planes (common in refined meshes with
+// rounded coordinates) out of each other's chains; the border margin is far above the key's
+// rounding error (a few ulps, ~1e-15) and far below the cell size.
+constexpr double kCell = 1.0 / (int64_t(1) << 32);
+constexpr double kBorder = 1e-13;
 
 uint64_t cell_hash(const int64_t c[4]) {
   uint64_t h = 1469598103934665603ull;

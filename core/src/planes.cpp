@@ -60,12 +60,6 @@ T orient3d_formula(const double* a, const double* b, const double* c, const doub
 }
 
 template <class T>
-T det4_planes(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, const PlaneCoef<T>& l) {
-  return -(a.d * det3_normals(b, c, l)) + b.d * det3_normals(a, c, l) - c.d * det3_normals(a, b, l) +
-         l.d * det3_normals(a, b, c);
-}
-
-template <class T>
 std::array<T, 3> cross_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q) {
   return {p.n[1] * q.n[2] - p.n[2] * q.n[1], p.n[2] * q.n[0] - p.n[0] * q.n[2],
           p.n[0] * q.n[1] - p.n[1] * q.n[0]};
@@ -191,6 +185,15 @@ int LineDirection::rate_sign(const PlaneSet& ps, uint32_t m) const {
   return sign_det3_normals(ps, m, p, q);
 }
 
+const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
+  if (!v.exact) {
+    auto h = std::make_shared<ExactHomogeneous>();
+    cramer(ps.exact(v.basis[0]), ps.exact(v.basis[1]), ps.exact(v.basis[2]), h->num, h->den);
+    v.exact = std::move(h);
+  }
+  return *v.exact;
+}
+
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   VertexGeom v;
   v.basis[0] = a; v.basis[1] = b; v.basis[2] = c;
@@ -228,11 +231,10 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   }
   if (!good) {
     ++ps.exact_fallbacks;
-    Expansion enm[3], eden;
-    cramer(ps.exact(a), ps.exact(b), ps.exact(c), enm, eden);
-    double dd = eden.estimate();
+    const ExactHomogeneous& h = exact_homogeneous(ps, v);
+    double dd = h.den.estimate();
     for (int k = 0; k < 3; ++k) {
-      double x = enm[k].estimate() / dd;
+      double x = h.num[k].estimate() / dd;
       v.x[k] = Approx(x, 8 * exact::kEps * std::fabs(x) + exact::kUnderflowFloor);
     }
   }
@@ -258,12 +260,29 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     const double* x = ps.point(uint32_t(v.mesh_point));
     return (e.n[0] * Expansion(x[0]) + e.n[1] * Expansion(x[1]) + e.n[2] * Expansion(x[2]) + e.d).sign();
   }
-  int s4 = det4_planes(ps.exact(v.basis[0]), ps.exact(v.basis[1]), ps.exact(v.basis[2]), ps.exact(l)).sign();
-  return s4 * v.det_sign;
+  // f_l(v) = (n_l . num + d_l den) / den
+  const ExactHomogeneous& h = exact_homogeneous(ps, v);
+  const auto& e = ps.exact(l);
+  int sf = (e.n[0] * h.num[0] + e.n[1] * h.num[1] + e.n[2] * h.num[2] + e.d * h.den).sign();
+  return sf * h.den.sign();
 }
 
 int orient3d(const double* a, const double* b, const double* c, const double* p) {
-  int s = orient3d_formula<Approx>(a, b, c, p).sign();
+  // Shewchuk's static filter: |det - exact| <= (7 eps + 56 eps^2) * permanent, differences
+  // included (Shewchuk 1997, orient3d error bound A).
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double wx = p[0] - a[0], wy = p[1] - a[1], wz = p[2] - a[2];
+  const double m0 = vy * wz - vz * wy, m1 = vx * wz - vz * wx, m2 = vx * wy - vy * wx;
+  const double det = ux * m0 - uy * m1 + uz * m2;
+  const double perm = std::fabs(ux) * (std::fabs(vy * wz) + std::fabs(vz * wy)) +
+                      std::fabs(uy) * (std::fabs(vx * wz) + std::fabs(vz * wx)) +
+                      std::fabs(uz) * (std::fabs(vx * wy) + std::fabs(vy * wx));
+  const double bound = (7.0 * exact::kEps + 56.0 * exact::kEps * exact::kEps) * perm;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  int s = 2;
+  if (perm > 1e-250) s = orient3d_formula<Approx>(a, b, c, p).sign();  // no underflow: filter again
   if (s != 2) return s;
   s = exact::orient3d_exact_differences(a, b, c, p);
   if (s != 2) return s;

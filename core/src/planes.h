@@ -104,12 +104,20 @@ T det3_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>&
   return det3(p.n[0], p.n[1], p.n[2], q.n[0], q.n[1], q.n[2], r.n[0], r.n[1], r.n[2]);
 }
 
+// Exact homogeneous coordinates of a plane-triple vertex: x_k = num[k] / den (Cramer's rule).
+struct ExactHomogeneous {
+  Expansion num[3], den;
+};
+
 // A point defined by three planes (Cramer's rule), or an input point (exact coordinates).
 struct VertexGeom {
   uint32_t basis[3] = {kNoPlane, kNoPlane, kNoPlane};
   int32_t mesh_point = kNoPoint;  // when the three planes meet at an input vertex
   int det_sign = 0;               // sign of det3 of the basis normals
   Approx x[3];                    // coordinates with error bounds (exact when mesh_point)
+  // Computed on the first undecided side test and shared by copies: every further exact test
+  // at this vertex is one 4-term dot product instead of a 4x4 determinant.
+  mutable std::shared_ptr<const ExactHomogeneous> exact;
 };
 
 // Plane of an input triangle with error bounds, without adding it to a set.
