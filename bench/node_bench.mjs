@@ -1,0 +1,160 @@
+// node_bench.mjs: the wasm package's computeKernelSync timed in Node, optionally next to the
+// native build (kergen_bench --json) on the same meshes. One Markdown row (or JSON object) per mesh.
+//
+//   node bench/node_bench.mjs [--runs N] [--json] [--quick] [--native build/bench/kergen_bench]
+//                             [--meshes DIR] [mesh.off ...]
+//
+// Needs dist/kergen.{mjs,wasm} (npm run build:wasm). Timed: computeKernelSync(positions, indices,
+// {faceSizes}) including the copies in and out of the wasm heap; not timed: reading the OFF file
+// and one warm-up call per mesh (lets V8 tier the wasm code up).
+import fs from 'node:fs';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+import { performance } from 'node:perf_hooks';
+
+const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+
+function parseArgs(argv) {
+  const a = { runs: 5, json: false, quick: false, native: '', meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'), files: [] };
+  let runsGiven = false;
+  for (let i = 0; i < argv.length; ++i) {
+    const s = argv[i];
+    const next = () => {
+      if (i + 1 >= argv.length) throw new Error(`${s} needs a value`);
+      return argv[++i];
+    };
+    if (s === '--runs') { a.runs = Math.max(1, parseInt(next(), 10) || 1); runsGiven = true; }
+    else if (s === '--json') a.json = true;
+    else if (s === '--quick') a.quick = true;
+    else if (s === '--native') a.native = next();
+    else if (s === '--meshes') a.meshes = next();
+    else if (s === '-h' || s === '--help') {
+      console.log('usage: node bench/node_bench.mjs [--runs N] [--json] [--quick] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]');
+      process.exit(0);
+    } else if (s.startsWith('-')) throw new Error(`unknown option ${s}`);
+    else a.files.push(s);
+  }
+  if (a.quick && !runsGiven) a.runs = 1;
+  return a;
+}
+
+// Minimal OFF reader (the benchmark's own): comments and polygons; no per-face colours (the word
+// stream has no line breaks), which the shared mesh sets do not use.
+function readOff(file) {
+  const words = fs.readFileSync(file, 'utf8').replace(/#[^\n]*/g, ' ').split(/\s+/).filter(Boolean);
+  let p = 0;
+  if (!/^OFF$/i.test(words[p])) throw new Error(`${file}: not an OFF file`);
+  ++p;
+  const nv = +words[p++], nf = +words[p++];
+  ++p;  // edge count
+  const positions = new Float64Array(3 * nv);
+  for (let i = 0; i < 3 * nv; ++i) positions[i] = +words[p++];
+  const indices = [], faceSizes = [];
+  let allTriangles = true;
+  for (let f = 0; f < nf; ++f) {
+    const k = +words[p++];
+    faceSizes.push(k);
+    if (k !== 3) allTriangles = false;
+    for (let j = 0; j < k; ++j) indices.push(+words[p++]);
+  }
+  return { positions, indices: Uint32Array.from(indices), faceSizes: allTriangles ? null : Uint32Array.from(faceSizes), faces: nf };
+}
+
+function defaultList(a) {
+  const rel = [];
+  if (a.quick) rel.push('princeton/350.off', 'princeton/200.off', 'refinements/spiral1.off', 'refinements/vase1.off', 'polyhedra/tet10/0.off', 'polyhedra/voro/0.off');
+  else {
+    for (const p of ['325', '326', '337', '350', '1', '10', '100', '200', '300']) rel.push(`princeton/${p}.off`);
+    for (const s of ['spiral', 'vase']) for (let i = 1; i <= 6; ++i) rel.push(`refinements/${s}${i}.off`);
+    for (const d of ['tet10', 'tet20', 'tet30', 'voro']) for (const i of ['0', '500']) rel.push(`polyhedra/${d}/${i}.off`);
+  }
+  return rel.map((r) => ({ file: path.join(a.meshes, r), label: r }));
+}
+
+const median = (v) => {
+  const s = [...v].sort((x, y) => x - y);
+  const n = s.length;
+  return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+};
+const fmt = (x, d = 2) => (Number.isFinite(x) ? x.toFixed(d) : '');
+
+async function main() {
+  const a = parseArgs(process.argv.slice(2));
+  const wasmPath = path.join(repoRoot, 'dist', 'kergen.wasm');
+  if (!fs.existsSync(wasmPath)) {
+    console.error('dist/kergen.wasm is missing: run `npm run build:wasm` first');
+    process.exit(1);
+  }
+  const kergen = await import('../wasm/index.js');
+  await kergen.init();
+  const list = a.files.length ? a.files.map((f) => ({ file: f, label: f })) : defaultList(a);
+  if (!a.files.length && !fs.existsSync(a.meshes)) {
+    console.error(`mesh folder ${a.meshes} not found: pass --meshes DIR or files`);
+    process.exit(1);
+  }
+
+  let native = new Map();
+  if (a.native) {
+    const out = execFileSync(a.native, ['--json', '--no-epick', '--no-epeck', '--runs', String(a.runs), ...list.map((e) => e.file)],
+      { encoding: 'utf8', maxBuffer: 1 << 26, stdio: ['ignore', 'pipe', 'ignore'] });
+    for (const line of out.split('\n').filter(Boolean)) {
+      const row = JSON.parse(line);
+      native.set(row.mesh, row);
+    }
+  }
+
+  const wasmStat = fs.statSync(wasmPath);
+  if (!a.json) {
+    console.log(`# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.runs} run(s) | ms, parse excluded`);
+    console.log('| mesh | faces | kernel | V | E | F | wasm | native | wasm/native | validate | planes | lp | trace | assemble |');
+    console.log('|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|');
+  }
+  for (const { file, label } of list) {
+    let mesh;
+    try {
+      mesh = readOff(file);
+    } catch (e) {
+      console.log(a.json ? JSON.stringify({ mesh: label, error: String(e.message) }) : `| ${label} | | ERROR ${e.message} |`);
+      continue;
+    }
+    const options = mesh.faceSizes ? { faceSizes: mesh.faceSizes } : {};
+    const times = [];
+    let result = null, error = null;
+    try {
+      kergen.computeKernelSync(mesh.positions, mesh.indices, options);  // warm-up (wasm tier-up), not timed
+    } catch { /* reported by the timed runs */ }
+    for (let r = 0; r < a.runs; ++r) {
+      const t0 = performance.now();
+      try {
+        result = kergen.computeKernelSync(mesh.positions, mesh.indices, options);
+      } catch (e) {
+        error = e;
+      }
+      times.push(performance.now() - t0);
+      if (error) break;
+    }
+    const ms = median(times);
+    const nat = native.get(file);
+    const natMs = nat && !nat.error ? nat.ours_ms : NaN;
+    if (a.json) {
+      const o = { mesh: label, node: process.version, runs: a.runs, faces: mesh.faces, wasm_ms: ms };
+      if (error) o.error = `${error.code ?? ''} ${error.message}`;
+      else Object.assign(o, { type: result.status, V: result.vertices.length / 3, E: result.edges.length / 2, F: result.faceSizes.length, volume: result.volume, stats: result.stats });
+      if (Number.isFinite(natMs)) Object.assign(o, { native_ms: natMs, wasm_over_native: ms / natMs });
+      console.log(JSON.stringify(o));
+      continue;
+    }
+    if (error) {
+      console.log(`| ${label} | ${mesh.faces} | ERROR | | | | ${fmt(ms)} | ${fmt(natMs)} | | | | | | | ${error.code ?? ''} ${error.message} |`);
+      continue;
+    }
+    const s = result.stats;
+    console.log(`| ${label} | ${mesh.faces} | ${result.status} | ${result.vertices.length / 3} | ${result.edges.length / 2} | ${result.faceSizes.length} | ${fmt(ms)} | ${fmt(natMs)} | ${Number.isFinite(natMs) ? fmt(ms / natMs) + 'x' : '-'} | ${fmt(s.msValidate)} | ${fmt(s.msPlanes)} | ${fmt(s.msLp)} | ${fmt(s.msTrace)} | ${fmt(s.msAssemble)} |`);
+  }
+}
+
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});
