@@ -1,0 +1,615 @@
+// Browser end-to-end tests of the demo page (web/), in Debian's Chromium via playwright-core.
+//
+//   node tests/e2e/run.mjs        (npm run test:e2e)
+//
+// Builds the page when its sources (web/, wasm/, dist/) are newer than web/dist, serves web/dist
+// on 127.0.0.1 (a free port), and checks: the sample generators (samples-check.mjs); every gallery
+// sample's kernel against its hand-derived / 2D-clipped expectation; the animation (play, scrubber,
+// partial counts, jump to end); files through the picker (OFF, binary and ascii STL, OBJ) and drag
+// & drop; princeton/350.off against the native CLI; error messages (out-of-range index, open,
+// non-manifold, unparseable); cancel on a large input with a responsive page; export; light/dark.
+// Screenshots go to tests/artifacts/. Prints `e2e: N passed, M failed`; exits 1 on failure.
+// Environment: CHROMIUM (default /usr/bin/chromium), KERGEN_CLI (default build/kergen),
+// E2E_HEADFUL=1, E2E_ONLY=<substring of test names>.
+
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import http from 'node:http';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { SAMPLES, sampleById } from '../../web/samples.js';
+import { checkSamples, expectedKernel } from './samples-check.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const repo = path.resolve(here, '../..');
+const webDist = path.join(repo, 'web/dist');
+const sharedMeshes = path.resolve(repo, '../shared/meshes');
+const artifacts = path.join(repo, 'tests/artifacts');
+const nativeCli = process.env.KERGEN_CLI ?? path.join(repo, 'build/kergen');
+const only = process.env.E2E_ONLY ?? '';
+
+const results = [];
+const skipped = [];
+
+async function test(name, fn) {
+  if (only && !name.includes(only)) return;
+  const t = Date.now();
+  try {
+    await fn();
+    results.push({ name, ok: true });
+    console.log(`ok   ${name} (${Date.now() - t} ms)`);
+  } catch (err) {
+    results.push({ name, ok: false, err });
+    console.log(`FAIL ${name}: ${err?.message ?? err}`);
+  }
+}
+
+function skip(name, why) {
+  if (only && !name.includes(only)) return;
+  skipped.push({ name, why });
+  console.log(`skip ${name}: ${why}`);
+}
+
+function assert(cond, message) {
+  if (!cond) throw new Error(message);
+}
+
+function assertClose(actual, expected, rel, what) {
+  const err = Math.abs(actual - expected) / Math.max(Math.abs(expected), Number.MIN_VALUE);
+  assert(Number.isFinite(actual) && err <= rel, `${what}: got ${actual}, expected ${expected} (relative error ${err.toExponential(2)} > ${rel})`);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Build and serve
+
+function newestMtime(dir, skipDirs = []) {
+  let newest = 0;
+  if (!fs.existsSync(dir)) return 0;
+  for (const entry of fs.readdirSync(dir, { withFileTypes: true })) {
+    const p = path.join(dir, entry.name);
+    if (entry.isDirectory()) {
+      if (!skipDirs.includes(p) && entry.name !== 'node_modules') newest = Math.max(newest, newestMtime(p, skipDirs));
+    } else newest = Math.max(newest, fs.statSync(p).mtimeMs);
+  }
+  return newest;
+}
+
+function buildIfNeeded() {
+  const built = path.join(webDist, 'index.html');
+  const sources = Math.max(
+    newestMtime(path.join(repo, 'web'), [webDist]),
+    newestMtime(path.join(repo, 'wasm')),
+    newestMtime(path.join(repo, 'dist')),
+    fs.statSync(path.join(repo, 'package.json')).mtimeMs,
+  );
+  if (fs.existsSync(built) && fs.statSync(built).mtimeMs >= sources) {
+    console.log('e2e: web/dist is up to date');
+    return;
+  }
+  assert(fs.existsSync(path.join(repo, 'dist/kergen.wasm')), 'dist/kergen.wasm is missing: run `npm run build:wasm` first');
+  console.log('e2e: building the page (vite build --config web/vite.config.js)');
+  const r = spawnSync(process.execPath, [path.join(repo, 'node_modules/vite/bin/vite.js'), 'build', '--config', 'web/vite.config.js', '--logLevel', 'warn'],
+    { cwd: repo, stdio: 'inherit' });
+  assert(r.status === 0, 'vite build failed');
+}
+
+const MIME = {
+  '.html': 'text/html; charset=utf-8', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
+  '.wasm': 'application/wasm', '.json': 'application/json', '.svg': 'image/svg+xml', '.png': 'image/png',
+};
+
+function serve(root) {
+  const server = http.createServer((req, res) => {
+    const url = new URL(req.url, 'http://127.0.0.1');
+    let file = path.normalize(path.join(root, decodeURIComponent(url.pathname)));
+    if (!file.startsWith(root)) {
+      res.writeHead(403).end();
+      return;
+    }
+    if (fs.existsSync(file) && fs.statSync(file).isDirectory()) file = path.join(file, 'index.html');
+    fs.readFile(file, (err, data) => {
+      if (err) {
+        res.writeHead(404).end('not found');
+        return;
+      }
+      res.writeHead(200, { 'Content-Type': MIME[path.extname(file)] ?? 'application/octet-stream', 'Cache-Control': 'no-store' });
+      res.end(data);
+    });
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mesh files written by the tests (from the project's own generators)
+
+function writeOFF(file, { positions, indices }, faceSize = 3) {
+  const lines = ['OFF', `${positions.length / 3} ${indices.length / faceSize} 0`];
+  for (let i = 0; i < positions.length; i += 3) lines.push(`${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
+  for (let i = 0; i < indices.length; i += faceSize) lines.push(`${faceSize} ${Array.from(indices.subarray(i, i + faceSize)).join(' ')}`);
+  fs.writeFileSync(file, lines.join('\n') + '\n');
+}
+
+function writeOBJ(file, { positions, indices }) {
+  const lines = ['# written by tests/e2e/run.mjs', 'o sample'];
+  for (let i = 0; i < positions.length; i += 3) lines.push(`v ${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
+  for (let i = 0; i < indices.length; i += 3) lines.push(`f ${indices[i] + 1} ${indices[i + 1] + 1} ${indices[i + 2] + 1}`);
+  fs.writeFileSync(file, lines.join('\n') + '\n');
+}
+
+function writeBinarySTL(file, { positions, indices }) {
+  const n = indices.length / 3;
+  const buf = Buffer.alloc(84 + 50 * n);
+  buf.write('binary STL written by tests/e2e/run.mjs', 0);
+  buf.writeUInt32LE(n, 80);
+  for (let t = 0; t < n; t++) {
+    const o = 84 + 50 * t;
+    for (let k = 0; k < 3; k++) {
+      const v = indices[3 * t + k];
+      for (let c = 0; c < 3; c++) buf.writeFloatLE(positions[3 * v + c], o + 12 + 12 * k + 4 * c);
+    }
+  }
+  fs.writeFileSync(file, buf);
+}
+
+function writeAsciiSTL(file, { positions, indices }) {
+  const lines = ['solid sample'];
+  for (let t = 0; t < indices.length; t += 3) {
+    lines.push('  facet normal 0 0 0', '    outer loop');
+    for (let k = 0; k < 3; k++) {
+      const v = indices[t + k];
+      lines.push(`      vertex ${positions[3 * v]} ${positions[3 * v + 1]} ${positions[3 * v + 2]}`);
+    }
+    lines.push('    endloop', '  endfacet');
+  }
+  lines.push('endsolid sample');
+  fs.writeFileSync(file, lines.join('\n') + '\n');
+}
+
+const CUBE_V = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1];
+const CUBE_Q = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
+
+function writeQuadOFF(file, verts, quads) {
+  const lines = ['OFF', `${verts.length / 3} ${quads.length} 0`];
+  for (let i = 0; i < verts.length; i += 3) lines.push(verts.slice(i, i + 3).join(' '));
+  for (const q of quads) lines.push(`${q.length} ${q.join(' ')}`);
+  fs.writeFileSync(file, lines.join('\n') + '\n');
+}
+
+// Two unit cubes touching along the edge x = y = 1 (the edge's two vertices are shared).
+function writeEdgeSharingCubes(file) {
+  const verts = [...CUBE_V];
+  const id = new Map();
+  for (let i = 0; i < 8; i++) id.set(CUBE_V.slice(3 * i, 3 * i + 3).join(','), i);
+  const map = [];
+  for (let i = 0; i < 8; i++) {
+    const p = [CUBE_V[3 * i] + 1, CUBE_V[3 * i + 1] + 1, CUBE_V[3 * i + 2]];
+    const key = p.join(',');
+    if (!id.has(key)) {
+      id.set(key, verts.length / 3);
+      verts.push(...p);
+    }
+    map.push(id.get(key));
+  }
+  writeQuadOFF(file, verts, [...CUBE_Q, ...CUBE_Q.map((q) => q.map((v) => map[v]))]);
+}
+
+function nativeKernel(file) {
+  if (!fs.existsSync(nativeCli)) return null;
+  const r = spawnSync(nativeCli, ['--json', file], { encoding: 'utf8' });
+  const line = (r.stdout || '').split('\n').find((l) => l.trim().startsWith('{'));
+  assert(line, `build/kergen --json ${file} printed no JSON (exit ${r.status}): ${r.stderr?.slice(0, 300)}`);
+  return JSON.parse(line);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Page helpers
+
+const STATS = ['stat-input-faces', 'stat-planes', 'stat-status', 'stat-vertices', 'stat-edges', 'stat-faces', 'stat-volume',
+  'stat-ratio', 'stat-kernel-point', 'stat-time', 'stat-wall'];
+
+async function readState(page) {
+  return page.evaluate((ids) => {
+    const $ = (id) => document.getElementById(id);
+    const stats = {};
+    for (const id of ids) stats[id.replace('stat-', '')] = $(id).dataset.value;
+    const m = $('message');
+    return {
+      state: $('status').dataset.state,
+      status: $('status').dataset.value,
+      statusText: $('status').textContent,
+      message: m.hidden ? null : { kind: m.dataset.kind, code: m.dataset.code, text: m.textContent },
+      stats,
+      step: Number($('scrubber').value),
+      steps: Number($('scrubber').max),
+      shown: { vertices: Number($('anim-vertices').dataset.value), edges: Number($('anim-edges').dataset.value), faces: Number($('anim-faces').dataset.value) },
+    };
+  }, STATS);
+}
+
+async function markPending(page) {
+  await page.evaluate(() => {
+    document.getElementById('status').dataset.state = 'test-pending';
+  });
+}
+
+async function waitFinished(page, timeout = 60000) {
+  await page.waitForFunction(() => ['done', 'error', 'cancelled'].includes(document.getElementById('status').dataset.state), null, { timeout, polling: 20 });
+  return readState(page);
+}
+
+async function loadSample(page, id) {
+  await markPending(page);
+  await page.click(`[data-sample="${id}"]`);
+  return waitFinished(page);
+}
+
+async function loadFile(page, file) {
+  await markPending(page);
+  await page.setInputFiles('#file-input', file);
+  return waitFinished(page, 120000);
+}
+
+async function dropFile(page, file) {
+  await markPending(page);
+  const b64 = fs.readFileSync(file).toString('base64');
+  const t = Date.now();
+  await page.evaluate(({ b64, name }) => {
+    const bin = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const dt = new DataTransfer();
+    dt.items.add(new File([bin], name));
+    document.getElementById('viewport').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+  }, { b64, name: path.basename(file) });
+  const s = await waitFinished(page, 120000);
+  return { ...s, testMs: Date.now() - t };
+}
+
+async function scrubTo(page, k) {
+  await page.evaluate((k) => {
+    const s = document.getElementById('scrubber');
+    s.value = String(k);
+    s.dispatchEvent(new Event('input', { bubbles: true }));
+  }, k);
+  await page.waitForFunction((k) => document.getElementById('step-label').textContent.startsWith(`${k} /`), k, { timeout: 5000 });
+  return readState(page);
+}
+
+async function jumpToEnd(page) {
+  await page.click('#jump-end');
+  await page.waitForFunction(() => {
+    const s = document.getElementById('scrubber');
+    return s.value === s.max;
+  }, null, { timeout: 5000 });
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+}
+
+// Screenshot of the 3D view (or the whole page) saved to tests/artifacts; returns pixel counts
+// measured by decoding the PNG in the page (createImageBitmap + canvas getImageData).
+async function shoot(page, name, { fullPage = false } = {}) {
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const png = fullPage ? await page.screenshot({ path: path.join(artifacts, name) }) : await page.locator('#viewport').screenshot({ path: path.join(artifacts, name) });
+  // Count pixels only inside the 3D view.
+  const box = await page.locator('#viewport').boundingBox();
+  const clip = fullPage ? box : { x: 0, y: 0, width: box.width, height: box.height };
+  return page.evaluate(async ({ b64, clip }) => {
+    const bin = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const bmp = await createImageBitmap(new Blob([bin], { type: 'image/png' }));
+    const canvas = new OffscreenCanvas(bmp.width, bmp.height);
+    const ctx = canvas.getContext('2d');
+    ctx.drawImage(bmp, 0, 0);
+    const x0 = Math.round(clip.x), y0 = Math.round(clip.y);
+    const { data, width, height } = ctx.getImageData(x0, y0, Math.round(clip.width), Math.round(clip.height));
+    let blue = 0, amber = 0, lum = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      const r = data[i], g = data[i + 1], b = data[i + 2];
+      if (b >= 90 && b >= 1.8 * r && b >= 1.25 * g) blue++; // kernel blue #1e6fff, lit or shaded
+      if (r >= g + 25 && g >= b + 25) amber++; // the input's amber
+      lum += 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    }
+    const n = width * height;
+    return { blue, amber, total: n, blueFraction: blue / n, meanLuminance: lum / n };
+  }, { b64: png.toString('base64'), clip });
+}
+
+// ---------------------------------------------------------------------------------------------
+
+async function main() {
+  fs.mkdirSync(artifacts, { recursive: true });
+  const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-e2e-'));
+
+  // 1. The sample generators, in Node.
+  for (const r of checkSamples()) {
+    await test(r.name, async () => assert(r.ok, r.detail));
+  }
+
+  buildIfNeeded();
+  const server = await serve(webDist);
+  const base = `http://127.0.0.1:${server.address().port}/`;
+  console.log(`e2e: serving web/dist at ${base}`);
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-e2e-chromium-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+    headless: !process.env.E2E_HEADFUL,
+    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+    viewport: { width: 1280, height: 800 },
+    acceptDownloads: true,
+    colorScheme: 'light',
+  });
+  const page = context.pages()[0] ?? await context.newPage();
+  const pageErrors = [];
+  page.on('pageerror', (e) => pageErrors.push(`pageerror: ${e.message}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error') pageErrors.push(`console.error: ${m.text()}`);
+  });
+
+  try {
+    await page.goto(base, { waitUntil: 'load' });
+    // 2. The front door: the default sample loads and renders.
+    await test('page opens with the star prism and a WebGL view', async () => {
+      const s = await waitFinished(page);
+      const exp = expectedKernel(sampleById('star-prism'));
+      assert(s.status === exp.status, `status ${s.status} (${s.statusText}) ${JSON.stringify(s.message)}`);
+      assert(Number(s.stats.vertices) === exp.vertices && Number(s.stats.faces) === exp.faces, `counts ${s.stats.vertices}/${s.stats.faces}`);
+      const gl = await page.evaluate(() => !!document.querySelector('#viewport canvas')?.getContext('webgl2'));
+      assert(gl, 'no WebGL2 context on the canvas');
+    });
+
+    // 3. Every gallery sample against its expected kernel.
+    for (const sample of SAMPLES) {
+      const exp = expectedKernel(sample);
+      await test(`sample ${sample.id} → ${exp.status}${exp.volume != null ? `, volume ${exp.volume.toPrecision(10)}` : ''}`, async () => {
+        const s = await loadSample(page, sample.id);
+        assert(s.status === exp.status, `status ${s.status}: ${s.statusText} ${JSON.stringify(s.message)}`);
+        if (exp.volume != null) assertClose(Number(s.stats.volume), exp.volume, 1e-9, 'kernel volume');
+        for (const k of ['vertices', 'edges', 'faces']) {
+          if (exp[k] != null) assert(Number(s.stats[k]) === exp[k], `${k}: ${s.stats[k]}, expected ${exp[k]}`);
+        }
+        if (exp.status === 'EMPTY') {
+          assert(s.message?.kind === 'empty' && /not star-shaped/i.test(s.message.text), `empty-kernel message: ${JSON.stringify(s.message)}`);
+        } else {
+          const ratio = Number(s.stats.ratio);
+          assert(ratio > 0 && ratio <= 1 + 1e-12, `kernel/shape volume ratio ${ratio}`);
+          assert(s.stats['kernel-point'].split(',').length === 3, `kernel point ${s.stats['kernel-point']}`);
+        }
+      });
+    }
+
+    // 4. Animation: plays on its own, scrubber shows growing prefixes, jump to end.
+    await test('animation: plays, scrubber prefixes grow, jump to end, screenshot mid-animation', async () => {
+      await page.evaluate(() => { // slow playback so that the first second shows a partial kernel
+        const sp = document.getElementById('speed');
+        sp.value = '4';
+        sp.dispatchEvent(new Event('input', { bubbles: true }));
+      });
+      const done = await loadSample(page, 'gear');
+      const total = done.steps;
+      const V = Number(done.stats.vertices), E = Number(done.stats.edges), F = Number(done.stats.faces);
+      assert(total === V + E + F, `timeline has ${total} steps, result has ${V}+${E}+${F}`);
+      await page.waitForTimeout(800);
+      const playing = await readState(page);
+      assert(playing.step > 0 && playing.step < total, `after 0.8 s playing at 16 steps/s the step is ${playing.step} of ${total}`);
+      const ks = [0, Math.floor(total * 0.15), Math.floor(total * 0.4), Math.floor(total * 0.75), total];
+      const seen = [];
+      for (const k of ks) seen.push((await scrubTo(page, k)).shown);
+      assert(seen[0].vertices === 0 && seen[0].edges === 0 && seen[0].faces === 0, `step 0 shows ${JSON.stringify(seen[0])}`);
+      for (let i = 1; i < seen.length; i++) {
+        const a = seen[i - 1], b = seen[i];
+        assert(b.vertices >= a.vertices && b.edges >= a.edges && b.faces >= a.faces, `counts shrink: ${JSON.stringify(a)} → ${JSON.stringify(b)}`);
+        assert(b.vertices + b.edges + b.faces === ks[i], `step ${ks[i]} shows ${JSON.stringify(b)}`);
+      }
+      assert(seen[2].edges > seen[1].edges, `edges do not grow between steps ${ks[1]} and ${ks[2]}`);
+      assert(seen[2].faces === 0, 'faces appear before the edges are traced');
+      assert(seen[4].vertices === V && seen[4].edges === E && seen[4].faces === F, `end shows ${JSON.stringify(seen[4])}`);
+      await scrubTo(page, ks[2]);
+      const px = await shoot(page, 'sample-mid-animation.png'); // edges traced so far, no faces yet
+      assert(px.amber > 1000, `input mesh hardly visible: ${px.amber} amber pixels`);
+      assert(px.blue > 30, `partial kernel edges not visible: ${px.blue} kernel-blue pixels`);
+      const late = await scrubTo(page, Math.floor((E + V + total) / 2)); // edges done, faces filling
+      assert(late.shown.faces > 0 && late.shown.faces < F, `faces shown at step ${late.step}: ${late.shown.faces}`);
+      const pxLate = await shoot(page, 'sample-faces-filling.png');
+      assert(pxLate.blue > px.blue, `filling faces add no blue pixels (${px.blue} → ${pxLate.blue})`);
+      await jumpToEnd(page);
+      const end = await readState(page);
+      assert(end.step === total, `jump to end: step ${end.step} of ${total}`);
+      const px2 = await shoot(page, 'sample-gear-kernel.png');
+      assert(px2.blue > 2000, `finished gear kernel: only ${px2.blue} kernel-blue pixels`);
+    });
+
+    // 5. Files through the picker: the project's own samples written as OFF / STL / OBJ.
+    const fileCases = [
+      ['OFF (double precision)', 'dented-cube.off', 'dented-cube', writeOFF, 1e-9],
+      ['binary STL (float32, welded)', 'plus-prism.stl', 'plus-prism', writeBinarySTL, 1e-6],
+      ['ascii STL (welded)', 'star-prism.stl', 'star-prism', writeAsciiSTL, 1e-6],
+      ['OBJ', 'gear.obj', 'gear', writeOBJ, 1e-6],
+    ];
+    for (const [label, fname, id, writer, tol] of fileCases) {
+      await test(`file picker: ${label} ${fname}`, async () => {
+        const file = path.join(tmp, fname);
+        writer(file, sampleById(id).build());
+        const s = await loadFile(page, file);
+        const exp = expectedKernel(sampleById(id));
+        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
+        assertClose(Number(s.stats.volume), exp.volume, tol, 'kernel volume');
+        assert(Number(s.stats.vertices) === exp.vertices, `vertices ${s.stats.vertices}, expected ${exp.vertices}`);
+      });
+    }
+
+    // 6. A real mesh: princeton/350.off via the file picker, against the native CLI.
+    const p350 = path.join(sharedMeshes, 'princeton/350.off');
+    if (!fs.existsSync(p350)) skip('princeton/350.off', `${p350} not found (shared meshes absent)`);
+    else {
+      await test('princeton/350.off via the file picker: POLYHEDRON, volume vs native CLI, kernel on screen', async () => {
+        const s = await loadFile(page, p350);
+        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${s.statusText} ${JSON.stringify(s.message)}`);
+        assert(Number(s.stats['input-faces']) === 17514, `input faces ${s.stats['input-faces']}`);
+        const vol = Number(s.stats.volume);
+        assert(vol > 0, `volume ${vol}`);
+        console.log(`     350.off: V ${s.stats.vertices}, E ${s.stats.edges}, F ${s.stats.faces}, volume ${vol}, ratio ${s.stats.ratio}, planes ${s.stats.planes}, worker ${Number(s.stats.time).toFixed(1)} ms`);
+        const native = nativeKernel(p350);
+        if (native) {
+          assert(native.status === 'POLYHEDRON', `native status ${native.status}`);
+          assertClose(vol, native.volume, 1e-9, 'volume vs build/kergen --json');
+          console.log(`     native CLI volume ${native.volume} (match)`);
+        } else {
+          skip('princeton/350.off volume vs native CLI', `${nativeCli} not built (npm run build:native)`);
+        }
+        await jumpToEnd(page);
+        const px = await shoot(page, 'princeton-350-kernel.png');
+        assert(px.blue > 100, `only ${px.blue} kernel-blue pixels in the view`);
+        await page.click('#fit-kernel');
+        await page.waitForTimeout(300);
+        const zoomed = await shoot(page, 'princeton-350-kernel-zoom.png');
+        assert(zoomed.blue > 20 * px.blue && zoomed.blue > 20000, `zoom to kernel: ${px.blue} → ${zoomed.blue} kernel-blue pixels`);
+        await page.click('#fit-view');
+      });
+    }
+
+    // 7. Messages: empty kernel, broken files.
+    await test('U prism shows the empty-kernel message (screenshot)', async () => {
+      const s = await loadSample(page, 'u-prism');
+      assert(s.status === 'EMPTY' && s.message?.kind === 'empty', JSON.stringify(s));
+      const shown = await page.isVisible('#message');
+      assert(shown, '#message not visible');
+      const px = await shoot(page, 'empty-kernel.png', { fullPage: true });
+      assert(px.blue < 50, `${px.blue} kernel-blue pixels drawn for an empty kernel`);
+      assert(px.amber > 1000, 'the input mesh is not drawn');
+    });
+
+    const broken = [
+      ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'INDEX_OUT_OF_RANGE', /index|vertex/i],
+      ['open cube (one face missing)', 'open-cube.off', (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)), 'OPEN_MESH', /open/i],
+      ['two cubes sharing an edge', 'edge-cubes.off', writeEdgeSharingCubes, 'NON_MANIFOLD_EDGE', /manifold/i],
+      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n8 6 0\n0 0 zero\n'), 'PARSE_ERROR', /not a number/i],
+      ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /STL/],
+      ['unsupported extension', 'mesh.ply', (f) => fs.writeFileSync(f, 'ply\n'), 'PARSE_ERROR', /unsupported/i],
+    ];
+    for (const [label, fname, make, code, re] of broken) {
+      await test(`error message: ${label} → ${code}`, async () => {
+        const file = path.join(tmp, fname);
+        make(file);
+        const s = await loadFile(page, file);
+        assert(s.state === 'error', `state ${s.state} (${s.statusText})`);
+        assert(s.message?.kind === 'error' && s.message.code === code, `message ${JSON.stringify(s.message)}`);
+        assert(re.test(s.message.text), `message text "${s.message.text}" does not match ${re}`);
+        assert(await page.isVisible('#message'), '#message not visible');
+      });
+    }
+
+    // 8. Export.
+    await test('export OBJ and STL of the plus-prism kernel', async () => {
+      const s = await loadSample(page, 'plus-prism');
+      assert(s.status === 'POLYHEDRON', s.status);
+      const [objDl] = await Promise.all([page.waitForEvent('download'), page.click('#export-obj')]);
+      const obj = fs.readFileSync(await objDl.path(), 'utf8');
+      const vs = obj.split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1).map(Number));
+      const fs_ = obj.split('\n').filter((l) => l.startsWith('f '));
+      assert(vs.length === 8 && fs_.length === 6, `OBJ has ${vs.length} vertices, ${fs_.length} faces`);
+      for (const v of vs) assert(Math.abs(Math.abs(v[0]) - 0.3) < 1e-12 && Math.abs(Math.abs(v[1]) - 0.3) < 1e-12, `vertex ${v} off the central column`);
+      const [stlDl] = await Promise.all([page.waitForEvent('download'), page.click('#export-stl')]);
+      const stl = fs.readFileSync(await stlDl.path());
+      assert(stl.length === 84 + 50 * 12 && stl.readUInt32LE(80) === 12, `STL: ${stl.length} bytes, ${stl.readUInt32LE(80)} triangles`);
+    });
+
+    // 9. Drag & drop and timing: princeton/325.off.
+    const p325 = path.join(sharedMeshes, 'princeton/325.off');
+    if (!fs.existsSync(p325)) skip('princeton/325.off drop timing', `${p325} not found`);
+    else {
+      await test('drag & drop princeton/325.off: kernel, drop → kernel time', async () => {
+        const runs = [];
+        for (let i = 0; i < 3; i++) {
+          await jumpToEnd(page); // drop onto an idle page (no replay frames being rendered)
+          await page.waitForTimeout(300);
+          runs.push(await dropFile(page, p325));
+        }
+        const s = runs[runs.length - 1];
+        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
+        const wall = runs.map((r) => Number(r.stats.wall));
+        const detail = await page.textContent('#stat-wall');
+        const worker = runs.map((r) => Number(r.stats.time));
+        console.log(`     325.off (${s.stats['input-faces']} faces, kernel V ${s.stats.vertices} E ${s.stats.edges} F ${s.stats.faces}):` +
+          ` drop → final kernel ${wall.map((x) => x.toFixed(0)).join(' / ')} ms in the page` +
+          ` (worker msTotal ${worker.map((x) => x.toFixed(0)).join(' / ')} ms; test-side ${runs.map((r) => r.testMs).join(' / ')} ms incl. polling)`);
+        console.log(`     last run: ${detail}`);
+        const native = nativeKernel(p325);
+        if (native) assertClose(Number(s.stats.volume), native.volume, 1e-9, 'volume vs build/kergen --json');
+      });
+    }
+
+    // 10. Cancel on a large input; the page stays responsive while the worker computes. Convex
+    // spheres (kernel = the whole shape, the most work per face); bigger ones if a run ends first.
+    await test('cancel a long run; the page keeps animating meanwhile', async () => {
+      const { radialSphere } = await import('../../web/samples.js');
+      let cancelled = false;
+      for (const [nlat, nlon] of [[50, 100], [100, 200], [200, 400]]) {
+        const big = path.join(tmp, `sphere-${nlat}x${nlon}.off`);
+        writeOFF(big, radialSphere(nlat, nlon, () => 1));
+        await markPending(page);
+        await page.setInputFiles('#file-input', big);
+        await page.waitForFunction(() => document.getElementById('status').dataset.state !== 'test-pending' &&
+          document.getElementById('status').dataset.state !== 'reading', null, { timeout: 60000, polling: 10 });
+        const maxGap = await page.evaluate(() => new Promise((resolve) => {
+          let last = performance.now(), gap = 0;
+          const t0 = last;
+          const tick = (now) => {
+            gap = Math.max(gap, now - last);
+            last = now;
+            if (now - t0 < 800) requestAnimationFrame(tick);
+            else resolve(gap);
+          };
+          requestAnimationFrame(tick);
+        }));
+        const before = await readState(page);
+        if (before.state !== 'computing') {
+          console.log(`     ${2 * nlat * nlon} triangles finished before cancel (${before.state} ${before.status}); trying a bigger sphere`);
+          continue;
+        }
+        await page.click('#cancel');
+        const s = await waitFinished(page, 10000);
+        assert(s.state === 'cancelled' && s.message?.code === 'CANCELLED', `after cancel: ${s.state} ${JSON.stringify(s.message)}`);
+        assert(maxGap < 250, `main thread froze for ${maxGap.toFixed(0)} ms while computing`);
+        console.log(`     ${2 * nlat * nlon}-triangle sphere: ${before.steps} steps streamed in the first 0.8 s, longest frame gap ${maxGap.toFixed(0)} ms, cancelled`);
+        cancelled = true;
+        break;
+      }
+      assert(cancelled, 'every run finished before it could be cancelled');
+      const again = await loadSample(page, 'l-prism'); // the worker is usable after a cancel
+      assert(again.status === 'POLYHEDRON', `after cancel, L prism: ${again.status}`);
+    });
+
+    // 11. Light and dark.
+    await test('prefers-color-scheme: light and dark scene backgrounds', async () => {
+      await loadSample(page, 'star-prism');
+      await jumpToEnd(page);
+      const light = await shoot(page, 'theme-light.png');
+      await page.emulateMedia({ colorScheme: 'dark' });
+      await page.waitForTimeout(200);
+      const dark = await shoot(page, 'theme-dark.png');
+      await page.emulateMedia({ colorScheme: 'light' });
+      assert(light.meanLuminance > 170, `light scene mean luminance ${light.meanLuminance.toFixed(0)}`);
+      assert(dark.meanLuminance < 70, `dark scene mean luminance ${dark.meanLuminance.toFixed(0)}`);
+      assert(light.blue > 2000 && dark.blue > 2000, `kernel blue pixels: light ${light.blue}, dark ${dark.blue}`);
+    });
+
+    await test('no uncaught errors or console errors in the page', async () => {
+      assert(pageErrors.length === 0, pageErrors.slice(0, 5).join(' | '));
+    });
+  } finally {
+    await context.close();
+    server.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+    fs.rmSync(tmp, { recursive: true, force: true });
+  }
+}
+
+try {
+  await main();
+} catch (err) {
+  results.push({ name: 'harness', ok: false, err });
+  console.log(`FAIL harness: ${err?.stack ?? err}`);
+}
+const failed = results.filter((r) => !r.ok).length;
+if (skipped.length) console.log(`e2e: ${skipped.length} skipped (${skipped.map((s) => s.name).join('; ')})`);
+console.log(`e2e: ${results.length - failed} passed, ${failed} failed`);
+process.exit(failed ? 1 : 0);
