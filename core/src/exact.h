@@ -44,6 +44,7 @@ class Expansion {
 
   static Expansion difference(double a, double b);  // a - b exactly
   static Expansion product(double a, double b);     // a * b exactly
+  void compress();  // same value, fewest components (worth it for values used many times)
 
  private:
   // Components live inline up to kInline (no allocation for the common small predicates).
@@ -62,7 +63,6 @@ class Expansion {
     if (o.p_ == o.buf_) { assign(o.p_, o.n_); }
     else { heap_ = std::move(o.heap_); p_ = heap_.data(); n_ = o.n_; o.p_ = o.buf_; o.n_ = 0; }
   }
-  void compress();
 
   double buf_[kInline];
   double* p_ = buf_;

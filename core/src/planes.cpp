@@ -116,6 +116,8 @@ const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
       p->d = Expansion(d_[i]);
     } else {
       *p = plane_from_points<Expansion>(point(rep_[i][0]), point(rep_[i][1]), point(rep_[i][2]));
+      for (auto& c : p->n) c.compress();
+      p->d.compress();
     }
     exact_[i] = std::move(p);
   }
@@ -189,6 +191,8 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
   if (!v.exact) {
     auto h = std::make_shared<ExactHomogeneous>();
     cramer(ps.exact(v.basis[0]), ps.exact(v.basis[1]), ps.exact(v.basis[2]), h->num, h->den);
+    for (auto& c : h->num) c.compress();
+    h->den.compress();
     v.exact = std::move(h);
   }
   return *v.exact;
@@ -211,6 +215,22 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
       for (int i = 0; i < 3 && on_all; ++i)
         if (i != smallest && !ps.point_on_plane(p, planes[i])) on_all = false;
       if (on_all) {
+        v.mesh_point = int32_t(p);
+        const double* x = ps.point(p);
+        for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);
+        return v;
+      }
+    }
+    // An input vertex on two of the planes by construction may lie on the third geometrically
+    // (structured meshes): one exact orient3d per such vertex decides it.
+    for (int i = 0; i < 3; ++i) {
+      uint32_t p1 = planes[(i + 1) % 3], p2 = planes[(i + 2) % 3], third = planes[i];
+      if (ps.points_on(p1).size() > ps.points_on(p2).size()) std::swap(p1, p2);
+      if (ps.points_on(p1).size() > 64) continue;
+      const auto& r = ps.rep(third);
+      for (uint32_t p : ps.points_on(p1)) {
+        if (!ps.point_on_plane(p, p2)) continue;
+        if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p)) != 0) continue;
         v.mesh_point = int32_t(p);
         const double* x = ps.point(p);
         for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);

@@ -60,6 +60,7 @@ class Tracer {
     size_t n = active.size();
     ax_.resize(n); ay_.resize(n); az_.resize(n); ad_.resize(n);
     bn1_.resize(n); ben_.resize(n); be0_.resize(n);
+    vertices_on_.resize(n);
     slot_.assign(ps.size(), kNoPlane);
     for (size_t i = 0; i < n; ++i) {
       uint32_t l = active[i];
@@ -100,11 +101,22 @@ class Tracer {
     return go;
   }
 
+  // The known vertex whose tight set holds planes a, b and c, or kNoPlane.
+  uint32_t known_vertex_on(uint32_t a, uint32_t b, uint32_t c) const {
+    const std::vector<uint32_t>& la = vertices_on_[slot_[a]];
+    for (uint32_t v : la) {
+      const auto& G = res_.vertices[v].tight;
+      if (std::binary_search(G.begin(), G.end(), b) && std::binary_search(G.begin(), G.end(), c)) return v;
+    }
+    return kNoPlane;
+  }
+
   // Adds a vertex, emits it and queues its untraced rays. Returns false to stop.
   bool add_vertex(const VertexGeom& g, const std::vector<uint32_t>& tight) {
     uint32_t id = uint32_t(res_.vertices.size());
     res_.vertices.push_back({g, tight});
     vertex_ids_.emplace(tight, id);
+    for (uint32_t l : tight) vertices_on_[slot_[l]].push_back(id);
     StepEvent e;
     e.kind = StepEvent::Kind::Vertex;
     e.id = id;
@@ -272,6 +284,14 @@ class Tracer {
     VertexGeom w;
     bool exact_done = false;
     for (;;) {
+      // A known vertex on p, q and r is the candidate itself (three independent planes meet in
+      // one point) and is already certified: no need to evaluate anything.
+      uint32_t known = known_vertex_on(ray.p, ray.q, r);
+      if (known != kNoPlane) {
+        w = res_.vertices[known].geom;
+        tight = res_.vertices[known].tight;
+        break;
+      }
       w = make_vertex(ps_, ray.p, ray.q, r);
       uint32_t violator = certify(w, tight);
       if (violator == kNoPlane) break;
@@ -314,6 +334,7 @@ class Tracer {
   std::vector<double> ax_, ay_, az_, ad_;
   std::vector<double> bn1_, ben_, be0_;  // per plane: |n|_1, coefficient error of n, of d + rounding
   std::vector<uint32_t> cand_;
+  std::vector<std::vector<uint32_t>> vertices_on_;  // per active plane: known vertices on it
   std::vector<uint32_t> slot_;
   std::vector<std::array<double, 4>> saved_;
   TraceResult res_;
