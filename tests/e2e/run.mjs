@@ -289,9 +289,11 @@ async function jumpToEnd(page) {
 async function shoot(page, name, { fullPage = false } = {}) {
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   const png = fullPage ? await page.screenshot({ path: path.join(artifacts, name) }) : await page.locator('#viewport').screenshot({ path: path.join(artifacts, name) });
-  // Count pixels only inside the 3D view.
+  // Count pixels only inside the 3D view, above the playback bar (its sliders are blue too).
   const box = await page.locator('#viewport').boundingBox();
-  const clip = fullPage ? box : { x: 0, y: 0, width: box.width, height: box.height };
+  const bar = await page.locator('#playbar').boundingBox();
+  const height = bar.y - box.y;
+  const clip = fullPage ? { ...box, height } : { x: 0, y: 0, width: box.width, height };
   return page.evaluate(async ({ b64, clip }) => {
     const bin = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
     const bmp = await createImageBitmap(new Blob([bin], { type: 'image/png' }));
@@ -404,6 +406,7 @@ async function main() {
       assert(seen[4].vertices === V && seen[4].edges === E && seen[4].faces === F, `end shows ${JSON.stringify(seen[4])}`);
       await scrubTo(page, ks[2]);
       const px = await shoot(page, 'sample-mid-animation.png'); // edges traced so far, no faces yet
+      await shoot(page, 'page-mid-animation.png', { fullPage: true });
       assert(px.amber > 1000, `input mesh hardly visible: ${px.amber} amber pixels`);
       assert(px.blue > 30, `partial kernel edges not visible: ${px.blue} kernel-blue pixels`);
       const late = await scrubTo(page, Math.floor((E + V + total) / 2)); // edges done, faces filling
@@ -549,16 +552,27 @@ async function main() {
         await page.setInputFiles('#file-input', big);
         await page.waitForFunction(() => document.getElementById('status').dataset.state !== 'test-pending' &&
           document.getElementById('status').dataset.state !== 'reading', null, { timeout: 60000, polling: 10 });
-        const maxGap = await page.evaluate(() => new Promise((resolve) => {
-          let last = performance.now(), gap = 0;
-          const t0 = last;
-          const tick = (now) => {
+        // Event-loop latency (a blocked main thread shows as one long gap) and frame gaps.
+        const { maxGap, maxFrameGap } = await page.evaluate(() => new Promise((resolve) => {
+          const t0 = performance.now();
+          let last = t0, gap = 0, lastFrame = t0, frameGap = 0, done = false;
+          const tick = () => {
+            const now = performance.now();
             gap = Math.max(gap, now - last);
             last = now;
-            if (now - t0 < 800) requestAnimationFrame(tick);
-            else resolve(gap);
+            if (now - t0 < 1500) setTimeout(tick, 5);
+            else {
+              done = true;
+              resolve({ maxGap: gap, maxFrameGap: frameGap });
+            }
           };
-          requestAnimationFrame(tick);
+          const frame = (now) => {
+            frameGap = Math.max(frameGap, now - lastFrame);
+            lastFrame = now;
+            if (!done) requestAnimationFrame(frame);
+          };
+          setTimeout(tick, 5);
+          requestAnimationFrame(frame);
         }));
         const before = await readState(page);
         if (before.state !== 'computing') {
@@ -568,8 +582,10 @@ async function main() {
         await page.click('#cancel');
         const s = await waitFinished(page, 10000);
         assert(s.state === 'cancelled' && s.message?.code === 'CANCELLED', `after cancel: ${s.state} ${JSON.stringify(s.message)}`);
-        assert(maxGap < 250, `main thread froze for ${maxGap.toFixed(0)} ms while computing`);
-        console.log(`     ${2 * nlat * nlon}-triangle sphere: ${before.steps} steps streamed in the first 0.8 s, longest frame gap ${maxGap.toFixed(0)} ms, cancelled`);
+        // A computation on the main thread would block the whole 1.5 s window; allow one slow
+        // software-GL frame (the first draw of the new mesh).
+        assert(maxGap < 500, `main thread blocked for ${maxGap.toFixed(0)} ms while the worker computed`);
+        console.log(`     ${2 * nlat * nlon}-triangle sphere: ${before.steps} steps streamed in the first 1.5 s, longest event-loop gap ${maxGap.toFixed(0)} ms, longest frame gap ${maxFrameGap.toFixed(0)} ms (software GL), cancelled`);
         cancelled = true;
         break;
       }
@@ -586,6 +602,7 @@ async function main() {
       await page.emulateMedia({ colorScheme: 'dark' });
       await page.waitForTimeout(200);
       const dark = await shoot(page, 'theme-dark.png');
+      await shoot(page, 'page-dark.png', { fullPage: true });
       await page.emulateMedia({ colorScheme: 'light' });
       assert(light.meanLuminance > 170, `light scene mean luminance ${light.meanLuminance.toFixed(0)}`);
       assert(dark.meanLuminance < 70, `dark scene mean luminance ${dark.meanLuminance.toFixed(0)}`);
