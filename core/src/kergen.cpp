@@ -62,6 +62,7 @@ struct Setup {
   std::vector<uint32_t> box;
   std::vector<char> is_box;
   LpResult lp;
+  bool rejected_early = false;  // empty kernel proven before the plane classes were built
   double center[3] = {0, 0, 0};
 };
 
@@ -75,6 +76,29 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.dropped_faces = s.mesh.dropped_faces;
   stats.ms_validate = ms_since(t);
   if (s.mesh.error != Error::Ok) return;
+
+  // Fast rejection: if the face planes of a random sample of faces already admit no common
+  // point, the kernel is empty — proven by one small exact LP before any plane classes are built.
+  // (A feasible sample proves nothing; the full path follows.)
+  if (s.mesh.boundary_edges == 0 && s.mesh.num_faces() > 64) {
+    t = Clock::now();
+    PlaneSet raw(&s.mesh.points);
+    std::vector<uint32_t> sample;
+    const size_t nf = s.mesh.num_faces();
+    const size_t k = std::min(nf, size_t(4 * std::sqrt(double(nf))) + 32);
+    for (size_t i = 0; i < k; ++i) {
+      const auto& r = s.mesh.rep[(i * nf) / k];  // evenly spread over the face order
+      sample.push_back(raw.add_from_points(r[0], r[1], r[2]));
+    }
+    const double dir[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
+    LpResult quick = solve_lp(raw, sample, dir, kLpBound, options.seed);
+    stats.ms_lp = ms_since(t);
+    if (quick.outcome == LpResult::Outcome::Infeasible) {
+      s.lp = quick;
+      s.rejected_early = true;
+      return;
+    }
+  }
 
   t = Clock::now();
   s.planes = std::make_unique<PlaneSet>(&s.mesh.points);
@@ -109,7 +133,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
       for (int k = 0; k < 3; ++k) dir[k] = options.from[k] * s.mesh.scale - s.center[k];
   }
   s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
-  stats.ms_lp = ms_since(t);
+  stats.ms_lp += ms_since(t);
 }
 
 // Centre of the largest ball inside the kernel: bisection on the inward offset r of the facet
@@ -166,6 +190,11 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   }
   const double unscale = 1.0 / s.mesh.scale;
   out.shape_volume = s.mesh.volume * unscale * unscale * unscale;
+  if (s.rejected_early) {
+    out.type = KernelType::Empty;
+    out.stats.ms_total = ms_since(t_total);
+    return out;
+  }
   out.stats.active_planes = s.planes->size() - s.box.size();
 
   if (s.lp.outcome == LpResult::Outcome::Infeasible) {

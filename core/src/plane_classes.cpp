@@ -181,7 +181,13 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   face_plane.assign(nf, kNoPlane);
   for (uint32_t f = 0; f < nf; ++f) face_plane[f] = class_plane[uf.find(f)];
 
-  // 3. Incidence as compressed rows: points on each plane, planes through each point.
+  // 3. Incidence.
+  set_face_incidence(m, ps, face_plane);
+}
+
+void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
+  // Compressed rows: points on each plane, planes through each point (sorted, unique).
+  const size_t nf = m.num_faces();
   const size_t np = ps.size(), nv = m.points.size() / 3;
   std::vector<uint32_t> plane_off(np + 1, 0), point_off(nv + 1, 0);
   for (uint32_t f = 0; f < nf; ++f)

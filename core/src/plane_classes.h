@@ -13,4 +13,8 @@ namespace kergen {
 // prepared face.
 void build_planes(const PreparedMesh& mesh, PlaneSet& ps, std::vector<uint32_t>& face_plane);
 
+// Records which input vertices lie on which plane by construction: the vertices of every face
+// f lie on plane face_plane[f].
+void set_face_incidence(const PreparedMesh& mesh, PlaneSet& ps, const std::vector<uint32_t>& face_plane);
+
 }  // namespace kergen
