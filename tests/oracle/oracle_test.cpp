@@ -352,6 +352,8 @@ struct Analytic {
   Verdict verdict;
   double volume;
   size_t V, F;
+  kergen::KernelType type = kergen::KernelType::Polyhedron;  // expected of our code
+  double area = 0;                                            // expected for a Polygon kernel
 };
 
 std::vector<Analytic> analytic_cases() {
@@ -373,8 +375,8 @@ std::vector<Analytic> analytic_cases() {
   c.push_back({"cube x1e3", prism(square, 1, 1e3), Verdict::Full, 1e9, 8, 6});
   c.push_back({"L-prism", prism(ell, 1), Verdict::Full, 1.0, 8, 6});
   c.push_back({"plus-prism", prism(plus, 2), Verdict::Full, 4 * w * w * 2, 8, 6});
-  c.push_back({"step-prism", prism(step, 1), Verdict::Flat, 0, 0, 0});
-  c.push_back({"U-prism", prism(u, 1), Verdict::Empty, 0, 0, 0});
+  c.push_back({"step-prism", prism(step, 1), Verdict::Flat, 0, 4, 1, kergen::KernelType::Polygon, 1.0});
+  c.push_back({"U-prism", prism(u, 1), Verdict::Empty, 0, 0, 0, kergen::KernelType::Empty});
   kergen::Mesh inverted = prism(square, 1);  // every face clockwise seen from outside
   for (size_t f = 0, off = 0; f < inverted.num_faces(); off += inverted.face_sizes[f++])
     std::reverse(inverted.indices.begin() + off, inverted.indices.begin() + off + inverted.face_sizes[f]);
@@ -398,10 +400,16 @@ TEST(OracleSelfCheck, AnalyticMeshes) {
     ASSERT_TRUE(ours.ok()) << a.name << ": " << ours.message;
     EXPECT_EQ(std::string(kergen_oracle::verdict_name(verdict_of(ours.type))), kergen_oracle::verdict_name(a.verdict))
         << a.name << ": ours " << kergen::kernel_type_name(ours.type);
+    EXPECT_EQ(ours.type, a.type) << a.name << ": ours " << kergen::kernel_type_name(ours.type);
     if (a.verdict == Verdict::Full) {
       EXPECT_NEAR(ours.volume, a.volume, 1e-12 * a.volume) << a.name;
       EXPECT_EQ(ours.num_vertices(), a.V) << a.name;
       EXPECT_EQ(ours.num_faces(), a.F) << a.name;
+    }
+    if (a.type == kergen::KernelType::Polygon) {  // the 1 x 1 rectangle y = 1, 1 <= x <= 2, 0 <= z <= 1
+      EXPECT_NEAR(ours.area, a.area, 1e-12) << a.name;
+      EXPECT_EQ(ours.num_vertices(), a.V) << a.name;
+      EXPECT_EQ(ours.volume, 0.0) << a.name;
     }
   }
 }
