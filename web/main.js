@@ -49,7 +49,7 @@ function setStat(id, text, value = text) {
 
 function clearStats() {
   for (const id of ['stat-input-faces', 'stat-planes', 'stat-status', 'stat-vertices', 'stat-edges', 'stat-faces',
-    'stat-volume', 'stat-ratio', 'stat-kernel-point', 'stat-time', 'stat-wall']) setStat(id, '—', '');
+    'stat-volume', 'stat-area', 'stat-ratio', 'stat-kernel-point', 'stat-time', 'stat-wall']) setStat(id, '—', '');
 }
 
 function setStatus(stateName, text, value = '') {
@@ -220,6 +220,7 @@ function finish(result) {
     setStat('stat-volume', result.status === 'EMPTY' ? '— (empty)' : String(result.volume), result.volume);
     setStat('stat-ratio', result.status === 'EMPTY' ? '0 %' : '—', result.volumeRatio);
   }
+  setStat('stat-area', result.status === 'POLYHEDRON' || result.status === 'POLYGON' ? fmt(result.area, 10) : '—', result.area);
   const kp = result.kernelPoint;
   setStat('stat-kernel-point', kp ? `(${kp.map((x) => fmt(x, 7)).join(', ')})` : 'none', kp ? kp.join(',') : '');
   setStat('stat-time', s.msTotal != null ? `${fmt(s.msTotal, 4)} ms (LP ${fmt(s.msLp ?? 0, 3)}, trace ${fmt(s.msTrace ?? 0, 3)})` : '—', s.msTotal);

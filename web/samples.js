@@ -253,6 +253,14 @@ export const SAMPLES = [
     expected: { status: 'POLYHEDRON', volume: 1, vertices: 8, edges: 12, faces: 6 },
   },
   {
+    id: 'z-prism',
+    name: 'Z prism (flat kernel)',
+    description: 'Two offset blocks meeting along a line: only the points of the 1 × 1 rectangle where their walls meet see everything — a flat (POLYGON) kernel of area 1, no volume.',
+    polygon: [[0, 0], [2, 0], [2, 1], [3, 1], [3, 2], [1, 2], [1, 1], [0, 1]],
+    height: 1,
+    expected: { status: 'POLYGON', area: 1, vertices: 4, edges: 4, faces: 1 },
+  },
+  {
     id: 'u-prism',
     name: 'U prism (not star-shaped)',
     description: 'A U-shaped prism: the inner walls of the two prongs face each other, so no point sees both prongs — the kernel is empty.',
