@@ -6,9 +6,13 @@ cd "$(dirname "$0")/.."
 
 need=()
 for p in build-essential cmake clang libgtest-dev libbenchmark-dev libcgal-dev libgmp-dev libmpfr-dev \
-         emscripten chromium nodejs npm valgrind; do
+         emscripten chromium valgrind; do
   dpkg -s "$p" >/dev/null 2>&1 || need+=("$p")
 done
+# Node may come from Debian (nodejs + npm packages) or from elsewhere (a nodejs package that
+# bundles npm): ask for the commands, not the package names.
+command -v node >/dev/null 2>&1 || need+=(nodejs)
+command -v npm >/dev/null 2>&1 || need+=(npm)
 if [ ${#need[@]} -gt 0 ]; then
   echo "setup: installing ${need[*]}"
   SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
