@@ -60,7 +60,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   quiet.max_steps = 0;
   quiet.steps = nullptr;
   const double* nx = ps.nx(); const double* ny = ps.ny(); const double* nz = ps.nz(); const double* nd = ps.d();
-  std::vector<uint32_t> adj_offset, adj;
+  std::vector<uint32_t> adj_offset, adj, mark, bfs;
   std::vector<double> xyz;
   for (;;) {
     ++out.rounds;
@@ -85,21 +85,49 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     }
     size_t added = 0;
     uint32_t cur = 0;
+    mark.assign(V, 0);
+    uint32_t stamp = 0;
     for (uint32_t l : planes) {
       if (in_s[l]) continue;
       const double a = nx[l], b = ny[l], c = nz[l], d = nd[l];
-      double val = a * xyz[3 * cur] + b * xyz[3 * cur + 1] + c * xyz[3 * cur + 2] + d;
-      for (bool moved = true; moved;) {
-        moved = false;
+      auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
+      // Coordinates are below ~2 in magnitude (scaled input, box at 2): the rounding of a value
+      // is below 1e-15 (|n|_1 + |d|). `tie` is far above that; `margin` keeps every plane that
+      // could be violated.
+      const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
+      const double tie = 1e-12 * scale, margin = 1e-9 * scale;
+      double val = f(cur);
+      for (;;) {
+        bool moved = false;
         for (uint32_t i = adj_offset[cur]; i < adj_offset[cur + 1]; ++i) {
           uint32_t w = adj[i];
-          double f = a * xyz[3 * w] + b * xyz[3 * w + 1] + c * xyz[3 * w + 2] + d;
-          if (f > val) { val = f; cur = w; moved = true; }
+          double fw = f(w);
+          if (fw > val) { val = fw; cur = w; moved = true; }
         }
+        if (moved) continue;
+        // A local maximum in double may sit on a plateau of vertices whose values differ below
+        // rounding (tiny kernel features). The vertices with values >= val - tie induce a
+        // connected subgraph of a convex polytope's skeleton, so searching it finds any higher
+        // vertex.
+        if (++stamp == 0) { mark.assign(V, 0); stamp = 1; }
+        uint32_t higher = kNoPlane;
+        bfs.assign(1, cur);
+        mark[cur] = stamp;
+        for (size_t qi = 0; qi < bfs.size() && higher == kNoPlane; ++qi) {
+          uint32_t u = bfs[qi];
+          for (uint32_t i = adj_offset[u]; i < adj_offset[u + 1]; ++i) {
+            uint32_t w = adj[i];
+            if (mark[w] == stamp) continue;
+            mark[w] = stamp;
+            double fw = f(w);
+            if (fw > val) { higher = w; break; }
+            if (fw >= val - tie) bfs.push_back(w);
+          }
+        }
+        if (higher == kNoPlane) break;
+        cur = higher;
+        val = f(cur);
       }
-      // Coordinates are below ~2 in magnitude (scaled input, box at 2): the rounding of val is
-      // below 1e-15 (|n|_1 + |d|); the margin keeps every plane that could be violated.
-      double margin = 1e-9 * (std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d));
       if (val > -margin) { add(l); ++added; }
     }
     if (added == 0) {

@@ -99,6 +99,40 @@ size_t scale_expansion(const double* e, size_t elen, double b, double* h) {
 
 }  // namespace
 
+// Double-double arithmetic (Dekker; Hida, Li & Bailey). Each operation's own rounding error is
+// below 8 u^2 times the magnitude of its operands (u = 2^-53), which also covers cancellation;
+// the input bounds are propagated on top.
+namespace {
+constexpr double kU2 = kEps * kEps;
+inline ApproxDD normalize(double s, double t, double err, double magnitude) {
+  double hi, lo;
+  two_sum(s, t, hi, lo);
+  return {hi, lo, (err + 8 * kU2 * magnitude) * kBoundScale + kUnderflowFloor};
+}
+}  // namespace
+
+ApproxDD operator+(const ApproxDD& a, const ApproxDD& b) {
+  double s, t;
+  two_sum(a.hi, b.hi, s, t);
+  t += a.lo + b.lo;
+  return normalize(s, t, a.e + b.e, std::fabs(a.hi) + std::fabs(b.hi));
+}
+ApproxDD operator-(const ApproxDD& a) { return {-a.hi, -a.lo, a.e}; }
+ApproxDD operator-(const ApproxDD& a, const ApproxDD& b) { return a + (-b); }
+ApproxDD operator*(const ApproxDD& a, const ApproxDD& b) {
+  double p, q;
+  two_product(a.hi, b.hi, p, q);
+  q += a.hi * b.lo + a.lo * b.hi;
+  double ma = std::fabs(a.hi) + std::fabs(a.lo), mb = std::fabs(b.hi) + std::fabs(b.lo);
+  double prop = ma * b.e + mb * a.e + a.e * b.e + std::fabs(a.lo * b.lo);
+  return normalize(p, q, prop, ma * mb);
+}
+ApproxDD dd_difference(double a, double b) {
+  double x, y;
+  two_sum(a, -b, x, y);
+  return {x, y, 0};
+}
+
 int orient3d_exact_differences(const double* a, const double* b, const double* c, const double* p) {
   double u[3], v[3], w[3];
   for (int k = 0; k < 3; ++k) {

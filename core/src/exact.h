@@ -108,6 +108,26 @@ inline Approx operator/(Approx a, Approx b) {
 // (the common case for nearby points); 2 when some difference is not (use the general path).
 int orient3d_exact_differences(const double* a, const double* b, const double* c, const double* p);
 
+// Double-double with a rigorous error bound: |(hi + lo) - exact| <= e. A second filter stage
+// (about 106 bits) for values too close to zero for Approx; exact zeros still fall through.
+struct ApproxDD {
+  double hi = 0, lo = 0, e = 0;
+  ApproxDD() = default;
+  ApproxDD(double x) : hi(x) {}  // NOLINT: exact input
+  ApproxDD(double h, double l, double err) : hi(h), lo(l), e(err) {}
+  int sign() const {
+    double v = hi + lo;  // |v - (hi + lo)| <= eps |v|
+    double a = std::fabs(v);
+    if (a * (1 - 2 * kEps) > e) return v > 0 ? 1 : -1;
+    return 2;
+  }
+};
+ApproxDD operator+(const ApproxDD& a, const ApproxDD& b);
+ApproxDD operator-(const ApproxDD& a, const ApproxDD& b);
+ApproxDD operator-(const ApproxDD& a);
+ApproxDD operator*(const ApproxDD& a, const ApproxDD& b);
+ApproxDD dd_difference(double a, double b);  // exact
+
 inline int sign_of(const Approx& a) { return a.sign(); }
 inline int sign_of(const Expansion& a) { return a.sign(); }
 

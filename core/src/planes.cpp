@@ -48,6 +48,22 @@ PlaneCoef<Expansion> plane_from_points<Expansion>(const double* a, const double*
 // double, so the exact evaluation mostly works on one-component expansions (no growth).
 inline Approx difference(Approx*, double x, double y) { return Approx(x) - Approx(y); }
 inline Expansion difference(Expansion*, double x, double y) { return Expansion::difference(x, y); }
+template <>
+PlaneCoef<exact::ApproxDD> plane_from_points<exact::ApproxDD>(const double* a, const double* b, const double* c) {
+  using exact::ApproxDD;
+  ApproxDD u[3], v[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = exact::dd_difference(b[i], a[i]);
+    v[i] = exact::dd_difference(c[i], a[i]);
+  }
+  PlaneCoef<ApproxDD> p;
+  p.n[0] = u[1] * v[2] - u[2] * v[1];
+  p.n[1] = u[2] * v[0] - u[0] * v[2];
+  p.n[2] = u[0] * v[1] - u[1] * v[0];
+  p.d = -(p.n[0] * ApproxDD(a[0]) + p.n[1] * ApproxDD(a[1]) + p.n[2] * ApproxDD(a[2]));
+  return p;
+}
+
 template <class T>
 T orient3d_formula(const double* a, const double* b, const double* c, const double* p) {
   T u[3], v[3], w[3];
@@ -151,8 +167,22 @@ PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double*
   return plane_from_points<Expansion>(a, b, c);
 }
 
+
+namespace {
+PlaneCoef<exact::ApproxDD> dd_plane(const PlaneSet& ps, uint32_t i) {
+  if (ps.explicit_plane(i)) {
+    auto a = ps.approx(i);  // exact doubles
+    return {{a.n[0].v, a.n[1].v, a.n[2].v}, a.d.v};
+  }
+  const auto& r = ps.rep(i);
+  return plane_from_points<exact::ApproxDD>(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]));
+}
+}  // namespace
+
 int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   int s = det3_normals(ps.approx(a), ps.approx(b), ps.approx(c)).sign();
+  if (s != 2) return s;
+  s = det3_normals(dd_plane(ps, a), dd_plane(ps, b), dd_plane(ps, c)).sign();
   if (s != 2) return s;
   ++ps.exact_fallbacks;
   return det3_normals(ps.exact(a), ps.exact(b), ps.exact(c)).sign();
@@ -186,6 +216,7 @@ int LineDirection::rate_sign(const PlaneSet& ps, uint32_t m) const {
   if (s != 2) return s;
   return sign_det3_normals(ps, m, p, q);
 }
+
 
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
@@ -250,6 +281,25 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
     }
   }
   if (!good) {
+    // Double-double Cramer: x = num / den with |num - exact| <= e_num, |den - exact| <= e_den.
+    exact::ApproxDD dnum[3], dden;
+    cramer(dd_plane(ps, a), dd_plane(ps, b), dd_plane(ps, c), dnum, dden);
+    double den = dden.hi + dden.lo;
+    double eden = dden.e + exact::kEps * std::fabs(den);
+    if (std::fabs(den) > 2 * eden) {
+      good = true;
+      for (int k = 0; k < 3; ++k) {
+        double num = dnum[k].hi + dnum[k].lo;
+        double x = num / den;
+        double enm = dnum[k].e + exact::kEps * std::fabs(num);
+        double e = ((enm + std::fabs(x) * eden) / (std::fabs(den) - eden) + 2 * exact::kEps * std::fabs(x)) *
+                   exact::kBoundScale + exact::kUnderflowFloor;
+        v.x[k] = Approx(x, e);
+        if (e > 1e-10 * (std::fabs(x) + 1e-3)) good = false;
+      }
+    }
+  }
+  if (!good) {
     ++ps.exact_fallbacks;
     const ExactHomogeneous& h = exact_homogeneous(ps, v);
     double dd = h.den.estimate();
@@ -280,7 +330,19 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     const double* x = ps.point(uint32_t(v.mesh_point));
     return (e.n[0] * Expansion(x[0]) + e.n[1] * Expansion(x[1]) + e.n[2] * Expansion(x[2]) + e.d).sign();
   }
-  // f_l(v) = (n_l . num + d_l den) / den
+  // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached
+  // per vertex).
+  {
+    if (!v.dd) {
+      auto h = std::make_shared<DDHomogeneous>();
+      cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
+      v.dd = std::move(h);
+    }
+    const DDHomogeneous& h = *v.dd;
+    auto pl = dd_plane(ps, l);
+    int sf = (pl.n[0] * h.num[0] + pl.n[1] * h.num[1] + pl.n[2] * h.num[2] + pl.d * h.den).sign();
+    if (sf != 2) return sf * v.det_sign;
+  }
   const ExactHomogeneous& h = exact_homogeneous(ps, v);
   const auto& e = ps.exact(l);
   int sf = (e.n[0] * h.num[0] + e.n[1] * h.num[1] + e.n[2] * h.num[2] + e.d * h.den).sign();

@@ -104,7 +104,11 @@ T det3_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>&
   return det3(p.n[0], p.n[1], p.n[2], q.n[0], q.n[1], q.n[2], r.n[0], r.n[1], r.n[2]);
 }
 
-// Exact homogeneous coordinates of a plane-triple vertex: x_k = num[k] / den (Cramer's rule).
+// Homogeneous coordinates of a plane-triple vertex: x_k = num[k] / den (Cramer's rule), in
+// double-double with error bounds and exactly.
+struct DDHomogeneous {
+  exact::ApproxDD num[3], den;
+};
 struct ExactHomogeneous {
   Expansion num[3], den;
 };
@@ -117,6 +121,7 @@ struct VertexGeom {
   Approx x[3];                    // coordinates with error bounds (exact when mesh_point)
   // Computed on the first undecided side test and shared by copies: every further exact test
   // at this vertex is one 4-term dot product instead of a 4x4 determinant.
+  mutable std::shared_ptr<const DDHomogeneous> dd;
   mutable std::shared_ptr<const ExactHomogeneous> exact;
 };
 
