@@ -127,6 +127,21 @@ ApproxDD operator*(const ApproxDD& a, const ApproxDD& b) {
   double prop = ma * b.e + mb * a.e + a.e * b.e + std::fabs(a.lo * b.lo);
   return normalize(p, q, prop, ma * mb);
 }
+ApproxDD operator/(const ApproxDD& a, const ApproxDD& b) {
+  // q1 = a / b in double, then one correction step: q = q1 + (a - q1 b) / b.
+  double q1 = a.hi / b.hi;
+  ApproxDD r = a - ApproxDD(q1) * ApproxDD(b.hi, b.lo, 0);
+  double q2 = (r.hi + r.lo) / b.hi;
+  double hi, lo;
+  two_sum(q1, q2, hi, lo);
+  double mb = std::fabs(b.hi) - std::fabs(b.lo) - b.e;
+  double q = std::fabs(hi);
+  // |a/b - (hi+lo)|: the input bounds (a.e + q b.e) / |b|, plus the correction step's own error
+  // (second-order in the double quotient's relative error, ~1e-32 q).
+  double e = ((a.e + q * b.e) / mb + 64 * kU2 * q + std::fabs(r.e) / mb) * kBoundScale + kUnderflowFloor;
+  return {hi, lo, e};
+}
+
 ApproxDD dd_difference(double a, double b) {
   double x, y;
   two_sum(a, -b, x, y);

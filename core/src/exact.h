@@ -127,6 +127,8 @@ ApproxDD operator-(const ApproxDD& a, const ApproxDD& b);
 ApproxDD operator-(const ApproxDD& a);
 ApproxDD operator*(const ApproxDD& a, const ApproxDD& b);
 ApproxDD dd_difference(double a, double b);  // exact
+// a / b with a rigorous bound; the caller guarantees |b| > b.e.
+ApproxDD operator/(const ApproxDD& a, const ApproxDD& b);
 
 inline int sign_of(const Approx& a) { return a.sign(); }
 inline int sign_of(const Expansion& a) { return a.sign(); }

@@ -33,6 +33,7 @@ const char* error_name(Error e) {
     case Error::ParseError: return "PARSE_ERROR";
     case Error::IoError: return "IO_ERROR";
     case Error::InvalidArgument: return "INVALID_ARGUMENT";
+    case Error::CoordinateRange: return "COORDINATE_RANGE";
   }
   return "UNKNOWN";
 }
@@ -82,7 +83,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   // (A feasible sample proves nothing; the full path follows.)
   if (s.mesh.boundary_edges == 0 && s.mesh.num_faces() > 64) {
     t = Clock::now();
-    PlaneSet raw(&s.mesh.points);
+    PlaneSet raw(&s.mesh.points, s.mesh.exact_shift);
     std::vector<uint32_t> sample;
     const size_t nf = s.mesh.num_faces();
     const size_t k = std::min(nf, size_t(4 * std::sqrt(double(nf))) + 32);
@@ -101,7 +102,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   }
 
   t = Clock::now();
-  s.planes = std::make_unique<PlaneSet>(&s.mesh.points);
+  s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
   std::vector<uint32_t> face_plane;
   build_planes(s.mesh, *s.planes, face_plane);
   stats.distinct_planes = s.planes->size();

@@ -102,6 +102,34 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   m.scale = std::ldexp(1.0, -ex);
   m.points.resize(3 * nv);
   for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = mesh.positions[i] * m.scale;
+  // The exact predicates are polynomials of degree <= 9 in the coordinates. Expansion
+  // arithmetic is exact only while no bit of a product falls below 2^-1074 (underflow) and no
+  // magnitude reaches ~2^996 (the splitter overflows): with coordinates below 1 (scaled above),
+  // the lowest set bit L of any coordinate must satisfy 9 (L + shift) >= -1074 + margin and
+  // 9 shift + 10 < 996.
+  {
+    int lowest = 0;
+    for (size_t i = 0; i < 3 * nv; ++i) {
+      double x = m.points[i];
+      if (x == 0) continue;
+      int ex = 0;
+      double f = std::frexp(std::fabs(x), &ex);  // x = f 2^ex, f in [0.5, 1)
+      uint64_t mant = uint64_t(std::ldexp(f, 53));  // exact: 53-bit integer
+      int tz = 0;
+      while (!(mant & 1)) { mant >>= 1; ++tz; }
+      lowest = std::min(lowest, ex - 53 + tz);
+    }
+    const int kLowestAllowed = -112, kMaxShift = 109;
+    int shift = std::max(0, kLowestAllowed - lowest);
+    if (shift > kMaxShift) {
+      std::ostringstream s;
+      s << "coordinates span about " << int(-lowest * 0.30103) << " decimal orders of magnitude (largest |x| "
+        << maxabs << ", finest bit 2^" << lowest + ex << "); exact evaluation supports about "
+        << int((kMaxShift - kLowestAllowed) * 0.30103) << " — snap tiny coordinates to 0 or rescale";
+      return fail(m, Error::CoordinateRange, s.str());
+    }
+    m.exact_shift = shift;
+  }
 
   // Faces without repeated consecutive vertices; faces left with < 3 distinct vertices carry
   // no area and no edges of their own (a -> b -> a pairs cancel), so they are dropped here.
@@ -261,7 +289,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     size_t k = clean_offsets[f + 1] - clean_offsets[f];
     auto P = [&](uint32_t v) { return &m.points[3 * size_t(v)]; };
     if (k == 3) {
-      if (collinear(P(loop[0]), P(loop[1]), P(loop[2]))) { ++degenerate; continue; }
+      if (collinear(P(loop[0]), P(loop[1]), P(loop[2]), m.exact_shift)) { ++degenerate; continue; }
       face_of_clean[f] = uint32_t(m.rep.size());
       add_face(loop, 3, {loop[0], loop[1], loop[2]});
       continue;
@@ -269,9 +297,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     size_t lo = 0;
     for (size_t i = 1; i < k; ++i) if (lex_less(P(loop[i]), P(loop[lo]))) lo = i;
     std::array<uint32_t, 3> rep = {loop[(lo + k - 1) % k], loop[lo], loop[(lo + 1) % k]};
-    bool planar = !collinear(P(rep[0]), P(rep[1]), P(rep[2]));
+    bool planar = !collinear(P(rep[0]), P(rep[1]), P(rep[2]), m.exact_shift);
     for (size_t i = 0; i < k && planar; ++i)
-      if (orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i])) != 0) planar = false;
+      if (orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i]), m.exact_shift) != 0) planar = false;
     if (planar) {
       face_of_clean[f] = uint32_t(m.rep.size());
       add_face(loop, k, rep);
@@ -279,7 +307,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     bool any = false;
     for (size_t i = 1; i + 1 < k; ++i) {
-      if (collinear(P(loop[0]), P(loop[i]), P(loop[i + 1]))) continue;
+      if (collinear(P(loop[0]), P(loop[i]), P(loop[i + 1]), m.exact_shift)) continue;
       uint32_t tri[3] = {loop[0], loop[i], loop[i + 1]};
       add_face(tri, 3, {tri[0], tri[1], tri[2]});
       any = true;

@@ -16,6 +16,9 @@ struct PreparedMesh {
 
   std::vector<double> points;  // input positions times `scale` (a power of two: exact)
   double scale = 1;
+  // Exact evaluations use the points times 2^exact_shift (exact, sign-preserving): it lifts the
+  // lowest set bit of every coordinate high enough that degree-9 products cannot underflow.
+  int exact_shift = 0;
 
   // Faces that carry a plane: a loop of vertex ids (CCW from outside after any flip) and a
   // representative triangle with the loop's orientation. Planar polygons stay whole; zero-area

@@ -29,7 +29,7 @@ const double* P(const PreparedMesh& m, uint32_t v) { return &m.points[3 * size_t
 bool same_plane(const PreparedMesh& m, const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b) {
   for (uint32_t v : b) {
     if (v == a[0] || v == a[1] || v == a[2]) continue;
-    if (orient3d(P(m, a[0]), P(m, a[1]), P(m, a[2]), P(m, v)) != 0) return false;
+    if (orient3d(P(m, a[0]), P(m, a[1]), P(m, a[2]), P(m, v), m.exact_shift) != 0) return false;
   }
   return true;
 }
@@ -41,8 +41,8 @@ int orientation_agreement(const PreparedMesh& m, const std::array<uint32_t, 3>& 
   auto pb = approx_plane(P(m, b[0]), P(m, b[1]), P(m, b[2]));
   Approx dot = pa.n[0] * pb.n[0] + pa.n[1] * pb.n[1] + pa.n[2] * pb.n[2];
   if (dot.certain()) return dot.sign();
-  auto ea = exact_plane(P(m, a[0]), P(m, a[1]), P(m, a[2]));
-  auto eb = exact_plane(P(m, b[0]), P(m, b[1]), P(m, b[2]));
+  auto ea = exact_plane(P(m, a[0]), P(m, a[1]), P(m, a[2]), m.exact_shift);
+  auto eb = exact_plane(P(m, b[0]), P(m, b[1]), P(m, b[2]), m.exact_shift);
   for (int k = 0; k < 3; ++k) {
     int sa = ea.n[k].sign(), sb = eb.n[k].sign();
     if (sa != 0 && sb != 0) return sa == sb ? 1 : -1;
@@ -58,7 +58,7 @@ std::array<double, 4> plane_key(const PreparedMesh& m, const std::array<uint32_t
   double err = std::max({c.n[0].e, c.n[1].e, c.n[2].e});
   if (!(len > 0) || err > 1e-13 * len || !std::isfinite(len)) {
     // Poorly determined in double (sliver or tiny triangle): round the exact coefficients.
-    auto e = exact_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
+    auto e = exact_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]), m.exact_shift);
     for (int k = 0; k < 3; ++k) n[k] = e.n[k].estimate();
     d = e.d.estimate();
     double mx = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});

@@ -93,6 +93,13 @@ void cramer(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c,
 
 }  // namespace
 
+namespace {
+struct Scaled {
+  double v[3];
+  Scaled(const double* p, int shift) { for (int k = 0; k < 3; ++k) v[k] = std::ldexp(p[k], shift); }
+};
+}  // namespace
+
 uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c) {
   PlaneCoef<Approx> p = plane_from_points<Approx>(point(a), point(b), point(c));
   rep_.push_back({a, b, c});
@@ -128,10 +135,12 @@ const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
   if (!exact_[i]) {
     auto p = std::make_unique<PlaneCoef<Expansion>>();
     if (explicit_plane(i)) {
+      // n . x + d = 0 in coordinates times 2^shift: n . x' + 2^shift d = 0.
       p->n[0] = Expansion(nx_[i]); p->n[1] = Expansion(ny_[i]); p->n[2] = Expansion(nz_[i]);
-      p->d = Expansion(d_[i]);
+      p->d = Expansion(std::ldexp(d_[i], exact_shift_));
     } else {
-      *p = plane_from_points<Expansion>(point(rep_[i][0]), point(rep_[i][1]), point(rep_[i][2]));
+      Scaled a(point(rep_[i][0]), exact_shift_), b(point(rep_[i][1]), exact_shift_), c(point(rep_[i][2]), exact_shift_);
+      *p = plane_from_points<Expansion>(a.v, b.v, c.v);
       for (auto& c : p->n) c.compress();
       p->d.compress();
     }
@@ -163,8 +172,9 @@ bool PlaneSet::point_on_plane(uint32_t pt, uint32_t plane) const {
 PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c) {
   return plane_from_points<Approx>(a, b, c);
 }
-PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c) {
-  return plane_from_points<Expansion>(a, b, c);
+PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c, int shift) {
+  Scaled sa(a, shift), sb(b, shift), sc(c, shift);
+  return plane_from_points<Expansion>(sa.v, sb.v, sc.v);
 }
 
 
@@ -261,7 +271,7 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
       const auto& r = ps.rep(third);
       for (uint32_t p : ps.points_on(p1)) {
         if (!ps.point_on_plane(p, p2)) continue;
-        if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p)) != 0) continue;
+        if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift()) != 0) continue;
         v.mesh_point = int32_t(p);
         const double* x = ps.point(p);
         for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);
@@ -304,11 +314,40 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
     const ExactHomogeneous& h = exact_homogeneous(ps, v);
     double dd = h.den.estimate();
     for (int k = 0; k < 3; ++k) {
-      double x = h.num[k].estimate() / dd;
+      double x = std::ldexp(h.num[k].estimate() / dd, -ps.exact_shift());  // back from 2^shift units
       v.x[k] = Approx(x, 8 * exact::kEps * std::fabs(x) + exact::kUnderflowFloor);
     }
   }
   return v;
+}
+
+void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], double lo[3]) {
+  if (v.mesh_point != kNoPoint) {
+    const double* p = ps.point(uint32_t(v.mesh_point));
+    for (int k = 0; k < 3; ++k) { hi[k] = p[k]; lo[k] = 0; }
+    return;
+  }
+  if (!v.dd) {
+    auto h = std::make_shared<DDHomogeneous>();
+    cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
+    v.dd = std::move(h);
+  }
+  const DDHomogeneous& h = *v.dd;
+  if (std::fabs(h.den.hi) - std::fabs(h.den.lo) > 4 * h.den.e) {
+    for (int k = 0; k < 3; ++k) {
+      exact::ApproxDD x = h.num[k] / h.den;
+      hi[k] = x.hi;
+      lo[k] = x.lo;
+    }
+    return;
+  }
+  // Too ill-conditioned for double-double: the exact quotient, rounded twice.
+  const ExactHomogeneous& e = exact_homogeneous(ps, v);
+  double den = e.den.estimate();
+  for (int k = 0; k < 3; ++k) {
+    hi[k] = std::ldexp(e.num[k].estimate() / den, -ps.exact_shift());
+    lo[k] = 0;
+  }
 }
 
 int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
@@ -317,7 +356,7 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     if (ps.point_on_plane(p, l)) return 0;
     if (!ps.explicit_plane(l)) {
       const auto& r = ps.rep(l);
-      return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p));
+      return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift());
     }
   }
   auto pl = ps.approx(l);
@@ -327,8 +366,8 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   ++ps.exact_fallbacks;
   if (v.mesh_point != kNoPoint) {  // explicit plane at an input point: exact coordinates
     const auto& e = ps.exact(l);
-    const double* x = ps.point(uint32_t(v.mesh_point));
-    return (e.n[0] * Expansion(x[0]) + e.n[1] * Expansion(x[1]) + e.n[2] * Expansion(x[2]) + e.d).sign();
+    Scaled x(ps.point(uint32_t(v.mesh_point)), ps.exact_shift());
+    return (e.n[0] * Expansion(x.v[0]) + e.n[1] * Expansion(x.v[1]) + e.n[2] * Expansion(x.v[2]) + e.d).sign();
   }
   // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached
   // per vertex).
@@ -349,7 +388,7 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   return sf * h.den.sign();
 }
 
-int orient3d(const double* a, const double* b, const double* c, const double* p) {
+int orient3d(const double* a, const double* b, const double* c, const double* p, int shift) {
   // Shewchuk's static filter: |det - exact| <= (7 eps + 56 eps^2) * permanent, differences
   // included (Shewchuk 1997, orient3d error bound A).
   const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
@@ -366,12 +405,13 @@ int orient3d(const double* a, const double* b, const double* c, const double* p)
   int s = 2;
   if (perm > 1e-250) s = orient3d_formula<Approx>(a, b, c, p).sign();  // no underflow: filter again
   if (s != 2) return s;
-  s = exact::orient3d_exact_differences(a, b, c, p);
+  Scaled sa(a, shift), sb(b, shift), sc(c, shift), sp(p, shift);
+  s = exact::orient3d_exact_differences(sa.v, sb.v, sc.v, sp.v);
   if (s != 2) return s;
-  return orient3d_formula<Expansion>(a, b, c, p).sign();
+  return orient3d_formula<Expansion>(sa.v, sb.v, sc.v, sp.v).sign();
 }
 
-bool collinear(const double* a, const double* b, const double* c) {
+bool collinear(const double* a, const double* b, const double* c, int shift) {
   // Static filter: each cross-product component of the rounded differences is within
   // 5 eps (|u_i v_j| + |u_j v_i|) of the exact one.
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
@@ -382,7 +422,7 @@ bool collinear(const double* a, const double* b, const double* c) {
   }
   auto pa = plane_from_points<Approx>(a, b, c);
   if (pa.n[0].certain() || pa.n[1].certain() || pa.n[2].certain()) return false;
-  auto pe = plane_from_points<Expansion>(a, b, c);
+  auto pe = exact_plane(a, b, c, shift);
   return pe.n[0].sign() == 0 && pe.n[1].sign() == 0 && pe.n[2].sign() == 0;
 }
 

@@ -33,7 +33,9 @@ constexpr int32_t kNoPoint = -1;
 class PlaneSet {
  public:
   // Input points (already scaled), referenced by index.
-  explicit PlaneSet(const std::vector<double>* points) : points_(points) {}
+  explicit PlaneSet(const std::vector<double>* points, int exact_shift = 0) : points_(points), exact_shift_(exact_shift) {}
+  // Exact evaluations work on the points times 2^exact_shift (see PreparedMesh::exact_shift).
+  int exact_shift() const { return exact_shift_; }
 
   uint32_t add_from_points(uint32_t a, uint32_t b, uint32_t c);
   uint32_t add_explicit(double nx, double ny, double nz, double d);
@@ -81,6 +83,7 @@ class PlaneSet {
 
  private:
   const std::vector<double>* points_;
+  int exact_shift_ = 0;
   std::vector<std::array<uint32_t, 3>> rep_;
   std::vector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
   std::vector<uint32_t> opposite_;
@@ -127,7 +130,12 @@ struct VertexGeom {
 
 // Plane of an input triangle with error bounds, without adding it to a set.
 PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c);
-PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c);
+// Exact plane of the triangle with its points times 2^shift (a positive multiple of the plane).
+PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c, int shift = 0);
+
+// Coordinates of a vertex as unevaluated double-double sums hi + lo, accurate to ~1e-30
+// relative (exact for input points); hi is then the coordinate rounded to double.
+void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], double lo[3]);
 
 // ---- predicates (exact signs) ----------------------------------------------------------------
 // sign of det3(n_a, n_b, n_c)
@@ -149,10 +157,11 @@ struct LineDirection {
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c);
 // sign of f_l at the vertex: > 0 outside plane l, 0 on it, < 0 inside.
 int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v);
-// sign of orient(a,b,c,p) = ((b-a) x (c-a)) . (p-a) for input points.
-int orient3d(const double* a, const double* b, const double* c, const double* p);
+// sign of orient(a,b,c,p) = ((b-a) x (c-a)) . (p-a) for input points; exact stages use the points
+// times 2^shift (same sign, no underflow).
+int orient3d(const double* a, const double* b, const double* c, const double* p, int shift = 0);
 // Whether the input triangle (a,b,c) has exactly collinear vertices.
-bool collinear(const double* a, const double* b, const double* c);
+bool collinear(const double* a, const double* b, const double* c, int shift = 0);
 // sign of dir . (n_h x n_s) where dir = n_p x n_q (edge orientation in facet h).
 int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, uint32_t s);
 

@@ -16,9 +16,20 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, double unsc
                        const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume) {
   scaled_volume = 0;
   const size_t V = trace.vertices.size(), E = trace.edges.size();
+  // Coordinates to ~1e-30 relative (so the output is rounded once, from nearly exact values),
+  // and local coordinates relative to the first vertex for area and volume: far from the origin
+  // (offset >> size) the differences keep their accuracy.
+  std::vector<double> hi(3 * V), lo(3 * V), local(3 * V);
+  for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &hi[3 * i], &lo[3 * i]);
   out.vertices.resize(3 * V);
+  for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = hi[i] * unscale;
   for (size_t i = 0; i < V; ++i)
-    for (int k = 0; k < 3; ++k) out.vertices[3 * i + k] = trace.vertices[i].geom.x[k].v * unscale;
+    for (int k = 0; k < 3; ++k) {
+      // Knuth's two-sum of a = hi_i and b = -hi_0: s + err == a + b exactly.
+      const double a = hi[3 * i + k], b = -hi[k];
+      const double s = a + b, bb = s - a, err = (a - (s - bb)) + (b - bb);
+      local[3 * i + k] = s + (err + (lo[3 * i + k] - lo[k]));
+    }
   out.edges.resize(2 * E);
   for (size_t i = 0; i < E; ++i) { out.edges[2 * i] = trace.edges[i].a; out.edges[2 * i + 1] = trace.edges[i].b; }
 
@@ -103,7 +114,7 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, double unsc
 
   // Area and volume (divergence theorem about the vertex centroid), in the scaled units of the
   // plane set so that huge or tiny inputs neither overflow nor underflow before the ratio.
-  auto P = [&](uint32_t v, int k) { return trace.vertices[v].geom.x[k].v; };
+  auto P = [&](uint32_t v, int k) { return local[3 * size_t(v) + k]; };
   double c[3] = {0, 0, 0};
   for (uint32_t i = 0; i < V; ++i)
     for (int k = 0; k < 3; ++k) c[k] += P(i, k) / double(V);

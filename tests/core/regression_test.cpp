@@ -4,7 +4,8 @@
 //
 // Tests named DISABLED_ are open core bugs (reported, not fixed yet); run them with
 //   kergen_tests --gtest_also_run_disabled_tests --gtest_filter='Regression*'
-// The ones marked "hang" do not finish: run them with a timeout. Enable each when fixed.
+// Classes A (tiny coordinates: wrong kernels, internal errors, hangs) and B (large offsets:
+// vertices outside the bounding box) were fixed in the core and are enabled.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,26 +45,26 @@ void replay_kernel_input(const std::vector<uint8_t>& bytes) {
 // Class A: zero coordinates turned into tiny non-zero ones (a translation by 1e-300 of the
 // scaled mesh, or unit coordinates next to 1e300 ones) -> "internal error: kernel tracing could
 // not certify a vertex" / "traced kernel edges do not close into a polytope".
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetInternalError_0a157a7f) { replay_kernel_input({0xf7, 0xfa, 0xf6, 0xc2}); }
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetInternalError_11fbad1b) { replay_kernel_input({0x04, 0x04, 0x96, 0x3a}); }
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetInternalError_1a874763) { replay_kernel_input({0x84, 0x4a, 0x2d, 0x2a}); }
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetInternalError_2445935a) { replay_kernel_input({0x0b, 0x02, 0x02, 0x02}); }
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetInternalError_625011f5) { replay_kernel_input({0x3b, 0x00, 0x3f, 0x02}); }
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetInternalError_667c8e26) { replay_kernel_input({0x7b, 0xda, 0xda, 0x3a}); }
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetInternalError_b0b0c8d4) { replay_kernel_input({0x24, 0x0c, 0x0c, 0x3a}); }
+TEST(RegressionFuzzKernel, TinyOffsetInternalError_0a157a7f) { replay_kernel_input({0xf7, 0xfa, 0xf6, 0xc2}); }
+TEST(RegressionFuzzKernel, TinyOffsetInternalError_11fbad1b) { replay_kernel_input({0x04, 0x04, 0x96, 0x3a}); }
+TEST(RegressionFuzzKernel, TinyOffsetInternalError_1a874763) { replay_kernel_input({0x84, 0x4a, 0x2d, 0x2a}); }
+TEST(RegressionFuzzKernel, TinyOffsetInternalError_2445935a) { replay_kernel_input({0x0b, 0x02, 0x02, 0x02}); }
+TEST(RegressionFuzzKernel, TinyOffsetInternalError_625011f5) { replay_kernel_input({0x3b, 0x00, 0x3f, 0x02}); }
+TEST(RegressionFuzzKernel, TinyOffsetInternalError_667c8e26) { replay_kernel_input({0x7b, 0xda, 0xda, 0x3a}); }
+TEST(RegressionFuzzKernel, TinyOffsetInternalError_b0b0c8d4) { replay_kernel_input({0x24, 0x0c, 0x0c, 0x3a}); }
 // hang (more than 20 s; minutes with -O3): dented cube with coordinates 1 and 1e300.
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetHang_e4d1bf23) { replay_kernel_input({0x03, 0xb8, 0x82, 0x0a}); }
+TEST(RegressionFuzzKernel, TinyOffsetHang_e4d1bf23) { replay_kernel_input({0x03, 0xb8, 0x82, 0x0a}); }
 // hang: bumpy sphere with coordinates 1 and ~1e300.
-TEST(RegressionFuzzKernel, DISABLED_TinyOffsetHang_e9a6cdcc) { replay_kernel_input({0x3b, 0x3b, 0x32, 0xb2}); }
+TEST(RegressionFuzzKernel, TinyOffsetHang_e9a6cdcc) { replay_kernel_input({0x3b, 0x3b, 0x32, 0xb2}); }
 
 // Class B: a translation that is large against the mesh's size (offset / extent ~ 1e15) ->
 // kernel vertices outside the shape (outside even its bounding box), or a kernel volume that
 // depends on the LP seed.
-TEST(RegressionFuzzKernel, DISABLED_LargeOffsetOutsideShape_5678f6c3) { replay_kernel_input({0x03, 0x00, 0x03, 0x2c}); }
-TEST(RegressionFuzzKernel, DISABLED_LargeOffsetOutsideShape_9cae0f90) { replay_kernel_input({0x0c, 0x02, 0x00, 0x04}); }
-TEST(RegressionFuzzKernel, DISABLED_LargeOffsetOutsideShape_e1bea961) { replay_kernel_input({0x0b, 0x00, 0x26, 0x04}); }
-TEST(RegressionFuzzKernel, DISABLED_LargeOffsetOutsideShape_17a2789b) { replay_kernel_input({0x03, 0x00, 0x4e, 0x54}); }
-TEST(RegressionFuzzKernel, DISABLED_LargeOffsetSeedDependentVolume_bee89986) { replay_kernel_input({0x9b, 0x86, 0x30, 0x04}); }
+TEST(RegressionFuzzKernel, LargeOffsetOutsideShape_5678f6c3) { replay_kernel_input({0x03, 0x00, 0x03, 0x2c}); }
+TEST(RegressionFuzzKernel, LargeOffsetOutsideShape_9cae0f90) { replay_kernel_input({0x0c, 0x02, 0x00, 0x04}); }
+TEST(RegressionFuzzKernel, LargeOffsetOutsideShape_e1bea961) { replay_kernel_input({0x0b, 0x00, 0x26, 0x04}); }
+TEST(RegressionFuzzKernel, LargeOffsetOutsideShape_17a2789b) { replay_kernel_input({0x03, 0x00, 0x4e, 0x54}); }
+TEST(RegressionFuzzKernel, LargeOffsetSeedDependentVolume_bee89986) { replay_kernel_input({0x9b, 0x86, 0x30, 0x04}); }
 
 // fuzz_off crash a5793cb9: an OFF UV sphere (25 vertices) in which one coordinate became
 // -5.6e30 (a long digit run cut by '#', which starts a comment): a closed, consistently oriented
@@ -161,7 +162,7 @@ const unsigned char kFuzzOffA5793cb9[] = {
     0x32, 0x20, 0x32, 0x31, 0x20, 0x32, 0x33, 0x0a, 0x33, 0x20, 0x32, 0x33, 0x20, 0x32, 0x31, 0x20, 0x32, 0x30, 0x0a, 0x33,
     0x20, 0x32, 0x33, 0x20, 0x32, 0x30, 0x20, 0x32, 0x34, 0x0a,
 };
-TEST(RegressionFuzzOff, DISABLED_FarSpikeInternalError_a5793cb9) {
+TEST(RegressionFuzzOff, FarSpikeInternalError_a5793cb9) {
   const std::string bytes(reinterpret_cast<const char*>(kFuzzOffA5793cb9), sizeof kFuzzOffA5793cb9);
   const kergen::ReadResult r = kergen::read_off(bytes, "a5793cb9.off");
   ASSERT_TRUE(r.ok()) << r.message;
@@ -209,10 +210,18 @@ void expect_dented_cube_kernel(double eps) {
 TEST(RegressionTinyCoordinates, DentedCubeWithModestEps) {
   for (double eps : {1e-3, 1e-6, 1e-10, 1e-20}) expect_dented_cube_kernel(eps);
 }
-// Open core bug (class A): eps = 1e-30 gives POINT, 1e-40 "internal error ... could not certify a
-// vertex" (as INVALID_ARGUMENT), 1e-60 does not finish (hang) — see RELIABILITY.md.
-TEST(RegressionTinyCoordinates, DISABLED_DentedCubeWithTinyEps) {
-  for (double eps : {1e-30, 1e-40, 1e-100, 1e-140, 1e-300}) expect_dented_cube_kernel(eps);
+// Class A, fixed: exact stages now run on coordinates times 2^k (k from the finest bit of the
+// input) so degree-9 products cannot underflow. Down to eps = 1e-40 the kernel is exact; when
+// the coordinates span more than the double-based exact arithmetic can hold (1 next to 1e-60),
+// the input is refused with COORDINATE_RANGE instead of a wrong answer or a hang.
+TEST(RegressionTinyCoordinates, DentedCubeWithTinyEps) {
+  for (double eps : {1e-30, 1e-40}) expect_dented_cube_kernel(eps);
+  for (double eps : {1e-60, 1e-100, 1e-140, 1e-300}) {
+    const Mesh m = dented_cube_eps(eps);
+    const kergen::Kernel k = kergen::compute_kernel(m.view());
+    EXPECT_EQ(k.error, kergen::Error::CoordinateRange) << "eps " << eps << ": " << k.message;
+    EXPECT_NE(k.message.find("orders of magnitude"), std::string::npos) << k.message;
+  }
 }
 
 // A generic star-shaped mesh translated far from the origin: the kernel lies inside the shape,
@@ -264,8 +273,8 @@ void expect_bumpy_sphere_kernel_inside(double offset) {
 TEST(RegressionLargeOffset, BumpySphereModestOffsets) {
   for (double off : {0.0, 1e3, 1e6}) expect_bumpy_sphere_kernel_inside(off);
 }
-// Open core bug (class B): at offset 1e15 kernel vertices lie 0.25-0.43 outside the shape's
-// bounding box (the shape spans about 2 units).
-TEST(RegressionLargeOffset, DISABLED_BumpySphereOffset1e15) { expect_bumpy_sphere_kernel_inside(1e15); }
+// Class B, fixed: vertices are now rounded once from double-double coordinates (~1e-30
+// relative), so at offset 1e15 they stay inside the shape's bounding box.
+TEST(RegressionLargeOffset, BumpySphereOffset1e15) { expect_bumpy_sphere_kernel_inside(1e15); }
 
 }  // namespace

@@ -43,6 +43,8 @@ enum class Error : int {
   ParseError,               // a mesh file could not be read (io.h)
   IoError,                  // a file could not be opened or written (io.h)
   InvalidArgument,          // a programmer-supplied argument is malformed (sizes disagree, etc.)
+  CoordinateRange,          // coordinates span too many binary orders of magnitude for exact
+                            // evaluation in double-based arithmetic (e.g. 1 next to 1e-60)
 };
 
 // Shape of the kernel (meaningful when error == Error::Ok).
