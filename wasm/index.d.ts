@@ -25,7 +25,9 @@ export type CoreErrorCode =
   | 'MULTIPLE_COMPONENTS'
   | 'DEGENERATE_INPUT'
   | 'TOO_LARGE'
-  | 'INVALID_ARGUMENT';
+  | 'INVALID_ARGUMENT'
+  /** Coordinates span too many orders of magnitude for exact evaluation (e.g. 1 next to 1e-60). */
+  | 'COORDINATE_RANGE';
 
 /** Every `KergenError.code` this package produces. */
 export type KergenErrorCode =

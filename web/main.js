@@ -93,6 +93,7 @@ const ERROR_TITLES = {
   EMPTY_INPUT: 'The mesh is empty',
   FACE_TOO_SMALL: 'A face has fewer than 3 vertices',
   TOO_LARGE: 'The mesh is too large',
+  COORDINATE_RANGE: 'Coordinates span too many orders of magnitude',
 };
 const ERROR_HINTS = {
   OPEN_MESH: ' The kernel is defined for closed (watertight) meshes: every edge must belong to exactly two faces.',
