@@ -120,7 +120,12 @@ class Tracer {
     StepEvent e;
     e.kind = StepEvent::Kind::Vertex;
     e.id = id;
-    for (int k = 0; k < 3; ++k) e.position[k] = g.x[k].v * opt_.unscale;
+    if (opt_.on_step && *opt_.on_step) {
+      // The same rounding as the final result's coordinates (polytope assembly).
+      double hi[3], lo[3];
+      precise_coordinates(ps_, g, hi, lo);
+      for (int k = 0; k < 3; ++k) e.position[k] = hi[k] * opt_.unscale;
+    }
     bool go = emit(e);
     queue_rays(id);
     return go;
