@@ -109,7 +109,7 @@ bool has(const val& obj, const char* key) {
 }
 
 // Options object from JS: { from?: [x,y,z], onStep?: function, maxSteps?: number,
-// allowOpen?: boolean, deepestPoint?: boolean }.
+// allowOpen?: boolean, deepestPoint?: boolean, maxFaces?: number, maxVertices?: number }.
 kergen::Options read_options(const val& opts) {
   kergen::Options o;
   if (opts.isUndefined() || opts.isNull()) return o;
@@ -121,6 +121,8 @@ kergen::Options read_options(const val& opts) {
   if (has(opts, "maxSteps")) o.max_steps = static_cast<uint64_t>(opts["maxSteps"].as<double>());
   if (has(opts, "allowOpen")) o.allow_open = opts["allowOpen"].as<bool>();
   if (has(opts, "deepestPoint")) o.deepest_point = opts["deepestPoint"].as<bool>();
+  if (has(opts, "maxFaces")) o.max_faces = static_cast<size_t>(opts["maxFaces"].as<double>());
+  if (has(opts, "maxVertices")) o.max_vertices = static_cast<size_t>(opts["maxVertices"].as<double>());
   if (has(opts, "onStep")) {
     val cb = opts["onStep"];
     o.on_step = [cb](const kergen::StepEvent& e) -> bool {

@@ -79,6 +79,10 @@ export interface KernelOptions {
   allowOpen?: boolean;
   /** Also compute the centre of the largest inscribed ball (`deepestPoint`, `inscribedRadius`). */
   deepestPoint?: boolean;
+  /** Refuse larger inputs with `TOO_LARGE` before any work (default 20 000 000). */
+  maxFaces?: number;
+  /** Refuse inputs with more vertices with `TOO_LARGE` (default 20 000 000). */
+  maxVertices?: number;
   /** Vertices per face, for polygon input (default: every face is a triangle). */
   faceSizes?: Uint32Array | number[];
 }
@@ -151,7 +155,7 @@ export interface KernelPointResult {
   warnings: KernelWarning[];
 }
 
-export type KernelPointOptions = Pick<KernelOptions, 'from' | 'allowOpen' | 'faceSizes'>;
+export type KernelPointOptions = Pick<KernelOptions, 'from' | 'allowOpen' | 'faceSizes' | 'maxFaces' | 'maxVertices'>;
 
 export interface MemoryStats {
   /** Bytes of WebAssembly memory (grows, never shrinks). */

@@ -173,6 +173,13 @@ function checkOptions(fn, options) {
     if (typeof m !== 'number' || !Number.isInteger(m) || m < 0) throw invalid(fn, 'options.maxSteps must be a non-negative integer');
     out.maxSteps = m;
   }
+  for (const key of ['maxFaces', 'maxVertices']) {
+    if (options[key] != null) {
+      const m = options[key];
+      if (typeof m !== 'number' || !Number.isInteger(m) || m < 0) throw invalid(fn, `options.${key} must be a non-negative integer`);
+      out[key] = m;
+    }
+  }
   for (const key of ['allowOpen', 'deepestPoint']) {
     if (options[key] != null) {
       if (typeof options[key] !== 'boolean') throw invalid(fn, `options.${key} must be a boolean`);

@@ -159,7 +159,7 @@ export class KernelWorker {
     if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'compute: options.onStep must be a function'));
     if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'compute: options.onProgress must be a function'));
     const plain = {};
-    for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint']) if (rest[key] !== undefined) plain[key] = rest[key];
+    for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices']) if (rest[key] !== undefined) plain[key] = rest[key];
     if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
 
     const transfer = [];
