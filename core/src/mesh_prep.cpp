@@ -10,25 +10,11 @@
 #include <sstream>
 
 #include "planes.h"
+#include "union_find.h"
 
 namespace kergen {
 
 namespace {
-
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(uint32_t a, uint32_t b) {
-    a = find(a); b = find(b);
-    if (a == b) return false;
-    parent[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-};
 
 PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   m.error = e;

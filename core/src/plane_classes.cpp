@@ -6,6 +6,8 @@
 // so rounding never hides a match.
 #include "plane_classes.h"
 
+#include "union_find.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -13,15 +15,6 @@
 namespace kergen {
 
 namespace {
-
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-};
 
 const double* P(const PreparedMesh& m, uint32_t v) { return &m.points[3 * size_t(v)]; }
 
@@ -125,7 +118,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     if (a == b) continue;
     if (!same_plane(m, m.rep[pr[0]], m.rep[pr[1]])) continue;
     if (orientation_agreement(m, m.rep[pr[0]], m.rep[pr[1]]) <= 0) continue;
-    uf.parent[std::max(a, b)] = std::min(a, b);
+    uf.unite(a, b);
   }
   // 2. Class representatives matched through the cell table.
   std::vector<uint32_t> class_plane(nf, kNoPlane);

@@ -11,59 +11,29 @@ namespace kergen {
 
 namespace {
 
-template <class T>
-PlaneCoef<T> plane_from_points(const double* a, const double* b, const double* c);
-
-template <>
-PlaneCoef<Approx> plane_from_points<Approx>(const double* a, const double* b, const double* c) {
-  Approx u[3], v[3];
-  for (int i = 0; i < 3; ++i) {
-    u[i] = Approx(b[i]) - Approx(a[i]);
-    v[i] = Approx(c[i]) - Approx(a[i]);
-  }
-  PlaneCoef<Approx> p;
-  p.n[0] = u[1] * v[2] - u[2] * v[1];
-  p.n[1] = u[2] * v[0] - u[0] * v[2];
-  p.n[2] = u[0] * v[1] - u[1] * v[0];
-  p.d = -(p.n[0] * Approx(a[0]) + p.n[1] * Approx(a[1]) + p.n[2] * Approx(a[2]));
-  return p;
-}
-
-template <>
-PlaneCoef<Expansion> plane_from_points<Expansion>(const double* a, const double* b, const double* c) {
-  Expansion u[3], v[3];
-  for (int i = 0; i < 3; ++i) {
-    u[i] = Expansion::difference(b[i], a[i]);
-    v[i] = Expansion::difference(c[i], a[i]);
-  }
-  PlaneCoef<Expansion> p;
-  p.n[0] = u[1] * v[2] - u[2] * v[1];
-  p.n[1] = u[2] * v[0] - u[0] * v[2];
-  p.n[2] = u[0] * v[1] - u[1] * v[0];
-  p.d = -(p.n[0] * Expansion(a[0]) + p.n[1] * Expansion(a[1]) + p.n[2] * Expansion(a[2]));
-  return p;
-}
-
-// det3(b - a, c - a, p - a). The differences of nearby input points are usually exact in
-// double, so the exact evaluation mostly works on one-component expansions (no growth).
+// Exact differences of input coordinates in each number type (one- or two-component in the
+// exact types: the differences of nearby points are usually exact in double already).
 inline Approx difference(Approx*, double x, double y) { return Approx(x) - Approx(y); }
+inline exact::ApproxDD difference(exact::ApproxDD*, double x, double y) { return exact::dd_difference(x, y); }
 inline Expansion difference(Expansion*, double x, double y) { return Expansion::difference(x, y); }
-template <>
-PlaneCoef<exact::ApproxDD> plane_from_points<exact::ApproxDD>(const double* a, const double* b, const double* c) {
-  using exact::ApproxDD;
-  ApproxDD u[3], v[3];
+
+// n = (b - a) x (c - a), d = -n . a
+template <class T>
+PlaneCoef<T> plane_from_points(const double* a, const double* b, const double* c) {
+  T u[3], v[3];
   for (int i = 0; i < 3; ++i) {
-    u[i] = exact::dd_difference(b[i], a[i]);
-    v[i] = exact::dd_difference(c[i], a[i]);
+    u[i] = difference((T*)nullptr, b[i], a[i]);
+    v[i] = difference((T*)nullptr, c[i], a[i]);
   }
-  PlaneCoef<ApproxDD> p;
+  PlaneCoef<T> p;
   p.n[0] = u[1] * v[2] - u[2] * v[1];
   p.n[1] = u[2] * v[0] - u[0] * v[2];
   p.n[2] = u[0] * v[1] - u[1] * v[0];
-  p.d = -(p.n[0] * ApproxDD(a[0]) + p.n[1] * ApproxDD(a[1]) + p.n[2] * ApproxDD(a[2]));
+  p.d = -(p.n[0] * T(a[0]) + p.n[1] * T(a[1]) + p.n[2] * T(a[2]));
   return p;
 }
 
+// det3(b - a, c - a, p - a).
 template <class T>
 T orient3d_formula(const double* a, const double* b, const double* c, const double* p) {
   T u[3], v[3], w[3];
