@@ -22,6 +22,77 @@ PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   return std::move(m);
 }
 
+// Triangles of a polygon that is not exactly planar (often: planar up to rounding, e.g. after a
+// rotation). Convex polygons get a fan from their first corner; non-convex ones are ear-clipped
+// in the projection along the dominant axis of the Newell normal, which keeps every triangle
+// oriented like the polygon (a fan would fold over a reflex corner and invert planes). Falls back to a fan when no ear is found (self-overlapping
+// input) or the polygon is large (over 128 corners).
+std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k) {
+  std::vector<std::array<uint32_t, 3>> out;
+  auto P = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
+  double n[3] = {0, 0, 0};
+  for (size_t i = 0; i < k; ++i) {
+    const double* a = P(loop[i]);
+    const double* b = P(loop[(i + 1) % k]);
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const double orient = n[axis] >= 0 ? 1 : -1;  // (u, w) is counter-clockwise when n[axis] > 0
+  auto cross = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const double *pa = P(a), *pb = P(b), *pc = P(c);
+    return orient * ((pb[u] - pa[u]) * (pc[w] - pa[w]) - (pb[w] - pa[w]) * (pc[u] - pa[u]));
+  };
+  auto sq = [&](uint32_t a, uint32_t b) {
+    const double *pa = P(a), *pb = P(b);
+    return (pb[u] - pa[u]) * (pb[u] - pa[u]) + (pb[w] - pa[w]) * (pb[w] - pa[w]);
+  };
+  std::vector<uint32_t> idx(loop, loop + k);
+  // A convex polygon (every corner turns the same way in the projection) keeps the simple rule:
+  // a fan from its first corner.
+  bool convex = true;
+  for (size_t i = 0; i < k && convex; ++i)
+    if (cross(loop[(i + k - 1) % k], loop[i], loop[(i + 1) % k]) < 0) convex = false;
+  if (convex) {
+    for (size_t i = 1; i + 1 < k; ++i) out.push_back({loop[0], loop[i], loop[i + 1]});
+    return out;
+  }
+  // The best-shaped ear first (area over squared edge lengths): a sliver's plane is poorly
+  // determined by its points, so slivers are avoided whenever the polygon allows it.
+  while (idx.size() > 3 && k <= 128) {
+    const size_t r = idx.size();
+    size_t best = r;
+    double best_quality = 0;
+    for (size_t i = 0; i < r; ++i) {
+      uint32_t a = idx[(i + r - 1) % r], b = idx[i], c = idx[(i + 1) % r];
+      double area2 = cross(a, b, c);
+      if (!(area2 > 0)) continue;  // reflex or flat corner
+      // A corner on or within rounding distance of the ear's border blocks it too (a polygon
+      // that is non-planar by rounding has its collinear corners off by an ulp either way).
+      const double size2 = sq(a, b) + sq(b, c) + sq(c, a);
+      const double tol = -1e-9 * size2;
+      bool empty = true;
+      for (size_t j = 0; j < r && empty; ++j) {
+        uint32_t q = idx[j];
+        if (q == a || q == b || q == c) continue;
+        if (cross(a, b, q) >= tol && cross(b, c, q) >= tol && cross(c, a, q) >= tol) empty = false;
+      }
+      if (!empty) continue;
+      double quality = area2 / size2;
+      if (quality > best_quality) { best_quality = quality; best = i; }
+    }
+    if (best == r) break;
+    out.push_back({idx[(best + r - 1) % r], idx[best], idx[(best + 1) % r]});
+    idx.erase(idx.begin() + long(best));
+  }
+  for (size_t i = 1; i + 1 < idx.size(); ++i) out.push_back({idx[0], idx[i], idx[i + 1]});
+  return out;
+}
+
 bool lex_less(const double* a, const double* b) {
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }
@@ -292,10 +363,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       continue;
     }
     bool any = false;
-    for (size_t i = 1; i + 1 < k; ++i) {
-      if (collinear(P(loop[0]), P(loop[i]), P(loop[i + 1]), m.exact_shift)) continue;
-      uint32_t tri[3] = {loop[0], loop[i], loop[i + 1]};
-      add_face(tri, 3, {tri[0], tri[1], tri[2]});
+    for (const auto& tri : triangulate_polygon(m.points, loop, k)) {
+      if (collinear(P(tri[0]), P(tri[1]), P(tri[2]), m.exact_shift)) continue;
+      add_face(tri.data(), 3, tri);
       any = true;
     }
     if (any) ++nonplanar; else ++degenerate;

@@ -224,11 +224,11 @@ TEST(Metamorphic, RigidMotionsAndScalingAnalytic) {
     if (!has_nonconvex_polygon_faces(n.name)) check_transform_relation(n.name, n.mesh, n.name.find("noisy") == 0);
 }
 
-// Open core bug (class C): the L and plus prisms have non-convex polygon caps. A rotation rounds
-// their coordinates, the caps become non-planar by an ulp and are fan-triangulated; a fan over a
-// non-convex polygon folds over itself, and the kernel comes out EMPTY (volume 0) instead of the
-// rotated kernel (volume 1, 0.36). Expected: the same kernel up to the rounding.
-TEST(Metamorphic, DISABLED_NonConvexPolygonFacesRotated) {
+// Class C, fixed: the L and plus prisms have non-convex polygon caps. A rotation rounds their
+// coordinates and the caps become non-planar by an ulp; they used to be fan-triangulated, and a
+// fan over a non-convex polygon folds over itself (kernel EMPTY instead of volume 1 / 0.36).
+// Non-planar polygons are now ear-clipped (best-shaped ears first, near-border corners block).
+TEST(Metamorphic, NonConvexPolygonFacesRotated) {
   for (const Named& n : analytic_meshes())
     if (has_nonconvex_polygon_faces(n.name)) check_transform_relation(n.name, n.mesh, false);
 }
