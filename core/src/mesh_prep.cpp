@@ -290,6 +290,26 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     size_t unused = nv - size_t(std::count(used.begin(), used.end(), 1));
     if (unused)
       m.warnings.push_back({Warning::Kind::UnusedVertices, unused, std::to_string(unused) + " vertices are not used by any face"});
+    // Two distinct vertices of a closed surface at one position: the surface touches itself
+    // there (it is not embedded), and the intersection of its face half-spaces is then not its
+    // kernel — refused rather than answered wrongly.
+    std::vector<uint32_t> order;
+    order.reserve(nv);
+    for (uint32_t v = 0; v < nv; ++v)
+      if (used[v]) order.push_back(v);
+    auto at = [&](uint32_t v) { return &m.points[3 * size_t(v)]; };
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      const double *p = at(a), *q = at(b);
+      return p[0] != q[0] ? p[0] < q[0] : (p[1] != q[1] ? p[1] < q[1] : (p[2] != q[2] ? p[2] < q[2] : a < b));
+    });
+    for (size_t i = 1; i < order.size(); ++i) {
+      const double *p = at(order[i - 1]), *q = at(order[i]);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) {
+        return fail(m, Error::NonManifoldEdge,
+                    "vertices " + std::to_string(order[i - 1]) + " and " + std::to_string(order[i]) +
+                        " have the same position: the surface touches itself there (weld them, or separate the pieces)");
+      }
+    }
   }
 
   // Bounding box and enclosed volume (double; relative to the box centre for accuracy).

@@ -2,7 +2,7 @@
 // the target's own decoder and invariant checks (fuzz/kernel_input.h, fuzz/invariants.h), plus a
 // hand-written reproducer per failure class with an independent expectation.
 //
-// Tests named DISABLED_ are open core bugs (reported, not fixed yet); run them with
+// Tests named DISABLED_ would be open core bugs (none at the moment); run them with
 //   kergen_tests --gtest_also_run_disabled_tests --gtest_filter='Regression*'
 // Classes A (tiny coordinates: wrong kernels, internal errors, hangs) and B (large offsets:
 // vertices outside the bounding box) were fixed in the core and are enabled.
@@ -510,9 +510,9 @@ void replay_obj(const unsigned char* data, size_t size) {
   }
 }
 TEST(RegressionFuzzObj, InvariantViolated_1cdf767a) { replay_obj(kFuzzObj_1cdf767a, sizeof kFuzzObj_1cdf767a); }
-TEST(RegressionFuzzObj, DISABLED_InvariantViolated_41f4303a) { replay_obj(kFuzzObj_41f4303a, sizeof kFuzzObj_41f4303a); }
-TEST(RegressionFuzzObj, DISABLED_InvariantViolated_beb1f4c9) { replay_obj(kFuzzObj_beb1f4c9, sizeof kFuzzObj_beb1f4c9); }
-TEST(RegressionFuzzObj, DISABLED_InvariantViolated_db409c33) { replay_obj(kFuzzObj_db409c33, sizeof kFuzzObj_db409c33); }
+TEST(RegressionFuzzObj, InvariantViolated_41f4303a) { replay_obj(kFuzzObj_41f4303a, sizeof kFuzzObj_41f4303a); }
+TEST(RegressionFuzzObj, InvariantViolated_beb1f4c9) { replay_obj(kFuzzObj_beb1f4c9, sizeof kFuzzObj_beb1f4c9); }
+TEST(RegressionFuzzObj, InvariantViolated_db409c33) { replay_obj(kFuzzObj_db409c33, sizeof kFuzzObj_db409c33); }
 TEST(RegressionFuzzObj, Hang_03c64e2c) { replay_obj(kFuzzObj_03c64e2c, sizeof kFuzzObj_03c64e2c); }
 
 }  // namespace
