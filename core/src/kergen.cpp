@@ -127,11 +127,11 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   if (options.has_from) {
     double len = 0;
     for (int k = 0; k < 3; ++k) {
-      double d = options.from[k] * s.mesh.scale - s.center[k];
+      double d = s.mesh.to_scaled(options.from[k]) - s.center[k];
       len += d * d;
     }
     if (len > 0 && std::isfinite(len))
-      for (int k = 0; k < 3; ++k) dir[k] = options.from[k] * s.mesh.scale - s.center[k];
+      for (int k = 0; k < 3; ++k) dir[k] = s.mesh.to_scaled(options.from[k]) - s.center[k];
   }
   s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
   stats.ms_lp += ms_since(t);
@@ -189,8 +189,8 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     out.stats.ms_total = ms_since(t_total);
     return out;
   }
-  const double unscale = 1.0 / s.mesh.scale;
-  out.shape_volume = s.mesh.volume * unscale * unscale * unscale;
+  const int unscale_exp = -s.mesh.scale_exp;  // outputs: scaled values times 2^unscale_exp
+  out.shape_volume = std::ldexp(s.mesh.volume, 3 * unscale_exp);
   if (s.rejected_early) {
     out.type = KernelType::Empty;
     out.stats.ms_total = ms_since(t_total);
@@ -204,7 +204,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     out.type = KernelType::Unbounded;
   } else {
     out.has_kernel_point = true;
-    for (int k = 0; k < 3; ++k) out.kernel_point[k] = s.lp.vertex.x[k].v * unscale;
+    for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(s.lp.vertex.x[k].v, unscale_exp);
 
     auto t = Clock::now();
     uint64_t steps = 0;
@@ -212,10 +212,10 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     topt.on_step = &options.on_step;
     topt.max_steps = options.max_steps;
     topt.steps = &steps;
-    topt.unscale = unscale;
+    topt.unscale_exp = unscale_exp;
     if (options.has_from) {
       topt.has_from = true;
-      for (int k = 0; k < 3; ++k) topt.from[k] = options.from[k] * s.mesh.scale;
+      for (int k = 0; k < 3; ++k) topt.from[k] = s.mesh.to_scaled(options.from[k]);
     }
     std::vector<uint32_t> mesh_planes;
     for (uint32_t i = 0; i < s.planes->size(); ++i)
@@ -244,7 +244,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       return go;
     };
     double scaled_volume = 0;
-    if (!assemble_polytope(*s.planes, tr, unscale, out, emit_face, scaled_volume)) {
+    if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
       out.error = Error::InvalidArgument;
       out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
       return out;
@@ -267,8 +267,8 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       double p[3] = {0, 0, 0}, r = 0;
       if (deepest_point(*s.planes, counted, s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
         out.has_deepest_point = true;
-        for (int k = 0; k < 3; ++k) out.deepest_point[k] = p[k] * unscale;
-        out.inscribed_radius = r * unscale;
+        for (int k = 0; k < 3; ++k) out.deepest_point[k] = std::ldexp(p[k], unscale_exp);
+        out.inscribed_radius = std::ldexp(r, unscale_exp);
       }
     }
     out.stats.ms_assemble = ms_since(t);
@@ -292,7 +292,7 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
   }
   if (s.lp.outcome == LpResult::Outcome::Optimal) {
     r.star_shaped = true;
-    for (int k = 0; k < 3; ++k) r.point[k] = s.lp.vertex.x[k].v / s.mesh.scale;
+    for (int k = 0; k < 3; ++k) r.point[k] = s.mesh.to_input(s.lp.vertex.x[k].v);
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     r.star_shaped = true;  // non-empty but unbounded (open input)
   }
@@ -305,7 +305,7 @@ Validation validate_mesh(const MeshView& mesh, const Options& options) {
   v.error = m.error;
   v.message = m.message;
   v.warnings = m.warnings;
-  v.volume = m.volume / (m.scale * m.scale * m.scale);
+  v.volume = std::ldexp(m.volume, -3 * m.scale_exp);
   return v;
 }
 

@@ -156,9 +156,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   for (size_t i = 0; i < 3 * nv; ++i) maxabs = std::max(maxabs, std::fabs(mesh.positions[i]));
   int ex = 0;
   if (maxabs > 0) std::frexp(maxabs, &ex);
-  m.scale = std::ldexp(1.0, -ex);
+  // (As an exponent: for an input of subnormal numbers only, 2^-ex itself is not a double.)
+  m.scale_exp = -ex;
   m.points.resize(3 * nv);
-  for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = mesh.positions[i] * m.scale;
+  for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = m.to_scaled(mesh.positions[i]);
   // The exact predicates are polynomials of degree <= 9 in the coordinates. Expansion
   // arithmetic is exact only while no bit of a product falls below 2^-1074 (underflow) and no
   // magnitude reaches ~2^996 (the splitter overflows): with coordinates below 1 (scaled above),

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -14,8 +15,10 @@ struct PreparedMesh {
   std::string message;
   std::vector<Warning> warnings;
 
-  std::vector<double> points;  // input positions times `scale` (a power of two: exact)
-  double scale = 1;
+  std::vector<double> points;  // input positions times 2^scale_exp (exact)
+  int scale_exp = 0;
+  double to_scaled(double x) const { return std::ldexp(x, scale_exp); }
+  double to_input(double x) const { return std::ldexp(x, -scale_exp); }
   // Exact evaluations use the points times 2^exact_shift (exact, sign-preserving): it lifts the
   // lowest set bit of every coordinate high enough that degree-9 products cannot underflow.
   int exact_shift = 0;

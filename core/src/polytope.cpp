@@ -12,7 +12,7 @@
 
 namespace kergen {
 
-bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, double unscale, Kernel& out,
+bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, Kernel& out,
                        const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume) {
   scaled_volume = 0;
   const size_t V = trace.vertices.size(), E = trace.edges.size();
@@ -22,7 +22,7 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, double unsc
   std::vector<double> hi(3 * V), lo(3 * V), local(3 * V);
   for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &hi[3 * i], &lo[3 * i]);
   out.vertices.resize(3 * V);
-  for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = hi[i] * unscale;
+  for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = std::ldexp(hi[i], unscale_exp);
   for (size_t i = 0; i < V; ++i)
     for (int k = 0; k < 3; ++k) {
       // Knuth's two-sum of a = hi_i and b = -hi_0: s + err == a + b exactly.
@@ -128,8 +128,8 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, double unsc
     vol6 += n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
   }
   scaled_volume = (out.type == KernelType::Polyhedron && trace.complete) ? vol6 / 6 : 0;
-  out.area = area * unscale * unscale;
-  out.volume = scaled_volume * unscale * unscale * unscale;
+  out.area = std::ldexp(area, 2 * unscale_exp);
+  out.volume = std::ldexp(scaled_volume, 3 * unscale_exp);
   if (out.type == KernelType::Polyhedron && trace.complete && V + out.face_sizes.size() != E + 2) ok = false;
   return ok;
 }

@@ -124,7 +124,7 @@ class Tracer {
       // The same rounding as the final result's coordinates (polytope assembly).
       double hi[3], lo[3];
       precise_coordinates(ps_, g, hi, lo);
-      for (int k = 0; k < 3; ++k) e.position[k] = hi[k] * opt_.unscale;
+      for (int k = 0; k < 3; ++k) e.position[k] = std::ldexp(hi[k], opt_.unscale_exp);
     }
     bool go = emit(e);
     queue_rays(id);

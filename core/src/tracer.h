@@ -38,7 +38,7 @@ struct TraceOptions {
   uint64_t* steps = nullptr;   // events emitted so far (shared with the face events after)
   bool has_from = false;       // expand the vertex nearest to `from` first
   double from[3] = {0, 0, 0};  // in the scaled units of the plane set
-  double unscale = 1;          // multiply coordinates by this for events
+  int unscale_exp = 0;         // event coordinates are scaled ones times 2^unscale_exp
 };
 
 // `active` lists the planes that may touch the kernel (all of them, or the survivors of culling);

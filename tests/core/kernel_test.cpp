@@ -108,7 +108,8 @@ TEST(Kernel, UnitCube) {
 }
 
 TEST(Kernel, CubeTranslatedAndScaled) {
-  struct T { double s, t; } cases[] = {{1, 1e6}, {1e-3, 0}, {1e3, 0}, {1e-3, -7e5}, {1e300 / 4, 0}, {1e-300, 0}};
+  struct T { double s, t; } cases[] = {{1, 1e6}, {1e-3, 0}, {1e3, 0}, {1e-3, -7e5}, {1e300 / 4, 0}, {1e-300, 0},
+                                      {1e-310, 0} /* subnormal only */, {4e307, 0} /* near the top */};
   for (const auto& c : cases) {
     Mesh m = transformed(unit_cube(), c.s, c.t, c.t, c.t);
     Kernel k = run(m);

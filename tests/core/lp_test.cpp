@@ -44,7 +44,7 @@ TEST(Lp, RandomDirectionsHitTheExtremeKernelVertex) {
       for (size_t v = 0; v < k.num_vertices(); ++v)
         best = std::max(best, c[0] * k.vertices[3 * v] + c[1] * k.vertices[3 * v + 1] + c[2] * k.vertices[3 * v + 2]);
       double got = 0;
-      for (int j = 0; j < 3; ++j) got += c[j] * r.vertex.x[j].v / p.mesh.scale;
+      for (int j = 0; j < 3; ++j) got += c[j] * p.mesh.to_input(r.vertex.x[j].v);
       EXPECT_NEAR(got, best, 1e-12 * (1 + std::fabs(best)));
     }
   }
