@@ -304,12 +304,16 @@ void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], 
   }
   const DDHomogeneous& h = *v.dd;
   if (std::fabs(h.den.hi) - std::fabs(h.den.lo) > 4 * h.den.e) {
-    for (int k = 0; k < 3; ++k) {
+    bool accurate = true;
+    for (int k = 0; k < 3 && accurate; ++k) {
       exact::ApproxDD x = h.num[k] / h.den;
       hi[k] = x.hi;
       lo[k] = x.lo;
+      // The quotient's bound must be far below one ulp of it (cancellation in a numerator can
+      // leave a double-double value with no correct digit).
+      accurate = x.e <= 1e-24 * std::fabs(x.hi);
     }
-    return;
+    if (accurate) return;
   }
   // Too ill-conditioned for double-double: the exact quotient, rounded twice.
   const ExactHomogeneous& e = exact_homogeneous(ps, v);

@@ -176,6 +176,13 @@ TEST(RegressionFuzzOff, FarSpikeInternalError_a5793cb9) {
   }
 }
 
+// Class D, fixed: output coordinates were refined in double-double and accepted whenever the
+// denominator was well determined; a numerator with heavy cancellation could leave no correct
+// digit (a kernel vertex 67511 units off for a 0.1-unit shape at offset 62500). The quotient's
+// own bound now decides, with the exact quotient as fallback.
+TEST(RegressionFuzzKernel, CancelledNumeratorCoordinates_c19a98e8) { replay_kernel_input({0xcc, 0x16, 0xfb, 0x25}); }
+TEST(RegressionFuzzKernel, CancelledNumeratorCoordinates_08789340) { replay_kernel_input({0x84, 0x26, 0xff, 0x55}); }
+
 // The decoder itself stays valid: the same base meshes without the offending scale/translation
 // pass every invariant (so the DISABLED_ inputs above fail because of the offsets alone).
 TEST(RegressionFuzzKernel, SameMeshesWithoutTheOffsetsPass) {
