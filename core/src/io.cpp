@@ -882,13 +882,10 @@ ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Public writers.
-
-std::string write_obj(const Mesh& mesh) {
-  std::string out = "# written by kergen\n";
-  out.reserve(out.size() + mesh.positions.size() * 24 + mesh.indices.size() * 8);
+// One "<prefix>x y z" line per vertex, every coordinate bit kept.
+static void append_vertex_lines(std::string& out, const Mesh& mesh, const char* prefix) {
   for (size_t v = 0; v + 3 <= mesh.positions.size(); v += 3) {
-    out += "v ";
+    out += prefix;
     append_double(out, mesh.positions[v]);
     out += ' ';
     append_double(out, mesh.positions[v + 1]);
@@ -896,6 +893,14 @@ std::string write_obj(const Mesh& mesh) {
     append_double(out, mesh.positions[v + 2]);
     out += '\n';
   }
+}
+
+// Public writers.
+
+std::string write_obj(const Mesh& mesh) {
+  std::string out = "# written by kergen\n";
+  out.reserve(out.size() + mesh.positions.size() * 24 + mesh.indices.size() * 8);
+  append_vertex_lines(out, mesh, "v ");
   for_each_face(mesh, [&](const uint32_t* loop, size_t size) {
     out += 'f';
     for (size_t k = 0; k < size; ++k) {
@@ -914,14 +919,7 @@ std::string write_off(const Mesh& mesh) {
   out += ' ';
   append_uint(out, count_faces(mesh));
   out += " 0\n";
-  for (size_t v = 0; v + 3 <= mesh.positions.size(); v += 3) {
-    append_double(out, mesh.positions[v]);
-    out += ' ';
-    append_double(out, mesh.positions[v + 1]);
-    out += ' ';
-    append_double(out, mesh.positions[v + 2]);
-    out += '\n';
-  }
+  append_vertex_lines(out, mesh, "");
   for_each_face(mesh, [&](const uint32_t* loop, size_t size) {
     append_uint(out, size);
     for (size_t k = 0; k < size; ++k) {
