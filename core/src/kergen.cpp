@@ -67,6 +67,8 @@ struct Setup {
   double center[3] = {0, 0, 0};
 };
 
+// Generic objective for the LP (ties are broken lexicographically anyway).
+constexpr double kDefaultDirection[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
 constexpr double kLpBound = 8;  // scaled coordinates are below 1; the open-mesh box is within 4
 
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
@@ -91,8 +93,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
       const auto& r = s.mesh.rep[(i * nf) / k];  // evenly spread over the face order
       sample.push_back(raw.add_from_points(r[0], r[1], r[2]));
     }
-    const double dir[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
-    LpResult quick = solve_lp(raw, sample, dir, kLpBound, options.seed);
+    LpResult quick = solve_lp(raw, sample, kDefaultDirection, kLpBound, options.seed);
     stats.ms_lp = ms_since(t);
     if (quick.outcome == LpResult::Outcome::Infeasible) {
       s.lp = quick;
@@ -123,7 +124,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_planes = ms_since(t);
 
   t = Clock::now();
-  double dir[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
+  double dir[3] = {kDefaultDirection[0], kDefaultDirection[1], kDefaultDirection[2]};
   if (options.has_from) {
     double len = 0;
     for (int k = 0; k < 3; ++k) {
@@ -155,14 +156,13 @@ bool deepest_point(const PlaneSet& ps, const std::vector<uint32_t>& facets, cons
   double hi = 0;
   for (int k = 0; k < 3; ++k) hi = std::max(hi, 0.5 * (bbox_max[k] - bbox_min[k]));
   double lo = 0;
-  const double dir[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
   bool found = false;
   for (int it = 0; it < 60 && hi - lo > 1e-15 * std::max(hi, 1e-300); ++it) {
     double r = 0.5 * (lo + hi);
     PlaneSet shrunk(&no_points);
     std::vector<uint32_t> ids;
     for (const auto& u : unit) ids.push_back(shrunk.add_explicit(u[0], u[1], u[2], u[3] + r));
-    LpResult lp = solve_lp(shrunk, ids, dir, kLpBound, 7);
+    LpResult lp = solve_lp(shrunk, ids, kDefaultDirection, kLpBound, 7);
     if (lp.outcome == LpResult::Outcome::Optimal) {
       lo = r;
       for (int k = 0; k < 3; ++k) point[k] = lp.vertex.x[k].v;

@@ -198,6 +198,17 @@ int LineDirection::rate_sign(const PlaneSet& ps, uint32_t m) const {
 }
 
 
+// Double-double homogeneous coordinates of a plane-triple vertex, computed once and shared by
+// copies of the vertex.
+const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
+  if (!v.dd) {
+    auto h = std::make_shared<DDHomogeneous>();
+    cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
+    v.dd = std::move(h);
+  }
+  return *v.dd;
+}
+
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
     auto h = std::make_shared<ExactHomogeneous>();
@@ -262,8 +273,9 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   }
   if (!good) {
     // Double-double Cramer: x = num / den with |num - exact| <= e_num, |den - exact| <= e_den.
-    exact::ApproxDD dnum[3], dden;
-    cramer(dd_plane(ps, a), dd_plane(ps, b), dd_plane(ps, c), dnum, dden);
+    const DDHomogeneous& dh = dd_homogeneous(ps, v);  // cached: side() reuses it
+    const exact::ApproxDD* dnum = dh.num;
+    const exact::ApproxDD& dden = dh.den;
     double den = dden.hi + dden.lo;
     double eden = dden.e + exact::kEps * std::fabs(den);
     if (std::fabs(den) > 2 * eden) {
@@ -297,12 +309,7 @@ void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], 
     for (int k = 0; k < 3; ++k) { hi[k] = p[k]; lo[k] = 0; }
     return;
   }
-  if (!v.dd) {
-    auto h = std::make_shared<DDHomogeneous>();
-    cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
-    v.dd = std::move(h);
-  }
-  const DDHomogeneous& h = *v.dd;
+  const DDHomogeneous& h = dd_homogeneous(ps, v);
   if (std::fabs(h.den.hi) - std::fabs(h.den.lo) > 4 * h.den.e) {
     bool accurate = true;
     for (int k = 0; k < 3 && accurate; ++k) {
@@ -346,12 +353,7 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached
   // per vertex).
   {
-    if (!v.dd) {
-      auto h = std::make_shared<DDHomogeneous>();
-      cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
-      v.dd = std::move(h);
-    }
-    const DDHomogeneous& h = *v.dd;
+    const DDHomogeneous& h = dd_homogeneous(ps, v);
     auto pl = dd_plane(ps, l);
     int sf = (pl.n[0] * h.num[0] + pl.n[1] * h.num[1] + pl.n[2] * h.num[2] + pl.d * h.den).sign();
     if (sf != 2) return sf * v.det_sign;
