@@ -316,9 +316,11 @@ void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], 
       exact::ApproxDD x = h.num[k] / h.den;
       hi[k] = x.hi;
       lo[k] = x.lo;
-      // The quotient's bound must be far below one ulp of it (cancellation in a numerator can
-      // leave a double-double value with no correct digit).
-      accurate = x.e <= 1e-24 * std::fabs(x.hi);
+      // hi is the correctly rounded coordinate when both ends of the error interval round to it
+      // (round-to-nearest is monotonic; the bound is doubled to cover the rounding of lo +- e).
+      // A cancelled numerator, whose value has no correct digit, fails this and goes exact.
+      const double e = 2 * x.e + exact::kUnderflowFloor;
+      accurate = std::isfinite(x.hi) && x.hi + (x.lo - e) == x.hi && x.hi + (x.lo + e) == x.hi;
     }
     if (accurate) return;
   }
@@ -332,6 +334,9 @@ void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], 
 }
 
 int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
+  // The defining planes hold the vertex by construction (their filtered value is a rounding
+  // residue the filter cannot decide, and deciding it exactly costs a full Cramer solve).
+  if (l == v.basis[0] || l == v.basis[1] || l == v.basis[2]) return 0;
   if (v.mesh_point != kNoPoint) {
     uint32_t p = uint32_t(v.mesh_point);
     if (ps.point_on_plane(p, l)) return 0;

@@ -134,7 +134,8 @@ PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c
 PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c, int shift = 0);
 
 // Coordinates of a vertex as unevaluated double-double sums hi + lo, accurate to ~1e-30
-// relative (exact for input points); hi is then the coordinate rounded to double.
+// relative (exact for input points); hi is then the coordinate rounded to nearest (certified on the
+// double-double path; the rare exact path rounds the exact quotient twice).
 void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], double lo[3]);
 
 // ---- predicates (exact signs) ----------------------------------------------------------------
