@@ -83,6 +83,13 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       std::vector<uint32_t> fill(adj_offset.begin(), adj_offset.end() - 1);
       for (const auto& e : tr.edges) { adj[fill[e.a]++] = e.b; adj[fill[e.b]++] = e.a; }
     }
+    // Bounding box of K_S: max over K_S of f_l <= f_l(box centre) + sum_k |n_k| half_k, one
+    // dot product that clears most planes without a climb (they lie far from the kernel).
+    double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
+    for (size_t v = 1; v < V; ++v)
+      for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], xyz[3 * v + k]); hi[k] = std::max(hi[k], xyz[3 * v + k]); }
+    const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
+    const double hx = 0.5 * (hi[0] - lo[0]), hy = 0.5 * (hi[1] - lo[1]), hz = 0.5 * (hi[2] - lo[2]);
     size_t added = 0;
     uint32_t cur = 0;
     mark.assign(V, 0);
@@ -90,12 +97,14 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     for (uint32_t l : planes) {
       if (in_s[l]) continue;
       const double a = nx[l], b = ny[l], c = nz[l], d = nd[l];
-      auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
       // Coordinates are below ~2 in magnitude (scaled input, box at 2): the rounding of a value
       // is below 1e-15 (|n|_1 + |d|). `tie` is far above that; `margin` keeps every plane that
       // could be violated.
       const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
       const double tie = 1e-12 * scale, margin = 1e-9 * scale;
+      // (The box is a double computation like the climb; 2 * margin covers its rounding.)
+      if (a * cx + b * cy + c * cz + d + std::fabs(a) * hx + std::fabs(b) * hy + std::fabs(c) * hz < -2 * margin) continue;
+      auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
       double val = f(cur);
       for (;;) {
         bool moved = false;

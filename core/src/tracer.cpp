@@ -11,12 +11,89 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <queue>
 #include <unordered_set>
 
 namespace kergen {
+
+namespace {
+
+// The two hot loops of tracing run over the structure-of-arrays plane store four planes at a
+// time (vector extensions: SSE2 pairs, AVX2 where the CPU has it — function multi-versioning
+// picks at load time; plain scalar code on targets without it). Array lengths are padded to a
+// multiple of kLanes with planes that never hit a ray (n = 0) and are never near (d = -1).
+constexpr size_t kLanes = 4;
+typedef double Vec4 __attribute__((vector_size(32)));
+typedef int64_t Mask4 __attribute__((vector_size(32)));
+// Unaligned view of four consecutive doubles (no helper functions: clones must not call code
+// compiled for another target).
+typedef double Vec4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
+#define KERGEN_LOAD4(ptr) (*reinterpret_cast<const Vec4Unaligned*>(ptr))
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__EMSCRIPTEN__) && !defined(__SANITIZE_ADDRESS__)
+#define KERGEN_MULTIVERSION __attribute__((target_clones("avx2", "default")))
+#else
+#define KERGEN_MULTIVERSION
+#endif
+
+// Index of the smallest positive hit t_i = -f_i(p) / (n_i . u) over planes approaching along u
+// (n_i . u > 0), or n when none approaches. Blocks keep their hits in a buffer so the index is
+// found without recomputing (the block minimum improves only O(log n) times).
+KERGEN_MULTIVERSION
+size_t nearest_hit(const double* ax, const double* ay, const double* az, const double* ad, size_t n, const double p[3],
+                   const double u[3]) {
+  constexpr size_t kBlock = 64;
+  const double inf = std::numeric_limits<double>::infinity();
+  const Vec4 inf4 = {inf, inf, inf, inf}, zero4 = {0, 0, 0, 0};
+  const Vec4 x = {p[0], p[0], p[0], p[0]}, y = {p[1], p[1], p[1], p[1]}, z = {p[2], p[2], p[2], p[2]};
+  const Vec4 u0 = {u[0], u[0], u[0], u[0]}, u1 = {u[1], u[1], u[1], u[1]}, u2 = {u[2], u[2], u[2], u[2]};
+  alignas(32) double hits[kBlock];
+  double best = inf;
+  size_t best_i = n;
+  for (size_t s = 0; s < n; s += kBlock) {
+    const size_t m = std::min(kBlock, n - s);
+    Vec4 lo = inf4;
+    for (size_t i = 0; i < m; i += kLanes) {
+      const Vec4 X = KERGEN_LOAD4(ax + s + i), Y = KERGEN_LOAD4(ay + s + i), Z = KERGEN_LOAD4(az + s + i), D = KERGEN_LOAD4(ad + s + i);
+      const Vec4 a = X * u0 + Y * u1 + Z * u2;
+      const Vec4 f = X * x + Y * y + Z * z + D;
+      const Vec4 t = a > zero4 ? -f / a : inf4;
+      std::memcpy(hits + i, &t, sizeof t);
+      lo = t < lo ? t : lo;
+    }
+    const double block_min = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
+    if (block_min < best) {
+      best = block_min;
+      for (size_t i = 0; i < m; ++i)
+        if (hits[i] == block_min) { best_i = s + i; break; }
+    }
+  }
+  return best_i;
+}
+
+// Indices of the planes whose value at p is not certainly negative: f_i(p) >= -b_i with the
+// rigorous bound b_i = ben_i c1 + bn1_i c2 + be0_i (see Tracer::certify).
+KERGEN_MULTIVERSION
+void near_planes(const double* ax, const double* ay, const double* az, const double* ad, const double* bn1,
+                 const double* ben, const double* be0, size_t n, const double p[3], double c1, double c2,
+                 std::vector<uint32_t>& out) {
+  const double ms = -exact::kBoundScale;
+  const Vec4 x = {p[0], p[0], p[0], p[0]}, y = {p[1], p[1], p[1], p[1]}, z = {p[2], p[2], p[2], p[2]};
+  const Vec4 C1 = {c1, c1, c1, c1}, C2 = {c2, c2, c2, c2}, scale = {ms, ms, ms, ms};
+  for (size_t i = 0; i < n; i += kLanes) {
+    const Vec4 f = KERGEN_LOAD4(ax + i) * x + KERGEN_LOAD4(ay + i) * y + KERGEN_LOAD4(az + i) * z + KERGEN_LOAD4(ad + i);
+    const Vec4 b = KERGEN_LOAD4(ben + i) * C1 + KERGEN_LOAD4(bn1 + i) * C2 + KERGEN_LOAD4(be0 + i);
+    const Mask4 near = f >= b * scale;
+    if ((near[0] | near[1] | near[2] | near[3]) == 0) continue;
+    for (size_t k = 0; k < kLanes; ++k)
+      if (near[k]) out.push_back(uint32_t(i + k));
+  }
+}
+
+}  // namespace
 
 uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
                         const std::vector<char>& known_tight_mark, std::vector<uint32_t>& tight) {
@@ -58,8 +135,9 @@ class Tracer {
       : ps_(ps), active_(active), opt_(opt), mark_(ps.size(), 0) {
     // Compact structure-of-arrays copy of the active planes for the scan.
     size_t n = active.size();
-    ax_.resize(n); ay_.resize(n); az_.resize(n); ad_.resize(n);
-    bn1_.resize(n); ben_.resize(n); be0_.resize(n);
+    const size_t padded = (n + kLanes - 1) / kLanes * kLanes;  // padding: n = 0, d = -1, no error
+    ax_.assign(padded, 0); ay_.assign(padded, 0); az_.assign(padded, 0); ad_.assign(padded, -1);
+    bn1_.assign(padded, 0); ben_.assign(padded, 0); be0_.assign(padded, 0);
     vertices_on_.resize(n);
     slot_.assign(ps.size(), kNoPlane);
     for (size_t i = 0; i < n; ++i) {
@@ -210,17 +288,9 @@ class Tracer {
       ax_[i] = ay_[i] = az_[i] = 0;
       ad_[i] = -1;
     }
-    const size_t n = ax_.size();
-    const double* ax = ax_.data(); const double* ay = ay_.data();
-    const double* az = az_.data(); const double* ad = ad_.data();
-    double best = std::numeric_limits<double>::infinity();
-    size_t bi = n;
-    for (size_t i = 0; i < n; ++i) {
-      double a = ax[i] * u[0] + ay[i] * u[1] + az[i] * u[2];
-      double f = ax[i] * x + ay[i] * y + az[i] * z + ad[i];
-      double t = a > 0 ? -f / a : std::numeric_limits<double>::infinity();
-      if (t < best) { best = t; bi = i; }
-    }
+    const double p[3] = {x, y, z};
+    const size_t n = active_.size();
+    size_t bi = nearest_hit(ax_.data(), ay_.data(), az_.data(), ad_.data(), ax_.size(), p, u);
     for (size_t k = 0; k < G.size(); ++k) {
       uint32_t i = slot_[G[k]];
       ax_[i] = saved_[k][0]; ay_[i] = saved_[k][1]; az_[i] = saved_[k][2]; ad_[i] = saved_[k][3];
@@ -260,15 +330,9 @@ class Tracer {
     double xm = 0, dx = 0;
     for (int k = 0; k < 3; ++k) { xm = std::max(xm, std::fabs(w.x[k].v)); dx = std::max(dx, w.x[k].e); }
     const double c1 = (xm + 2 * dx) * exact::kBoundScale, c2 = (dx + 4 * exact::kEps * xm) * exact::kBoundScale;
-    const size_t n = ax_.size();
-    const double* ax = ax_.data(); const double* ay = ay_.data();
-    const double* az = az_.data(); const double* ad = ad_.data();
-    const double* bn1 = bn1_.data(); const double* ben = ben_.data(); const double* be0 = be0_.data();
-    for (size_t i = 0; i < n; ++i) {
-      double f = ax[i] * x + ay[i] * y + az[i] * z + ad[i];
-      double b = ben[i] * c1 + bn1[i] * c2 + be0[i];
-      if (f >= -b * exact::kBoundScale) cand_.push_back(uint32_t(i));
-    }
+    const double p[3] = {x, y, z};
+    near_planes(ax_.data(), ay_.data(), az_.data(), ad_.data(), bn1_.data(), ben_.data(), be0_.data(), ax_.size(), p, c1,
+                c2, cand_);
     for (uint32_t i : cand_) {
       uint32_t l = active_[i];
       if (mark_[l]) { tight.push_back(l); continue; }
