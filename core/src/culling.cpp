@@ -20,6 +20,33 @@ uint64_t mix(uint64_t& s) {
   return z ^ (z >> 31);
 }
 
+// Cube map of directions: cell = face * k^2 + i * k + j, face = 2 * axis + (component < 0).
+constexpr size_t kCubeCells = 24;
+constexpr size_t kNoCell = size_t(-1);
+size_t cube_cell(double x, double y, double z) {
+  const double v[3] = {x, y, z};
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(v[k]) > std::fabs(v[axis])) axis = k;
+  const double m = std::fabs(v[axis]);
+  if (!(m > 0) || !std::isfinite(m)) return kNoCell;
+  auto bin = [&](double w) {
+    double t = (w / m + 1) * 0.5 * double(kCubeCells);
+    return std::min(kCubeCells - 1, size_t(std::max(0.0, t)));
+  };
+  const size_t face = 2 * size_t(axis) + (v[axis] < 0);
+  return (face * kCubeCells + bin(v[(axis + 1) % 3])) * kCubeCells + bin(v[(axis + 2) % 3]);
+}
+// Direction of the point (i + fi, j + fj) / k of cell (face, i, j); fi = fj = 0.5 is the centre,
+// 0 or 1 the corners.
+void cube_cell_direction(size_t cell, double fi, double fj, double dir[3]) {
+  const size_t face = cell / (kCubeCells * kCubeCells), i = cell / kCubeCells % kCubeCells, j = cell % kCubeCells;
+  const int axis = int(face / 2);
+  dir[axis] = face % 2 ? -1.0 : 1.0;
+  dir[(axis + 1) % 3] = (double(i) + fi) / double(kCubeCells) * 2 - 1;
+  dir[(axis + 2) % 3] = (double(j) + fj) / double(kCubeCells) * 2 - 1;
+}
+
 constexpr size_t kDirectTraceLimit = 256;  // below this many planes culling costs more than it saves
 
 }  // namespace
@@ -60,7 +87,8 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   quiet.max_steps = 0;
   quiet.steps = nullptr;
   const double* nx = ps.nx(); const double* ny = ps.ny(); const double* nz = ps.nz(); const double* nd = ps.d();
-  std::vector<uint32_t> adj_offset, adj, mark, bfs;
+  std::vector<uint32_t> adj_offset, adj, mark, bfs, start_of_cell;
+  std::vector<char> cell_resolved;
   std::vector<double> xyz;
   for (;;) {
     ++out.rounds;
@@ -91,7 +119,44 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
     const double hx = 0.5 * (hi[0] - lo[0]), hy = 0.5 * (hi[1] - lo[1]), hz = 0.5 * (hi[2] - lo[2]);
     size_t added = 0;
-    uint32_t cur = 0;
+    // Climb starts: the vertex of K_S extreme in the direction of each cell of a cube map over
+    // the sphere of normals. A cell whose four corner directions all have that vertex as their
+    // strict maximum (every edge at the vertex descends along each corner) lies inside the
+    // vertex's normal cone, which is convex, so every direction of the cell peaks there: planes
+    // with normals in such a cell need one evaluation, no climb. Other cells only give the climb
+    // a start a few steps from its answer, whatever the order of the planes.
+    const size_t cells = 6 * kCubeCells * kCubeCells;
+    start_of_cell.resize(cells);
+    cell_resolved.assign(cells, 0);
+    {
+      uint32_t at = 0;
+      for (size_t cell = 0; cell < cells; ++cell) {
+        double dir[3];
+        cube_cell_direction(cell, 0.5, 0.5, dir);
+        auto g = [&](uint32_t v) { return dir[0] * xyz[3 * v] + dir[1] * xyz[3 * v + 1] + dir[2] * xyz[3 * v + 2]; };
+        double val = g(at);
+        for (bool moved = true; moved;) {
+          moved = false;
+          for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1]; ++i)
+            if (g(adj[i]) > val) { at = adj[i]; val = g(at); moved = true; }
+        }
+        start_of_cell[cell] = at;
+        bool strict = adj_offset[at + 1] > adj_offset[at];
+        for (int corner = 0; corner < 4 && strict; ++corner) {
+          double cd[3];
+          cube_cell_direction(cell, corner & 1, corner >> 1, cd);
+          for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1] && strict; ++i) {
+            const double* w = &xyz[3 * size_t(adj[i])];
+            const double* v = &xyz[3 * size_t(at)];
+            const double e[3] = {w[0] - v[0], w[1] - v[1], w[2] - v[2]};
+            // Strictly descending by a relative margin far above rounding; near-ties climb.
+            const double len = std::fabs(e[0]) + std::fabs(e[1]) + std::fabs(e[2]);
+            strict = cd[0] * e[0] + cd[1] * e[1] + cd[2] * e[2] < -1e-9 * len;
+          }
+        }
+        cell_resolved[cell] = strict;
+      }
+    }
     mark.assign(V, 0);
     uint32_t stamp = 0;
     for (uint32_t l : planes) {
@@ -105,7 +170,13 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       // (The box is a double computation like the climb; 2 * margin covers its rounding.)
       if (a * cx + b * cy + c * cz + d + std::fabs(a) * hx + std::fabs(b) * hy + std::fabs(c) * hz < -2 * margin) continue;
       auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
+      const size_t cell = cube_cell(a, b, c);
+      uint32_t cur = cell == kNoCell ? 0 : start_of_cell[cell];
       double val = f(cur);
+      if (cell != kNoCell && cell_resolved[cell]) {
+        if (val > -margin) { add(l); ++added; }
+        continue;
+      }
       for (;;) {
         bool moved = false;
         for (uint32_t i = adj_offset[cur]; i < adj_offset[cur + 1]; ++i) {
