@@ -149,9 +149,11 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
             const double* w = &xyz[3 * size_t(adj[i])];
             const double* v = &xyz[3 * size_t(at)];
             const double e[3] = {w[0] - v[0], w[1] - v[1], w[2] - v[2]};
-            // Strictly descending by a relative margin far above rounding; near-ties climb.
-            const double len = std::fabs(e[0]) + std::fabs(e[1]) + std::fabs(e[2]);
-            strict = cd[0] * e[0] + cd[1] * e[1] + cd[2] * e[2] < -1e-9 * len;
+            // Strictly descending by a margin far above the rounding of the coordinates (which
+            // are below ~2): the rounded direction of a very short edge says nothing about the
+            // exact one, so such vertices are left to the climb and its plateau search.
+            const double cd1 = std::fabs(cd[0]) + std::fabs(cd[1]) + std::fabs(cd[2]);
+            strict = cd[0] * e[0] + cd[1] * e[1] + cd[2] * e[2] < -1e-9 * cd1;
           }
         }
         cell_resolved[cell] = strict;
