@@ -20,10 +20,10 @@ uint64_t mix(uint64_t& s) {
   return z ^ (z >> 31);
 }
 
-// Cube map of directions: cell = face * k^2 + i * k + j, face = 2 * axis + (component < 0).
-constexpr size_t kCubeCells = 24;
+// Cube map of directions: cell = face * k^2 + i * k + j, face = 2 * axis + (component < 0), with
+// k cells per face side (k = 2..24, growing with the number of planes it serves).
 constexpr size_t kNoCell = size_t(-1);
-size_t cube_cell(double x, double y, double z) {
+size_t cube_cell(size_t cells_per_side, double x, double y, double z) {
   const double v[3] = {x, y, z};
   int axis = 0;
   for (int k = 1; k < 3; ++k)
@@ -31,20 +31,20 @@ size_t cube_cell(double x, double y, double z) {
   const double m = std::fabs(v[axis]);
   if (!(m > 0) || !std::isfinite(m)) return kNoCell;
   auto bin = [&](double w) {
-    double t = (w / m + 1) * 0.5 * double(kCubeCells);
-    return std::min(kCubeCells - 1, size_t(std::max(0.0, t)));
+    double t = (w / m + 1) * 0.5 * double(cells_per_side);
+    return std::min(cells_per_side - 1, size_t(std::max(0.0, t)));
   };
   const size_t face = 2 * size_t(axis) + (v[axis] < 0);
-  return (face * kCubeCells + bin(v[(axis + 1) % 3])) * kCubeCells + bin(v[(axis + 2) % 3]);
+  return (face * cells_per_side + bin(v[(axis + 1) % 3])) * cells_per_side + bin(v[(axis + 2) % 3]);
 }
 // Direction of the point (i + fi, j + fj) / k of cell (face, i, j); fi = fj = 0.5 is the centre,
 // 0 or 1 the corners.
-void cube_cell_direction(size_t cell, double fi, double fj, double dir[3]) {
-  const size_t face = cell / (kCubeCells * kCubeCells), i = cell / kCubeCells % kCubeCells, j = cell % kCubeCells;
+void cube_cell_direction(size_t cells_per_side, size_t cell, double fi, double fj, double dir[3]) {
+  const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side, j = cell % cells_per_side;
   const int axis = int(face / 2);
   dir[axis] = face % 2 ? -1.0 : 1.0;
-  dir[(axis + 1) % 3] = (double(i) + fi) / double(kCubeCells) * 2 - 1;
-  dir[(axis + 2) % 3] = (double(j) + fj) / double(kCubeCells) * 2 - 1;
+  dir[(axis + 1) % 3] = (double(i) + fi) / double(cells_per_side) * 2 - 1;
+  dir[(axis + 2) % 3] = (double(j) + fj) / double(cells_per_side) * 2 - 1;
 }
 
 constexpr size_t kDirectTraceLimit = 256;  // below this many planes culling costs more than it saves
@@ -125,14 +125,15 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     // vertex's normal cone, which is convex, so every direction of the cell peaks there: planes
     // with normals in such a cell need one evaluation, no climb. Other cells only give the climb
     // a start a few steps from its answer, whatever the order of the planes.
-    const size_t cells = 6 * kCubeCells * kCubeCells;
+    const size_t cells_per_side = std::min<size_t>(24, std::max<size_t>(2, size_t(std::sqrt(double(planes.size()) / 100))));
+    const size_t cells = 6 * cells_per_side * cells_per_side;
     start_of_cell.resize(cells);
     cell_resolved.assign(cells, 0);
     {
       uint32_t at = 0;
       for (size_t cell = 0; cell < cells; ++cell) {
         double dir[3];
-        cube_cell_direction(cell, 0.5, 0.5, dir);
+        cube_cell_direction(cells_per_side, cell, 0.5, 0.5, dir);
         auto g = [&](uint32_t v) { return dir[0] * xyz[3 * v] + dir[1] * xyz[3 * v + 1] + dir[2] * xyz[3 * v + 2]; };
         double val = g(at);
         for (bool moved = true; moved;) {
@@ -144,7 +145,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
         bool strict = adj_offset[at + 1] > adj_offset[at];
         for (int corner = 0; corner < 4 && strict; ++corner) {
           double cd[3];
-          cube_cell_direction(cell, corner & 1, corner >> 1, cd);
+          cube_cell_direction(cells_per_side, cell, corner & 1, corner >> 1, cd);
           for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1] && strict; ++i) {
             const double* w = &xyz[3 * size_t(adj[i])];
             const double* v = &xyz[3 * size_t(at)];
@@ -172,7 +173,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       // (The box is a double computation like the climb; 2 * margin covers its rounding.)
       if (a * cx + b * cy + c * cz + d + std::fabs(a) * hx + std::fabs(b) * hy + std::fabs(c) * hz < -2 * margin) continue;
       auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
-      const size_t cell = cube_cell(a, b, c);
+      const size_t cell = cube_cell(cells_per_side, a, b, c);
       uint32_t cur = cell == kNoCell ? 0 : start_of_cell[cell];
       double val = f(cur);
       if (cell != kNoCell && cell_resolved[cell]) {

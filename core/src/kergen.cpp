@@ -69,6 +69,8 @@ struct Setup {
 
 // Generic objective for the LP (ties are broken lexicographically anyway).
 constexpr double kDefaultDirection[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
+// Below this many faces the sample LP would cost about as much as the full LP it could save.
+constexpr size_t kQuickRejectMinFaces = 2000;
 constexpr double kLpBound = 8;  // scaled coordinates are below 1; the open-mesh box is within 4
 
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
@@ -83,7 +85,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   // Fast rejection: if the face planes of a random sample of faces already admit no common
   // point, the kernel is empty — proven by one small exact LP before any plane classes are built.
   // (A feasible sample proves nothing; the full path follows.)
-  if (s.mesh.boundary_edges == 0 && s.mesh.num_faces() > 64) {
+  if (s.mesh.boundary_edges == 0 && s.mesh.num_faces() > kQuickRejectMinFaces) {
     t = Clock::now();
     PlaneSet raw(&s.mesh.points, s.mesh.exact_shift);
     std::vector<uint32_t> sample;
