@@ -54,7 +54,7 @@ class SeidelLp {
 
   LpResult solve(const std::vector<uint32_t>& cons) {
     LpResult r;
-    VertexGeom v = make_vertex(ps_, cons[0], cons[1], cons[2]);
+    VertexGeom v = make_vertex(ps_, cons[0], cons[1], cons[2], false);
     for (size_t i = 3; i < cons.size(); ++i) {
       uint32_t h = cons[i];
       if (side(ps_, h, v) > 0 && !solve2(h, cons.data(), i, v)) {
@@ -94,9 +94,9 @@ class SeidelLp {
       if (m == h || m == g) continue;
       int r = line.rate_sign(ps_, m) * sigma;
       if (r > 0) {
-        if (ahead == kNoPlane || side(ps_, m, va) > 0) { ahead = m; va = make_vertex(ps_, h, g, m); }
+        if (ahead == kNoPlane || side(ps_, m, va) > 0) { ahead = m; va = make_vertex(ps_, h, g, m, false); }
       } else if (r < 0) {
-        if (behind == kNoPlane || side(ps_, m, vb) > 0) { behind = m; vb = make_vertex(ps_, h, g, m); }
+        if (behind == kNoPlane || side(ps_, m, vb) > 0) { behind = m; vb = make_vertex(ps_, h, g, m, false); }
       } else {
         parallel_.push_back(m);
       }
@@ -118,7 +118,7 @@ class SeidelLp {
       for (int y = x + 1; y < 3 && !have; ++y) {
         uint32_t bx = bounds_[x], by = bounds_[y], bz = bounds_[3 - x - y];
         if (sign_det3_normals(ps_, h, bx, by) == 0) continue;
-        VertexGeom c = make_vertex(ps_, h, bx, by);
+        VertexGeom c = make_vertex(ps_, h, bx, by, false);
         int sz = side(ps_, bz, c);
         if (sz > 0) continue;
         uint32_t tight[3] = {bx, by, bz};
@@ -223,6 +223,8 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
     }
   }
   for (int i = 0; i < 3; ++i) ps.pop_last();
+  // The optimum is kept (it starts the tracing): rebuilt with input-point recognition.
+  if (r.outcome == LpResult::Outcome::Optimal) r.vertex = make_vertex(ps, r.vertex.basis[0], r.vertex.basis[1], r.vertex.basis[2]);
   return r;
 }
 

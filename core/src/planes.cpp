@@ -220,14 +220,14 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
   return *v.exact;
 }
 
-VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point) {
   VertexGeom v;
   v.basis[0] = a; v.basis[1] = b; v.basis[2] = c;
   v.det_sign = sign_det3_normals(ps, a, b, c);
   assert(v.det_sign != 0 && "make_vertex: planes with dependent normals");
 
   // An input vertex on all three planes by construction is the vertex itself.
-  if (!ps.explicit_plane(a) && !ps.explicit_plane(b) && !ps.explicit_plane(c)) {
+  if (find_input_point && !ps.explicit_plane(a) && !ps.explicit_plane(b) && !ps.explicit_plane(c)) {
     const uint32_t planes[3] = {a, b, c};
     int smallest = 0;
     for (int i = 1; i < 3; ++i)
