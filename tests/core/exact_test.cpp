@@ -46,6 +46,31 @@ TEST(Exact, ApproxBoundsContainTheExactValue) {
   }
 }
 
+// The filtered det3 (permanent bound) on entries known only to +- e: the exact determinant of
+// the exact entries lies within the bound, including nearly singular matrices.
+TEST(Exact, FilteredDet3BoundContainsTheExactDeterminant) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int i = 0; i < 20000; ++i) {
+    double x[9];
+    for (double& v : x) v = U(rng);
+    if (i % 2) for (int k = 0; k < 3; ++k) x[6 + k] = x[k] + x[3 + k] * 0.5 + U(rng) * 1e-12;  // nearly singular
+    Approx a[9];
+    for (int k = 0; k < 9; ++k) {
+      const double e = (i % 3) ? std::fabs(x[k]) * 1e-14 * (1 + k) : 0;  // known entries or uncertain ones
+      const double shown = x[k] + (U(rng) * e);                           // any value within +- e
+      a[k] = Approx(shown, e + kergen::exact::kEps * std::fabs(shown) * 2);
+    }
+    const Approx d = kergen::det3(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8]);
+    Expansion ex[9];
+    for (int k = 0; k < 9; ++k) ex[k] = Expansion(x[k]);
+    const Expansion exact = kergen::det3(ex[0], ex[1], ex[2], ex[3], ex[4], ex[5], ex[6], ex[7], ex[8]);
+    const Expansion diff = exact - Expansion(d.v);
+    ASSERT_LE(std::fabs(diff.estimate()), d.e) << "case " << i;
+    if (d.sign() != 2) ASSERT_EQ(d.sign(), exact.sign()) << "case " << i;
+  }
+}
+
 TEST(Exact, Orient3dMatchesIntegerArithmetic) {
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<int64_t> I(-(int64_t(1) << 25), int64_t(1) << 25);
