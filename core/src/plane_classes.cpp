@@ -1,16 +1,20 @@
 // Exact plane classes: coplanar faces with the same orientation become one plane; a coplanar
 // class facing the other way becomes that plane's `opposite` (one plane used from both sides —
-// this is how flat kernels arise). Edge-adjacent coplanar faces are joined first (union-find,
-// exact orient3d), then class representatives are matched through a hash of the normalized
-// plane, every match confirmed exactly; keys near a cell border also probe the neighbour cell,
-// so rounding never hides a match.
+// this is how flat kernels arise).
+//
+// Every face gets a key: its normalized plane (unit normal, offset) in doubles, within a proven
+// kKeyError of the exact normalized plane in each component. Keys of one plane (or of opposite
+// planes, negated) therefore differ by at most kBorder, and keys further apart prove two faces
+// are not on one plane — the float filter that spares most exact tests. Exact orient3d then
+// decides every candidate; the sign under which the keys agree gives the relative orientation.
+// Edge-adjacent coplanar faces are joined first (union-find), then class representatives are
+// matched through a hash of the key's cell; keys near a cell border also probe the neighbour
+// cell, so rounding never hides a match.
 #include "plane_classes.h"
 
 #include "union_find.h"
 
-#include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace kergen {
 
@@ -27,83 +31,136 @@ bool same_plane(const PreparedMesh& m, const std::array<uint32_t, 3>& a, const s
   return true;
 }
 
-// Orientation agreement of two coplanar triangles: sign of n_a . n_b, which is never near zero
-// for parallel non-zero normals; exact components decide if the doubles underflow.
-int orientation_agreement(const PreparedMesh& m, const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b) {
-  auto pa = approx_plane(P(m, a[0]), P(m, a[1]), P(m, a[2]));
-  auto pb = approx_plane(P(m, b[0]), P(m, b[1]), P(m, b[2]));
-  Approx dot = pa.n[0] * pb.n[0] + pa.n[1] * pb.n[1] + pa.n[2] * pb.n[2];
-  if (dot.certain()) return dot.sign();
-  auto ea = exact_plane(P(m, a[0]), P(m, a[1]), P(m, a[2]), m.exact_shift);
-  auto eb = exact_plane(P(m, b[0]), P(m, b[1]), P(m, b[2]), m.exact_shift);
-  for (int k = 0; k < 3; ++k) {
-    int sa = ea.n[k].sign(), sb = eb.n[k].sign();
-    if (sa != 0 && sb != 0) return sa == sb ? 1 : -1;
-  }
-  return 1;
-}
-
-// Normalized plane (unit normal, offset) for hashing, accurate to a few ulps.
-std::array<double, 4> plane_key(const PreparedMesh& m, const std::array<uint32_t, 3>& t) {
-  auto c = approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
-  double n[3] = {c.n[0].v, c.n[1].v, c.n[2].v}, d = c.d.v;
-  double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  double err = std::max({c.n[0].e, c.n[1].e, c.n[2].e});
-  if (!(len > 0) || err > 1e-13 * len || !std::isfinite(len)) {
-    // Poorly determined in double (sliver or tiny triangle): round the exact coefficients.
-    auto e = exact_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]), m.exact_shift);
-    for (int k = 0; k < 3; ++k) n[k] = e.n[k].estimate();
-    d = e.d.estimate();
-    double mx = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
-    int ex = 0;
-    std::frexp(mx, &ex);
-    for (int k = 0; k < 3; ++k) n[k] = std::ldexp(n[k], -ex);
-    d = std::ldexp(d, -ex);
-    len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  }
-  return {n[0] / len, n[1] / len, n[2] / len, d / len};
-}
-
-// Cells of ~2e-10 keep nearly-but-not-exactly coplanar planes (common in refined meshes with
-// rounded coordinates) out of each other's chains; the border margin is far above the key's
-// rounding error (a few ulps, ~1e-15) and far below the cell size.
-constexpr double kCell = 1.0 / (int64_t(1) << 32);
+// Each key component is within kKeyError of the exact normalized plane's; two keys of one plane
+// thus agree within 2 kKeyError < kBorder (the margin also absorbs the rounding of the tests).
+constexpr double kKeyError = 4e-14;
 constexpr double kBorder = 1e-13;
+static_assert(2 * kKeyError < kBorder, "keys of one plane must agree within kBorder");
+
+struct Key {
+  double k[4];  // n / |n|, d / |n|
+};
+
+// The key of triangle t. From the double plane (n, d) with error bounds (e_n per normal
+// component, e_d): with E = sum e_n >= |n - N|, |n/|n| - N/|N|| <= 2E/|n| and
+// |d/|n| - D/|N|| <= (e_d + E |D|/|N|)/|n|, where |D|/|N| — the plane's distance to the origin —
+// is below sqrt(3) (scaled coordinates are below 1). So (4E + e_d)/|n| bounds the error; the
+// normalization's own rounding adds < 1e-15. Poorly determined planes (slivers, tiny or
+// underflowing triangles) round the exact coefficients instead (error ~1e-15).
+Key face_key(const PreparedMesh& m, const std::array<uint32_t, 3>& t) {
+  const auto c = approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
+  const double len = std::sqrt(c.n[0].v * c.n[0].v + c.n[1].v * c.n[1].v + c.n[2].v * c.n[2].v);
+  const double err = 4 * (c.n[0].e + c.n[1].e + c.n[2].e) + c.d.e;
+  if (err <= 3e-14 * len && len < HUGE_VAL) {  // false for NaN
+    const double inv = 1 / len;
+    return {{c.n[0].v * inv, c.n[1].v * inv, c.n[2].v * inv, c.d.v * inv}};
+  }
+  // The exact plane is of the points times 2^s: normal 2^2s N, offset 2^3s D. Scale the rounded
+  // coefficients to a largest normal component near 1 (no overflow in the norm) and undo the
+  // extra 2^s of the offset.
+  const auto e = exact_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]), m.exact_shift);
+  double n[3] = {e.n[0].estimate(), e.n[1].estimate(), e.n[2].estimate()};
+  int ex = 0;
+  std::frexp(std::fmax(std::fabs(n[0]), std::fmax(std::fabs(n[1]), std::fabs(n[2]))), &ex);
+  for (double& x : n) x = std::ldexp(x, -ex);
+  const double d = std::ldexp(e.d.estimate(), -ex - m.exact_shift);
+  const double inv = 1 / std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  return {{n[0] * inv, n[1] * inv, n[2] * inv, d * inv}};
+}
+
+// +1 if the keys agree within kBorder (possibly one plane, same orientation), -1 if a and -b do
+// (possibly opposite planes), 0 if neither: then the faces are certainly not coplanar. Never
+// both: a unit normal has a component of magnitude >= 1/sqrt(3).
+int key_match(const Key& a, const Key& b) {
+  bool same = true, opposite = true;
+  for (int i = 0; i < 4; ++i) {
+    same &= std::fabs(a.k[i] - b.k[i]) <= kBorder;
+    opposite &= std::fabs(a.k[i] + b.k[i]) <= kBorder;
+  }
+  return same ? 1 : (opposite ? -1 : 0);
+}
+
+// Cells of 2^-32 (~2e-10) keep nearly-but-not-exactly coplanar planes (common in refined meshes
+// with rounded coordinates) out of each other's chains. The cell of the negated key is the
+// mirror cell -1 - c = ~c: a cell and its mirror share one hash (the representative has a
+// non-negative first coordinate), so one probe finds both orientations of a plane.
+constexpr double kCell = 1.0 / (int64_t(1) << 32);
 
 uint64_t cell_hash(const int64_t c[4]) {
+  const int64_t flip = c[0] < 0 ? -1 : 0;  // x ^ -1 == ~x
   uint64_t h = 1469598103934665603ull;
-  for (int i = 0; i < 4; ++i) { h ^= uint64_t(c[i]); h *= 1099511628211ull; h ^= h >> 29; }
+  for (int i = 0; i < 4; ++i) {
+    h ^= uint64_t(c[i] ^ flip);
+    h *= 1099511628211ull;
+    h ^= h >> 29;
+  }
   return h;
 }
 
-// Open-addressing table: cell hash -> first plane of a chain (chains continue in `next`).
-// Different cells with equal hashes just share a chain: every candidate is confirmed exactly.
+// Calls visit(hash) for each cell whose closed extent lies within kBorder of the key in every
+// component: the key's own cell, plus the neighbour across any border closer than kBorder (rare).
+// A key within kBorder of key k or of -k always probes the cell that k was stored under.
+template <class Visit>
+void for_each_cell(const Key& key, Visit visit) {
+  int64_t base[4];
+  int near[4];
+  bool any_near = false;
+  for (int i = 0; i < 4; ++i) {
+    const double x = key.k[i] / kCell;  // exact: a power-of-two scaling
+    base[i] = int64_t(std::floor(x));
+    const double frac = x - double(base[i]);  // exact
+    near[i] = frac <= kBorder / kCell ? -1 : (frac >= 1 - kBorder / kCell ? 1 : 0);
+    any_near |= near[i] != 0;
+  }
+  visit(cell_hash(base));
+  if (!any_near) return;
+  for (int mask = 1; mask < 16; ++mask) {
+    int64_t cell[4];
+    bool skip = false;
+    for (int i = 0; i < 4; ++i) {
+      const bool bit = (mask >> i) & 1;
+      if (bit && near[i] == 0) { skip = true; break; }
+      cell[i] = base[i] + (bit ? near[i] : 0);
+    }
+    if (!skip) visit(cell_hash(cell));
+  }
+}
+
+int64_t primary_cell_component(double x) { return int64_t(std::floor(x / kCell)); }
+
+// Open-addressing table: cell hash -> first plane of a chain (chains continue in `next`). Slots
+// keep 32 bits of the hash; cells that collide just share a chain, as every candidate is
+// confirmed exactly.
 class CellTable {
  public:
   explicit CellTable(size_t n) {
     size_t cap = 16;
     while (cap < 2 * n + 16) cap <<= 1;
-    keys_.assign(cap, 0);
-    heads_.assign(cap, kNoPlane);
+    slots_.assign(cap, Slot{0, kNoPlane});
     mask_ = cap - 1;
   }
   uint32_t head(uint64_t h) const {
+    const uint32_t tag = uint32_t(h >> 32);
     for (size_t i = h & mask_;; i = (i + 1) & mask_) {
-      if (heads_[i] == kNoPlane) return kNoPlane;
-      if (keys_[i] == h) return heads_[i];
+      if (slots_[i].head == kNoPlane) return kNoPlane;
+      if (slots_[i].tag == tag) return slots_[i].head;
     }
   }
   // Makes `id` the new head of h's chain and returns the previous head.
   uint32_t push(uint64_t h, uint32_t id) {
+    const uint32_t tag = uint32_t(h >> 32);
     for (size_t i = h & mask_;; i = (i + 1) & mask_) {
-      if (heads_[i] == kNoPlane) { keys_[i] = h; heads_[i] = id; return kNoPlane; }
-      if (keys_[i] == h) { uint32_t old = heads_[i]; heads_[i] = id; return old; }
+      Slot& s = slots_[i];
+      if (s.head == kNoPlane) { s = {tag, id}; return kNoPlane; }
+      if (s.tag == tag) { uint32_t old = s.head; s.head = id; return old; }
     }
   }
 
  private:
-  std::vector<uint64_t> keys_;
-  std::vector<uint32_t> heads_;
+  struct Slot {
+    uint32_t tag, head;
+  };
+  std::vector<Slot> slots_;
   size_t mask_;
 };
 
@@ -111,64 +168,56 @@ class CellTable {
 
 void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
   const size_t nf = m.num_faces();
+  // Plane ids index the per-plane arrays below.
+  const uint32_t first_plane = uint32_t(ps.size());
+  std::vector<Key> key(nf);
+  for (uint32_t f = 0; f < nf; ++f) key[f] = face_key(m, m.rep[f]);
+
+  // 1. Edge-adjacent coplanar faces with the same orientation (the usual way faces share a
+  //    plane): one exact orient3d confirms each pair whose keys agree.
   UnionFind uf(nf);
-  // 1. Edge-adjacent coplanar faces with the same orientation.
   for (const auto& pr : m.adjacent) {
-    uint32_t a = uf.find(pr[0]), b = uf.find(pr[1]);
+    if (key_match(key[pr[0]], key[pr[1]]) <= 0) continue;
+    const uint32_t a = uf.find(pr[0]), b = uf.find(pr[1]);
     if (a == b) continue;
     if (!same_plane(m, m.rep[pr[0]], m.rep[pr[1]])) continue;
-    if (orientation_agreement(m, m.rep[pr[0]], m.rep[pr[1]]) <= 0) continue;
     uf.unite(a, b);
   }
-  // 2. Class representatives matched through the cell table.
+
+  // 2. Class representatives (the smallest face of each union) in face order, matched through
+  //    the cell table; a new plane takes the representative's triangle.
   std::vector<uint32_t> class_plane(nf, kNoPlane);
-  std::vector<uint32_t> plane_face;  // plane -> face whose triangle defines it
-  std::vector<uint32_t> next;        // chain links per plane
+  std::vector<uint32_t> plane_face;  // plane - first_plane -> face whose triangle defines it
+  std::vector<uint32_t> next;        // chain links, by plane - first_plane
   size_t roots = 0;
   for (uint32_t f = 0; f < nf; ++f) roots += uf.find(f) == f;
+  plane_face.reserve(roots);
+  next.reserve(roots);
   CellTable table(roots);
   for (uint32_t f = 0; f < nf; ++f) {
     if (uf.find(f) != f) continue;
     const auto& r = m.rep[f];
-    std::array<double, 4> key = plane_key(m, r);
-    int64_t primary[4];
-    for (int i = 0; i < 4; ++i) primary[i] = int64_t(std::floor(key[i] / kCell));
+    const Key& k = key[f];
     uint32_t found = kNoPlane, opposite = kNoPlane;
-    for (int sgn = 1; sgn >= -1 && found == kNoPlane; sgn -= 2) {
-      int64_t base[4];
-      int near[4];
-      for (int i = 0; i < 4; ++i) {
-        double k = sgn * key[i] / kCell;
-        base[i] = int64_t(std::floor(k));
-        double frac = k - double(base[i]);
-        near[i] = frac < kBorder / kCell ? -1 : (frac > 1 - kBorder / kCell ? 1 : 0);
+    for_each_cell(k, [&](uint64_t h) {
+      for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) {
+        const uint32_t of = plane_face[other - first_plane];
+        const int orientation = key_match(k, key[of]);
+        if (orientation == 0 || !same_plane(m, m.rep[of], r)) continue;
+        if (orientation > 0) found = other;
+        else opposite = other;  // at most one plane per orientation, so this one is unlinked
       }
-      for (int mask = 0; mask < 16 && found == kNoPlane; ++mask) {
-        int64_t cell[4];
-        bool skip = false;
-        for (int i = 0; i < 4; ++i) {
-          bool bit = (mask >> i) & 1;
-          if (bit && near[i] == 0) { skip = true; break; }
-          cell[i] = base[i] + (bit ? near[i] : 0);
-        }
-        if (skip) continue;
-        for (uint32_t other = table.head(cell_hash(cell)); other != kNoPlane; other = next[other]) {
-          const auto& orep = m.rep[plane_face[other]];
-          if (!same_plane(m, orep, r)) continue;
-          int agree = orientation_agreement(m, orep, r);
-          if (sgn == 1 && agree > 0) { found = other; break; }
-          if (sgn == -1 && agree < 0 && ps.opposite(other) == kNoPlane) opposite = other;
-        }
-      }
-    }
+    });
     if (found != kNoPlane) {
       class_plane[f] = found;
       continue;
     }
-    uint32_t id = ps.add_from_points(r[0], r[1], r[2]);
+    const uint32_t id = ps.add_from_points(r[0], r[1], r[2]);
     class_plane[f] = id;
     plane_face.push_back(f);
-    next.push_back(table.push(cell_hash(primary), id));
+    const int64_t cell[4] = {primary_cell_component(k.k[0]), primary_cell_component(k.k[1]),
+                             primary_cell_component(k.k[2]), primary_cell_component(k.k[3])};
+    next.push_back(table.push(cell_hash(cell), id));
     if (opposite != kNoPlane) ps.set_opposite(opposite, id);
   }
   face_plane.assign(nf, kNoPlane);
@@ -179,41 +228,58 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
 }
 
 void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
-  // Compressed rows: points on each plane, planes through each point (sorted, unique).
+  // Compressed rows (sorted, unique) in linear time, by transposing twice:
+  //  a. each plane's points with repeats: the face loops bucketed by plane;
+  //  b. each point's planes, filled plane by plane in increasing order — so every row comes out
+  //     sorted, and a repeated (point, plane) pair is the row's last entry;
+  //  c. each plane's points, filled point by point from b: sorted, unique.
   const size_t nf = m.num_faces();
   const size_t np = ps.size(), nv = m.points.size() / 3;
-  std::vector<uint32_t> plane_off(np + 1, 0), point_off(nv + 1, 0);
-  for (uint32_t f = 0; f < nf; ++f)
-    for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) {
-      plane_off[face_plane[f] + 1]++;
-      point_off[m.loops[i] + 1]++;
-    }
-  for (size_t i = 0; i < np; ++i) plane_off[i + 1] += plane_off[i];
-  for (size_t i = 0; i < nv; ++i) point_off[i + 1] += point_off[i];
-  std::vector<uint32_t> plane_pts(plane_off[np]), point_pls(point_off[nv]);
+  auto prefix_sum = [](std::vector<uint32_t>& off) {
+    for (size_t i = 1; i < off.size(); ++i) off[i] += off[i - 1];
+  };
+  // a.
+  std::vector<uint32_t> raw_off(np + 1, 0);
+  for (uint32_t f = 0; f < nf; ++f) raw_off[face_plane[f] + 1] += m.loop_offsets[f + 1] - m.loop_offsets[f];
+  prefix_sum(raw_off);
+  std::vector<uint32_t> raw(raw_off[np]);
   {
-    std::vector<uint32_t> fp(plane_off.begin(), plane_off.end() - 1), fv(point_off.begin(), point_off.end() - 1);
+    std::vector<uint32_t> fill(raw_off.begin(), raw_off.end() - 1);
     for (uint32_t f = 0; f < nf; ++f)
-      for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) {
-        plane_pts[fp[face_plane[f]]++] = m.loops[i];
-        point_pls[fv[m.loops[i]]++] = face_plane[f];
+      for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) raw[fill[face_plane[f]]++] = m.loops[i];
+  }
+  // b. Counts without repeats (last[v]: the last plane counted for v), then the fill.
+  std::vector<uint32_t> plane_off(np + 1, 0), point_off(nv + 1, 0);
+  {
+    std::vector<uint32_t> last(nv, kNoPlane);
+    for (uint32_t p = 0; p < np; ++p)
+      for (uint32_t i = raw_off[p]; i < raw_off[p + 1]; ++i) {
+        const uint32_t v = raw[i];
+        if (last[v] == p) continue;
+        last[v] = p;
+        point_off[v + 1]++;
+        plane_off[p + 1]++;
       }
   }
-  // Sort and deduplicate each row in place, then compact.
-  auto compact = [](std::vector<uint32_t>& off, std::vector<uint32_t>& data) {
-    size_t out = 0;
-    for (size_t r = 0; r + 1 < off.size(); ++r) {
-      uint32_t b = off[r], e = off[r + 1];
-      std::sort(data.begin() + b, data.begin() + e);
-      off[r] = uint32_t(out);
-      for (uint32_t i = b; i < e; ++i)
-        if (i == b || data[i] != data[i - 1]) data[out++] = data[i];
-    }
-    off.back() = uint32_t(out);
-    data.resize(out);
-  };
-  compact(plane_off, plane_pts);
-  compact(point_off, point_pls);
+  prefix_sum(plane_off);
+  prefix_sum(point_off);
+  std::vector<uint32_t> point_pls(point_off[nv]);
+  {
+    std::vector<uint32_t> fill(point_off.begin(), point_off.end() - 1);
+    for (uint32_t p = 0; p < np; ++p)
+      for (uint32_t i = raw_off[p]; i < raw_off[p + 1]; ++i) {
+        const uint32_t v = raw[i];
+        if (fill[v] > point_off[v] && point_pls[fill[v] - 1] == p) continue;
+        point_pls[fill[v]++] = p;
+      }
+  }
+  // c.
+  std::vector<uint32_t> plane_pts(plane_off[np]);
+  {
+    std::vector<uint32_t> fill(plane_off.begin(), plane_off.end() - 1);
+    for (uint32_t v = 0; v < nv; ++v)
+      for (uint32_t i = point_off[v]; i < point_off[v + 1]; ++i) plane_pts[fill[point_pls[i]]++] = v;
+  }
   ps.set_incidence(std::move(plane_off), std::move(plane_pts), std::move(point_off), std::move(point_pls));
 }
 
