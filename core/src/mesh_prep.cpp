@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <numeric>
 #include <sstream>
 
@@ -93,6 +95,69 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   return out;
 }
 
+// The exponent of the lowest set bit of a finite non-zero double, read from its bits:
+// x = mant 2^(biased - 1075), with the implicit leading bit for normal numbers, and
+// x = mant 2^-1074 for subnormal ones.
+int lowest_bit_exponent(double x) {
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  uint64_t mant = bits & ((uint64_t(1) << 52) - 1);
+  int biased = int((bits >> 52) & 0x7ff);
+  if (biased) mant |= uint64_t(1) << 52;
+  else biased = 1;
+  // mant & -mant keeps the lowest set bit; converted to a double (a power of two below 2^53,
+  // exact), its exponent field is that bit's position plus 1023.
+  const double low = double(mant & (~mant + 1));
+  uint64_t low_bits;
+  std::memcpy(&low_bits, &low, sizeof low_bits);
+  return biased - 1075 + int(low_bits >> 52) - 1023;
+}
+
+// Whether two used vertices have the same position (coordinates compared with ==, so -0 and
+// +0 are one position): a hash table of the used vertices, expected linear time.
+bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used) {
+  size_t bits = 1;
+  while ((size_t(1) << bits) < 2 * num_used) ++bits;  // load factor <= 1/2
+  const uint32_t kEmpty = 0xffffffffu;
+  std::vector<uint32_t> table(size_t(1) << bits, kEmpty);
+  const size_t mask = table.size() - 1;
+  for (uint32_t v = 0; v < used.size(); ++v) {
+    if (!used[v]) continue;
+    const double* p = &pts[3 * size_t(v)];
+    uint64_t h = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double x = p[k] + 0.0;  // -0 + 0 = +0: equal coordinates hash alike
+      uint64_t b;
+      std::memcpy(&b, &x, sizeof b);
+      h = (h ^ b ^ (b >> 29)) * 0x9e3779b97f4a7c15ull;  // the high bits depend on every input bit
+    }
+    for (size_t slot = size_t(h >> (64 - bits));; slot = (slot + 1) & mask) {
+      if (table[slot] == kEmpty) { table[slot] = v; break; }
+      const double* q = &pts[3 * size_t(table[slot])];
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return true;
+    }
+  }
+  return false;
+}
+
+// The pair reported when used vertices share a position: the two lowest ids at the
+// lexicographically smallest shared position (a sort, run only once a pair is known to exist).
+std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, const std::vector<char>& used) {
+  std::vector<uint32_t> order;
+  for (uint32_t v = 0; v < used.size(); ++v)
+    if (used[v]) order.push_back(v);
+  auto at = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    const double *p = at(a), *q = at(b);
+    return p[0] != q[0] ? p[0] < q[0] : (p[1] != q[1] ? p[1] < q[1] : (p[2] != q[2] ? p[2] < q[2] : a < b));
+  });
+  for (size_t i = 1; i < order.size(); ++i) {
+    const double *p = at(order[i - 1]), *q = at(order[i]);
+    if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return {order[i - 1], order[i]};
+  }
+  return {0, 0};  // not reached: called only when a shared position exists
+}
+
 bool lex_less(const double* a, const double* b) {
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }
@@ -118,65 +183,73 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   if (!mesh.face_sizes && mesh.num_indices % 3 != 0)
     return fail(m, Error::InvalidArgument, "triangle indices: the count " + std::to_string(mesh.num_indices) + " is not a multiple of 3");
 
-  // Offsets of the input faces; sizes must add up.
-  std::vector<size_t> offsets(nf + 1, 0);
-  for (size_t f = 0; f < nf; ++f) {
-    size_t k = mesh.face_sizes ? mesh.face_sizes[f] : 3;
-    if (k < 3) {
-      std::ostringstream s;
-      s << "face " << f << " has " << k << " vertices; a face needs at least 3";
-      return fail(m, Error::FaceTooSmall, s.str());
+  // Face sizes must add up. (No offsets are stored: the faces are walked in order below.)
+  if (mesh.face_sizes) {
+    size_t total = 0;
+    for (size_t f = 0; f < nf; ++f) {
+      size_t k = mesh.face_sizes[f];
+      if (k < 3) {
+        std::ostringstream s;
+        s << "face " << f << " has " << k << " vertices; a face needs at least 3";
+        return fail(m, Error::FaceTooSmall, s.str());
+      }
+      total += k;
+      if (total > mesh.num_indices)
+        return fail(m, Error::InvalidArgument, "face sizes add up to more than the number of indices");
     }
-    offsets[f + 1] = offsets[f] + k;
-    if (offsets[f + 1] > mesh.num_indices)
-      return fail(m, Error::InvalidArgument, "face sizes add up to more than the number of indices");
+    if (total != mesh.num_indices)
+      return fail(m, Error::InvalidArgument, "face sizes add up to " + std::to_string(total) + " but " + std::to_string(mesh.num_indices) + " indices were given");
   }
-  if (offsets[nf] != mesh.num_indices)
-    return fail(m, Error::InvalidArgument, "face sizes add up to " + std::to_string(offsets[nf]) + " but " + std::to_string(mesh.num_indices) + " indices were given");
+  auto face_size = [&](size_t f) -> size_t { return mesh.face_sizes ? mesh.face_sizes[f] : 3; };
 
+  // The largest magnitude (for the scale below) is gathered in the same pass.
+  double maxabs = 0;
   for (size_t i = 0; i < 3 * nv; ++i) {
     if (!std::isfinite(mesh.positions[i])) {
       std::ostringstream s;
       s << "vertex " << i / 3 << " has a non-finite coordinate (" << mesh.positions[i] << ")";
       return fail(m, Error::NonFiniteCoordinate, s.str());
     }
+    maxabs = std::max(maxabs, std::fabs(mesh.positions[i]));
   }
-  for (size_t i = 0; i < mesh.num_indices; ++i) {
-    if (mesh.indices[i] >= nv) {
-      size_t f = size_t(std::upper_bound(offsets.begin(), offsets.end(), i) - offsets.begin()) - 1;
-      std::ostringstream s;
-      s << "face " << f << " refers to vertex " << mesh.indices[i] << " but the mesh has " << nv << " vertices";
-      return fail(m, Error::IndexOutOfRange, s.str());
-    }
+  // Indices in range: the largest one first (a branch-free pass), the culprit only if needed.
+  uint32_t max_index = 0;
+  for (size_t i = 0; i < mesh.num_indices; ++i) max_index = std::max(max_index, mesh.indices[i]);
+  if (max_index >= nv) {
+    size_t i = 0;
+    while (mesh.indices[i] < nv) ++i;
+    size_t f = 0;
+    for (size_t end = face_size(0); end <= i; end += face_size(++f)) {}
+    std::ostringstream s;
+    s << "face " << f << " refers to vertex " << mesh.indices[i] << " but the mesh has " << nv << " vertices";
+    return fail(m, Error::IndexOutOfRange, s.str());
   }
 
   // Scale by a power of two (exact) so that coordinates are below 1 in magnitude: keeps the
   // exact arithmetic away from overflow and underflow whatever the input's units.
-  double maxabs = 0;
-  for (size_t i = 0; i < 3 * nv; ++i) maxabs = std::max(maxabs, std::fabs(mesh.positions[i]));
   int ex = 0;
   if (maxabs > 0) std::frexp(maxabs, &ex);
   // (As an exponent: for an input of subnormal numbers only, 2^-ex itself is not a double.)
   m.scale_exp = -ex;
   m.points.resize(3 * nv);
-  for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = m.to_scaled(mesh.positions[i]);
   // The exact predicates are polynomials of degree <= 9 in the coordinates. Expansion
   // arithmetic is exact only while no bit of a product falls below 2^-1074 (underflow) and no
   // magnitude reaches ~2^996 (the splitter overflows): with coordinates below 1 (scaled above),
   // the lowest set bit L of any coordinate must satisfy 9 (L + shift) >= -1074 + margin and
   // 9 shift + 10 < 996.
   {
-    int lowest = 0;
-    for (size_t i = 0; i < 3 * nv; ++i) {
-      double x = m.points[i];
-      if (x == 0) continue;
-      int ex = 0;
-      double f = std::frexp(std::fabs(x), &ex);  // x = f 2^ex, f in [0.5, 1)
-      uint64_t mant = uint64_t(std::ldexp(f, 53));  // exact: 53-bit integer
-      int tz = 0;
-      while (!(mant & 1)) { mant >>= 1; ++tz; }
-      lowest = std::min(lowest, ex - 53 + tz);
+    // When 2^scale_exp is a double, multiplying by it rounds exactly like ldexp (both give the
+    // correctly rounded x 2^scale_exp, subnormal results included) at a fraction of the cost;
+    // otherwise (inputs of subnormal numbers only) ldexp scales each coordinate.
+    if (m.scale_exp >= -1074 && m.scale_exp <= 1023) {
+      const double factor = std::ldexp(1.0, m.scale_exp);
+      for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = mesh.positions[i] * factor;
+    } else {
+      for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = m.to_scaled(mesh.positions[i]);
     }
+    int lowest = 0;
+    for (size_t i = 0; i < 3 * nv; ++i)
+      if (m.points[i] != 0) lowest = std::min(lowest, lowest_bit_exponent(m.points[i]));
     const int kLowestAllowed = -112, kMaxShift = 109;
     int shift = std::max(0, kLowestAllowed - lowest);
     if (shift > kMaxShift) {
@@ -191,67 +264,91 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
 
   // Faces without repeated consecutive vertices; faces left with < 3 distinct vertices carry
   // no area and no edges of their own (a -> b -> a pairs cancel), so they are dropped here.
-  std::vector<uint32_t> clean_offsets{0}, clean;
-  std::vector<uint32_t> clean_source;
-  clean.reserve(mesh.num_indices);
-  for (size_t f = 0; f < nf; ++f) {
-    size_t begin = clean.size();
-    size_t k = offsets[f + 1] - offsets[f];
-    for (size_t i = 0; i < k; ++i) {
-      uint32_t v = mesh.indices[offsets[f] + i];
-      if (clean.size() > begin && clean.back() == v) continue;
-      clean.push_back(v);
+  // The same pass marks the used vertices and counts the edge uses per lower vertex id (the
+  // buckets of the edge check below).
+  std::vector<uint32_t> clean_offsets{0}, clean(mesh.num_indices);
+  clean_offsets.reserve(nf + 1);
+  std::vector<char> used(nv, 0);
+  std::vector<uint32_t> bucket(nv + 1, 0);  // bucket[lo + 1]: uses of edges (lo, hi > lo)
+  {
+    const uint32_t* in = mesh.indices;
+    size_t n = 0;  // clean entries so far
+    for (size_t f = 0; f < nf; ++f) {
+      const size_t begin = n, k = face_size(f);
+      for (size_t i = 0; i < k; ++i)
+        if (n == begin || clean[n - 1] != in[i]) clean[n++] = in[i];
+      in += k;
+      while (n - begin > 1 && clean[n - 1] == clean[begin]) --n;
+      if (n - begin < 3) {
+        n = begin;
+        ++m.dropped_faces;
+        continue;
+      }
+      clean_offsets.push_back(uint32_t(n));
+      for (size_t i = begin; i < n; ++i) {
+        const uint32_t u = clean[i], v = clean[i + 1 < n ? i + 1 : begin];
+        used[u] = 1;
+        bucket[std::min(u, v) + 1]++;
+      }
     }
-    while (clean.size() - begin > 1 && clean.back() == clean[begin]) clean.pop_back();
-    if (clean.size() - begin < 3) {
-      clean.resize(begin);
-      ++m.dropped_faces;
-      continue;
-    }
-    clean_offsets.push_back(uint32_t(clean.size()));
-    clean_source.push_back(uint32_t(f));
+    clean.resize(n);
   }
   const size_t cf = clean_offsets.size() - 1;
   if (cf == 0) return fail(m, Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
 
-  // Edge use, bucketed by the lower vertex id (counting sort, no hashing): each bucket is small
-  // (the vertex's degree), sorted by the upper id, then each run of equal edges is inspected.
-  struct HalfEdge { uint32_t hi; uint32_t face; uint32_t forward; };
-  std::vector<uint32_t> bucket(nv + 1, 0);
-  for (size_t f = 0; f < cf; ++f)
-    for (size_t i = clean_offsets[f], e = clean_offsets[f + 1]; i < e; ++i) {
-      uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : clean_offsets[f]];
-      bucket[std::min(u, v) + 1]++;
-    }
+  // Edge uses bucketed by the lower vertex id (counting sort, no hashing): each bucket is small
+  // (the vertex's degree) and is sorted by the upper id, then each run of equal edges is
+  // inspected. A use is one 64-bit key, upper id << 32 | face << 1 | (1 if the face runs from
+  // lo to hi): sorting the keys orders a bucket by upper id and the uses of one edge by face,
+  // which is input order (faces are filled in order), so the result does not depend on the sort.
+  // (face < 2^31: clean.size() < 2^32 and every face has at least 3 uses.)
   for (size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
-  std::vector<HalfEdge> half(bucket[nv]);
+  // (Left uninitialized: every entry is written below.)
+  std::unique_ptr<uint64_t[]> half(new uint64_t[bucket[nv]]);
   {
     std::vector<uint32_t> fill(bucket.begin(), bucket.end() - 1);
     for (size_t f = 0; f < cf; ++f)
       for (size_t i = clean_offsets[f], e = clean_offsets[f + 1]; i < e; ++i) {
         uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : clean_offsets[f]];
-        half[fill[std::min(u, v)]++] = {std::max(u, v), uint32_t(f), u < v ? 1u : 0u};
+        half[fill[std::min(u, v)]++] = uint64_t(std::max(u, v)) << 32 | uint64_t(f) << 1 | (u < v ? 1u : 0u);
       }
   }
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
   uint64_t open_ex = 0, nonmanifold_ex = 0, inconsistent_ex = 0;
   UnionFind components(cf);
   std::vector<std::array<uint32_t, 2>> face_pairs;
-  face_pairs.reserve(half.size() / 2);
+  face_pairs.reserve(bucket[nv] / 2);
   for (size_t lo = 0; lo < nv; ++lo) {
-    HalfEdge* b = half.data() + bucket[lo];
-    HalfEdge* e = half.data() + bucket[lo + 1];
-    std::sort(b, e, [](const HalfEdge& x, const HalfEdge& y) { return x.hi < y.hi; });
-    for (HalfEdge* r = b; r != e;) {
-      HalfEdge* q = r;
+    uint64_t* b = half.get() + bucket[lo];
+    const size_t k = bucket[lo + 1] - bucket[lo];
+    uint64_t* e = b + k;
+    if (k <= 32) {
+      // Insertion sort, inline, for the usual small bucket: a few keys cost less to sort than a
+      // call to std::sort.
+      for (uint64_t* p = b + 1; p < e; ++p) {
+        const uint64_t x = *p;
+        uint64_t* q = p;
+        for (; q != b && q[-1] > x; --q) *q = q[-1];
+        *q = x;
+      }
+    } else {
+      std::sort(b, e);
+    }
+    for (uint64_t* r = b; r != e;) {
+      const uint32_t hi = uint32_t(*r >> 32);
+      uint64_t* q = r;
       uint32_t forward = 0;
-      while (q != e && q->hi == r->hi) forward += q->forward, ++q;
+      while (q != e && uint32_t(*q >> 32) == hi) forward += *q & 1, ++q;
       size_t n = size_t(q - r);
-      uint64_t key = (uint64_t(lo) << 32) | r->hi;
+      uint64_t key = (uint64_t(lo) << 32) | hi;
       if (n == 1) { if (!open++) open_ex = key; }
       else if (n > 2) { if (!nonmanifold++) nonmanifold_ex = key; }
       else if (forward != 1) { if (!inconsistent++) inconsistent_ex = key; }
-      else { components.unite(r[0].face, r[1].face); face_pairs.push_back({r[0].face, r[1].face}); }
+      else {
+        const uint32_t f0 = uint32_t(r[0]) >> 1, f1 = uint32_t(r[1]) >> 1;
+        components.unite(f0, f1);
+        face_pairs.push_back({f0, f1});
+      }
       r = q;
     }
   }
@@ -270,8 +367,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   m.boundary_edges = open;
   // Faces joined by boundary edges only are joined through vertices for the component count.
   {
-    std::vector<uint32_t> first_face(nv, 0xffffffffu);
     if (open) {
+      std::vector<uint32_t> first_face(nv, 0xffffffffu);
       for (size_t f = 0; f < cf; ++f)
         for (size_t i = clean_offsets[f]; i < clean_offsets[f + 1]; ++i) {
           uint32_t v = clean[i];
@@ -286,40 +383,44 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
   }
   {
-    std::vector<char> used(nv, 0);
-    for (uint32_t v : clean) used[v] = 1;
-    size_t unused = nv - size_t(std::count(used.begin(), used.end(), 1));
+    const size_t unused = nv - size_t(std::count(used.begin(), used.end(), 1));
     if (unused)
       m.warnings.push_back({Warning::Kind::UnusedVertices, unused, std::to_string(unused) + " vertices are not used by any face"});
     // Two distinct vertices of a closed surface at one position: the surface touches itself
     // there (it is not embedded), and the intersection of its face half-spaces is then not its
     // kernel — refused rather than answered wrongly.
-    std::vector<uint32_t> order;
-    order.reserve(nv);
-    for (uint32_t v = 0; v < nv; ++v)
-      if (used[v]) order.push_back(v);
-    auto at = [&](uint32_t v) { return &m.points[3 * size_t(v)]; };
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-      const double *p = at(a), *q = at(b);
-      return p[0] != q[0] ? p[0] < q[0] : (p[1] != q[1] ? p[1] < q[1] : (p[2] != q[2] ? p[2] < q[2] : a < b));
-    });
-    for (size_t i = 1; i < order.size(); ++i) {
-      const double *p = at(order[i - 1]), *q = at(order[i]);
-      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) {
-        return fail(m, Error::NonManifoldEdge,
-                    "vertices " + std::to_string(order[i - 1]) + " and " + std::to_string(order[i]) +
-                        " have the same position: the surface touches itself there (weld them, or separate the pieces)");
-      }
+    if (has_shared_position(m.points, used, nv - unused)) {
+      const auto pair = first_shared_position(m.points, used);
+      return fail(m, Error::NonManifoldEdge,
+                  "vertices " + std::to_string(pair[0]) + " and " + std::to_string(pair[1]) +
+                      " have the same position: the surface touches itself there (weld them, or separate the pieces)");
     }
   }
 
-  // Bounding box and enclosed volume (double; relative to the box centre for accuracy).
-  for (int k = 0; k < 3; ++k) { m.bbox_min[k] = INFINITY; m.bbox_max[k] = -INFINITY; }
-  for (uint32_t v : clean)
+  // Bounding box of the used vertices. It is defined as if taken over every use in loop order:
+  // ties keep the held bound, so a zero bound has the sign of the first zero met. Over the used
+  // vertices in id order the values are the same; only a zero bound may differ (in sign), and it
+  // is then taken again in loop order.
+  auto reset_bbox = [&] {
+    for (int k = 0; k < 3; ++k) { m.bbox_min[k] = INFINITY; m.bbox_max[k] = -INFINITY; }
+  };
+  auto grow_bbox = [&](uint32_t v) {
     for (int k = 0; k < 3; ++k) {
-      m.bbox_min[k] = std::min(m.bbox_min[k], m.points[3 * v + k]);
-      m.bbox_max[k] = std::max(m.bbox_max[k], m.points[3 * v + k]);
+      m.bbox_min[k] = std::min(m.bbox_min[k], m.points[3 * size_t(v) + k]);
+      m.bbox_max[k] = std::max(m.bbox_max[k], m.points[3 * size_t(v) + k]);
     }
+  };
+  reset_bbox();
+  for (uint32_t v = 0; v < nv; ++v)
+    if (used[v]) grow_bbox(v);
+  bool zero_bound = false;
+  for (int k = 0; k < 3; ++k) zero_bound |= m.bbox_min[k] == 0 || m.bbox_max[k] == 0;
+  if (zero_bound) {
+    reset_bbox();
+    for (uint32_t v : clean) grow_bbox(v);
+  }
+
+  // Enclosed volume (double; relative to the box centre for accuracy).
   double c[3], ext = 0;
   for (int k = 0; k < 3; ++k) {
     c[k] = 0.5 * (m.bbox_min[k] + m.bbox_max[k]);
@@ -356,6 +457,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // triangle has the polygon's orientation); non-planar polygons are fan-triangulated.
   std::vector<uint32_t> face_of_clean(cf, 0xffffffffu);
   size_t degenerate = 0, nonplanar = 0;
+  // (Sizes when every face is planar and has area, the usual case.)
+  m.loop_offsets.reserve(cf + 1);
+  m.loops.reserve(clean.size());
+  m.rep.reserve(cf);
   m.loop_offsets.push_back(0);
   auto add_face = [&](const uint32_t* loop, size_t k, std::array<uint32_t, 3> rep) {
     m.loops.insert(m.loops.end(), loop, loop + k);
@@ -397,6 +502,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   if (nonplanar)
     m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, nonplanar, std::to_string(nonplanar) + " non-planar polygons were split into triangles"});
   if (m.rep.empty()) return fail(m, Error::DegenerateInput, "every face has zero area");
+  m.adjacent.reserve(face_pairs.size());
   for (const auto& pr : face_pairs) {
     uint32_t a = face_of_clean[pr[0]], b = face_of_clean[pr[1]];
     if (a != 0xffffffffu && b != 0xffffffffu) m.adjacent.push_back({a, b});
