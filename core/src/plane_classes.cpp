@@ -47,8 +47,7 @@ struct Key {
 // is below sqrt(3) (scaled coordinates are below 1). So (4E + e_d)/|n| bounds the error; the
 // normalization's own rounding adds < 1e-15. Poorly determined planes (slivers, tiny or
 // underflowing triangles) round the exact coefficients instead (error ~1e-15).
-Key face_key(const PreparedMesh& m, const std::array<uint32_t, 3>& t) {
-  const auto c = approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
+Key face_key(const PreparedMesh& m, const std::array<uint32_t, 3>& t, const PlaneCoef<Approx>& c) {
   const double len = std::sqrt(c.n[0].v * c.n[0].v + c.n[1].v * c.n[1].v + c.n[2].v * c.n[2].v);
   const double err = 4 * (c.n[0].e + c.n[1].e + c.n[2].e) + c.d.e;
   if (err <= 3e-14 * len && len < HUGE_VAL) {  // false for NaN
@@ -86,6 +85,12 @@ int key_match(const Key& a, const Key& b) {
 // non-negative first coordinate), so one probe finds both orientations of a plane.
 constexpr double kCell = 1.0 / (int64_t(1) << 32);
 
+// floor(x) for |x| < 2^62 (cell coordinates are below 2^34): the cast truncates towards zero.
+int64_t floor_int(double x) {
+  const int64_t c = int64_t(x);
+  return c - (double(c) > x);
+}
+
 uint64_t cell_hash(const int64_t c[4]) {
   const int64_t flip = c[0] < 0 ? -1 : 0;  // x ^ -1 == ~x
   uint64_t h = 1469598103934665603ull;
@@ -107,7 +112,7 @@ void for_each_cell(const Key& key, Visit visit) {
   bool any_near = false;
   for (int i = 0; i < 4; ++i) {
     const double x = key.k[i] / kCell;  // exact: a power-of-two scaling
-    base[i] = int64_t(std::floor(x));
+    base[i] = floor_int(x);
     const double frac = x - double(base[i]);  // exact
     near[i] = frac <= kBorder / kCell ? -1 : (frac >= 1 - kBorder / kCell ? 1 : 0);
     any_near |= near[i] != 0;
@@ -126,7 +131,12 @@ void for_each_cell(const Key& key, Visit visit) {
   }
 }
 
-int64_t primary_cell_component(double x) { return int64_t(std::floor(x / kCell)); }
+// Hash of the key's own cell (where its plane is stored).
+uint64_t primary_hash(const Key& key) {
+  int64_t c[4];
+  for (int i = 0; i < 4; ++i) c[i] = floor_int(key.k[i] / kCell);
+  return cell_hash(c);
+}
 
 // Open-addressing table: cell hash -> first plane of a chain (chains continue in `next`). Slots
 // keep 32 bits of the hash; cells that collide just share a chain, as every candidate is
@@ -139,6 +149,7 @@ class CellTable {
     slots_.assign(cap, Slot{0, kNoPlane});
     mask_ = cap - 1;
   }
+  void prefetch(uint64_t h) const { __builtin_prefetch(&slots_[h & mask_]); }
   uint32_t head(uint64_t h) const {
     const uint32_t tag = uint32_t(h >> 32);
     for (size_t i = h & mask_;; i = (i + 1) & mask_) {
@@ -168,15 +179,31 @@ class CellTable {
 
 void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
   const size_t nf = m.num_faces();
-  // Plane ids index the per-plane arrays below.
+  // Plane ids index the per-plane arrays below, from the first one added here.
   const uint32_t first_plane = uint32_t(ps.size());
-  std::vector<Key> key(nf);
-  for (uint32_t f = 0; f < nf; ++f) key[f] = face_key(m, m.rep[f]);
+  // Loads a few iterations ahead are prefetched: the loops below are bound by cache misses on
+  // keys and table slots of faces spread over the mesh.
+  constexpr size_t kAhead = 8;
+  std::vector<PlaneCoef<Approx>> coef;  // the plane of each face's triangle, as PlaneSet keeps it
+  std::vector<Key> key;
+  coef.reserve(nf);
+  key.reserve(nf);
+  for (uint32_t f = 0; f < nf; ++f) {
+    const auto& t = m.rep[f];
+    coef.push_back(approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2])));
+    key.push_back(face_key(m, t, coef.back()));
+  }
 
   // 1. Edge-adjacent coplanar faces with the same orientation (the usual way faces share a
   //    plane): one exact orient3d confirms each pair whose keys agree.
   UnionFind uf(nf);
-  for (const auto& pr : m.adjacent) {
+  const auto& adj = m.adjacent;
+  for (size_t i = 0; i < adj.size(); ++i) {
+    if (i + kAhead < adj.size()) {
+      __builtin_prefetch(&key[adj[i + kAhead][0]]);
+      __builtin_prefetch(&key[adj[i + kAhead][1]]);
+    }
+    const auto& pr = adj[i];
     if (key_match(key[pr[0]], key[pr[1]]) <= 0) continue;
     const uint32_t a = uf.find(pr[0]), b = uf.find(pr[1]);
     if (a == b) continue;
@@ -186,16 +213,22 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
 
   // 2. Class representatives (the smallest face of each union) in face order, matched through
   //    the cell table; a new plane takes the representative's triangle.
+  std::vector<uint32_t> roots;
+  for (uint32_t f = 0; f < nf; ++f)
+    if (uf.find(f) == f) roots.push_back(f);
+  std::vector<uint64_t> root_hash(roots.size());
+  for (size_t i = 0; i < roots.size(); ++i) root_hash[i] = primary_hash(key[roots[i]]);
   std::vector<uint32_t> class_plane(nf, kNoPlane);
   std::vector<uint32_t> plane_face;  // plane - first_plane -> face whose triangle defines it
   std::vector<uint32_t> next;        // chain links, by plane - first_plane
-  size_t roots = 0;
-  for (uint32_t f = 0; f < nf; ++f) roots += uf.find(f) == f;
-  plane_face.reserve(roots);
-  next.reserve(roots);
-  CellTable table(roots);
-  for (uint32_t f = 0; f < nf; ++f) {
-    if (uf.find(f) != f) continue;
+  plane_face.reserve(roots.size());
+  next.reserve(roots.size());
+  // (+16: room for the few planes callers add afterwards, such as a bounding box.)
+  ps.reserve(first_plane + roots.size() + 16);
+  CellTable table(roots.size());
+  for (size_t i = 0; i < roots.size(); ++i) {
+    if (i + kAhead < roots.size()) table.prefetch(root_hash[i + kAhead]);
+    const uint32_t f = roots[i];
     const auto& r = m.rep[f];
     const Key& k = key[f];
     uint32_t found = kNoPlane, opposite = kNoPlane;
@@ -212,15 +245,13 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
       class_plane[f] = found;
       continue;
     }
-    const uint32_t id = ps.add_from_points(r[0], r[1], r[2]);
+    const uint32_t id = ps.add_from_points(r[0], r[1], r[2], coef[f]);
     class_plane[f] = id;
     plane_face.push_back(f);
-    const int64_t cell[4] = {primary_cell_component(k.k[0]), primary_cell_component(k.k[1]),
-                             primary_cell_component(k.k[2]), primary_cell_component(k.k[3])};
-    next.push_back(table.push(cell_hash(cell), id));
+    next.push_back(table.push(root_hash[i], id));
     if (opposite != kNoPlane) ps.set_opposite(opposite, id);
   }
-  face_plane.assign(nf, kNoPlane);
+  face_plane.resize(nf);
   for (uint32_t f = 0; f < nf; ++f) face_plane[f] = class_plane[uf.find(f)];
 
   // 3. Incidence.

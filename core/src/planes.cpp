@@ -423,4 +423,22 @@ int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, u
   return edge_in_facet_formula(ps.exact(p), ps.exact(q), ps.exact(h), ps.exact(s)).sign();
 }
 
+void PlaneSet::reserve(size_t n) {
+  rep_.reserve(n);
+  for (auto* v : {&nx_, &ny_, &nz_, &d_, &enx_, &eny_, &enz_, &ed_}) v->reserve(n);
+  opposite_.reserve(n);
+  exact_.reserve(n);
+}
+
+uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c, const PlaneCoef<Approx>& p) {
+  rep_.push_back({a, b, c});
+  nx_.push_back(p.n[0].v); enx_.push_back(p.n[0].e);
+  ny_.push_back(p.n[1].v); eny_.push_back(p.n[1].e);
+  nz_.push_back(p.n[2].v); enz_.push_back(p.n[2].e);
+  d_.push_back(p.d.v); ed_.push_back(p.d.e);
+  opposite_.push_back(kNoPlane);
+  exact_.emplace_back();
+  return uint32_t(size() - 1);
+}
+
 }  // namespace kergen

@@ -89,6 +89,13 @@ class PlaneSet {
   std::vector<uint32_t> opposite_;
   std::vector<uint32_t> plane_offsets_, plane_points_, point_offsets_, point_planes_;
   mutable std::vector<std::unique_ptr<PlaneCoef<Expansion>>> exact_;
+
+ public:
+  // Capacity for n planes in all (a mesh's planes are then added without regrowth).
+  void reserve(size_t n);
+  // add_from_points with the coefficients already computed: p must be
+  // approx_plane(point(a), point(b), point(c)).
+  uint32_t add_from_points(uint32_t a, uint32_t b, uint32_t c, const PlaneCoef<Approx>& p);
 };
 
 template <>
