@@ -455,16 +455,27 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // Plane-carrying faces: drop exact zero-area ones; planar polygons keep one representative
   // triangle at their lexicographically smallest vertex (a strictly convex corner, so the
   // triangle has the polygon's orientation); non-planar polygons are fan-triangulated.
-  std::vector<uint32_t> face_of_clean(cf, 0xffffffffu);
+  // As long as every face is kept whole, the plane faces are the clean faces: their loops are
+  // copied (and the face numbering changes) only from the first face dropped or split on, so in
+  // the usual case the clean loops and edge pairs are moved over as they are.
   size_t degenerate = 0, nonplanar = 0;
-  // (Sizes when every face is planar and has area, the usual case.)
-  m.loop_offsets.reserve(cf + 1);
-  m.loops.reserve(clean.size());
+  bool renumbered = false;
+  std::vector<uint32_t> face_of_clean;  // used once renumbered
   m.rep.reserve(cf);
-  m.loop_offsets.push_back(0);
-  auto add_face = [&](const uint32_t* loop, size_t k, std::array<uint32_t, 3> rep) {
-    m.loops.insert(m.loops.end(), loop, loop + k);
-    m.loop_offsets.push_back(uint32_t(m.loops.size()));
+  auto renumber = [&](size_t f) {  // faces before f were kept whole
+    if (renumbered) return;
+    renumbered = true;
+    m.loops.assign(clean.begin(), clean.begin() + clean_offsets[f]);
+    m.loop_offsets.assign(clean_offsets.begin(), clean_offsets.begin() + f + 1);
+    face_of_clean.assign(cf, 0xffffffffu);
+    std::iota(face_of_clean.begin(), face_of_clean.begin() + f, 0u);
+  };
+  auto keep_whole = [&](size_t f, std::array<uint32_t, 3> rep) {
+    if (renumbered) {
+      face_of_clean[f] = uint32_t(m.rep.size());
+      m.loops.insert(m.loops.end(), clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
+      m.loop_offsets.push_back(uint32_t(m.loops.size()));
+    }
     m.rep.push_back(rep);
   };
   for (size_t f = 0; f < cf; ++f) {
@@ -472,9 +483,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     size_t k = clean_offsets[f + 1] - clean_offsets[f];
     auto P = [&](uint32_t v) { return &m.points[3 * size_t(v)]; };
     if (k == 3) {
-      if (collinear(P(loop[0]), P(loop[1]), P(loop[2]), m.exact_shift)) { ++degenerate; continue; }
-      face_of_clean[f] = uint32_t(m.rep.size());
-      add_face(loop, 3, {loop[0], loop[1], loop[2]});
+      if (collinear(P(loop[0]), P(loop[1]), P(loop[2]), m.exact_shift)) { renumber(f); ++degenerate; continue; }
+      keep_whole(f, {loop[0], loop[1], loop[2]});
       continue;
     }
     size_t lo = 0;
@@ -484,14 +494,16 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     for (size_t i = 0; i < k && planar; ++i)
       if (orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i]), m.exact_shift) != 0) planar = false;
     if (planar) {
-      face_of_clean[f] = uint32_t(m.rep.size());
-      add_face(loop, k, rep);
+      keep_whole(f, rep);
       continue;
     }
+    renumber(f);
     bool any = false;
     for (const auto& tri : triangulate_polygon(m.points, loop, k)) {
       if (collinear(P(tri[0]), P(tri[1]), P(tri[2]), m.exact_shift)) continue;
-      add_face(tri.data(), 3, tri);
+      m.loops.insert(m.loops.end(), tri.begin(), tri.end());
+      m.loop_offsets.push_back(uint32_t(m.loops.size()));
+      m.rep.push_back(tri);
       any = true;
     }
     if (any) ++nonplanar; else ++degenerate;
@@ -502,6 +514,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   if (nonplanar)
     m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, nonplanar, std::to_string(nonplanar) + " non-planar polygons were split into triangles"});
   if (m.rep.empty()) return fail(m, Error::DegenerateInput, "every face has zero area");
+  if (!renumbered) {
+    m.loops = std::move(clean);
+    m.loop_offsets = std::move(clean_offsets);
+    m.adjacent = std::move(face_pairs);
+    return m;
+  }
   m.adjacent.reserve(face_pairs.size());
   for (const auto& pr : face_pairs) {
     uint32_t a = face_of_clean[pr[0]], b = face_of_clean[pr[1]];
