@@ -264,12 +264,14 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
 
   // Faces without repeated consecutive vertices; faces left with < 3 distinct vertices carry
   // no area and no edges of their own (a -> b -> a pairs cancel), so they are dropped here.
-  // The same pass marks the used vertices and counts the edge uses per lower vertex id (the
-  // buckets of the edge check below).
+  // The same pass marks the used vertices and counts the edge uses per bucket of the edge
+  // check below.
   std::vector<uint32_t> clean_offsets{0}, clean(mesh.num_indices);
   clean_offsets.reserve(nf + 1);
   std::vector<char> used(nv, 0);
-  std::vector<uint32_t> bucket(nv + 1, 0);  // bucket[lo + 1]: uses of edges (lo, hi > lo)
+  // Edge uses are bucketed by their lower vertex id and direction: bucket 2 lo + 1 holds the
+  // uses running up from lo (lo -> hi, hi > lo), bucket 2 lo those running down to lo.
+  std::vector<uint32_t> bucket(2 * nv + 1, 0);  // bucket[b + 1]: size of bucket b, then starts
   {
     const uint32_t* in = mesh.indices;
     size_t n = 0;  // clean entries so far
@@ -288,7 +290,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       for (size_t i = begin; i < n; ++i) {
         const uint32_t u = clean[i], v = clean[i + 1 < n ? i + 1 : begin];
         used[u] = 1;
-        bucket[std::min(u, v) + 1]++;
+        bucket[2 * size_t(std::min(u, v)) + (u < v) + 1]++;
       }
     }
     clean.resize(n);
@@ -296,61 +298,67 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   const size_t cf = clean_offsets.size() - 1;
   if (cf == 0) return fail(m, Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
 
-  // Edge uses bucketed by the lower vertex id (counting sort, no hashing): each bucket is small
-  // (the vertex's degree) and is sorted by the upper id, then each run of equal edges is
-  // inspected. A use is one 64-bit key, upper id << 32 | face << 1 | (1 if the face runs from
-  // lo to hi): sorting the keys orders a bucket by upper id and the uses of one edge by face,
-  // which is input order (faces are filled in order), so the result does not depend on the sort.
-  // (face < 2^31: clean.size() < 2^32 and every face has at least 3 uses.)
-  for (size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
+  // Edge check (counting sort into the buckets, no hashing and no comparison sort). The uses of
+  // the edges of one lower vertex are tallied per upper vertex, then each edge is judged once:
+  // on a closed, consistently oriented 2-manifold every edge has one use each way, and its two
+  // faces are a pair. A use is stored as upper id << 32 | face.
+  for (size_t b = 0; b < 2 * nv; ++b) bucket[b + 1] += bucket[b];
   // (Left uninitialized: every entry is written below.)
-  std::unique_ptr<uint64_t[]> half(new uint64_t[bucket[nv]]);
+  std::unique_ptr<uint64_t[]> half(new uint64_t[bucket[2 * nv]]);
   {
     std::vector<uint32_t> fill(bucket.begin(), bucket.end() - 1);
     for (size_t f = 0; f < cf; ++f)
       for (size_t i = clean_offsets[f], e = clean_offsets[f + 1]; i < e; ++i) {
         uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : clean_offsets[f]];
-        half[fill[std::min(u, v)]++] = uint64_t(std::max(u, v)) << 32 | uint64_t(f) << 1 | (u < v ? 1u : 0u);
+        half[fill[2 * size_t(std::min(u, v)) + (u < v)]++] = uint64_t(std::max(u, v)) << 32 | f;
       }
   }
+  // Faulty edges are counted; the one named is the smallest (lower id, upper id).
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
-  uint64_t open_ex = 0, nonmanifold_ex = 0, inconsistent_ex = 0;
+  uint64_t open_ex = UINT64_MAX, nonmanifold_ex = UINT64_MAX, inconsistent_ex = UINT64_MAX;
+  auto note = [](size_t& count, uint64_t& example, uint64_t key) {
+    ++count;
+    example = std::min(example, key);
+  };
   UnionFind components(cf);
+  // Pairs of faces sharing an edge, by lower vertex id, then in the order of the faces using
+  // the edge upwards; each pair lists its lower face first.
   std::vector<std::array<uint32_t, 2>> face_pairs;
-  face_pairs.reserve(bucket[nv] / 2);
+  face_pairs.reserve(bucket[2 * nv] / 2);
+  struct Tally { uint32_t up = 0, down = 0, up_face = 0, down_face = 0; };
+  std::vector<Tally> tally(nv);  // per upper vertex id; all zero between lower vertices
   for (size_t lo = 0; lo < nv; ++lo) {
-    uint64_t* b = half.get() + bucket[lo];
-    const size_t k = bucket[lo + 1] - bucket[lo];
-    uint64_t* e = b + k;
-    if (k <= 32) {
-      // Insertion sort, inline, for the usual small bucket: a few keys cost less to sort than a
-      // call to std::sort.
-      for (uint64_t* p = b + 1; p < e; ++p) {
-        const uint64_t x = *p;
-        uint64_t* q = p;
-        for (; q != b && q[-1] > x; --q) *q = q[-1];
-        *q = x;
-      }
-    } else {
-      std::sort(b, e);
+    const uint64_t* down_begin = half.get() + bucket[2 * lo];
+    const uint64_t* up_begin = half.get() + bucket[2 * lo + 1];
+    const uint64_t* end = half.get() + bucket[2 * lo + 2];
+    for (const uint64_t* p = down_begin; p != up_begin; ++p) {
+      Tally& t = tally[*p >> 32];
+      ++t.down;
+      t.down_face = uint32_t(*p);
     }
-    for (uint64_t* r = b; r != e;) {
-      const uint32_t hi = uint32_t(*r >> 32);
-      uint64_t* q = r;
-      uint32_t forward = 0;
-      while (q != e && uint32_t(*q >> 32) == hi) forward += *q & 1, ++q;
-      size_t n = size_t(q - r);
-      uint64_t key = (uint64_t(lo) << 32) | hi;
-      if (n == 1) { if (!open++) open_ex = key; }
-      else if (n > 2) { if (!nonmanifold++) nonmanifold_ex = key; }
-      else if (forward != 1) { if (!inconsistent++) inconsistent_ex = key; }
-      else {
-        const uint32_t f0 = uint32_t(r[0]) >> 1, f1 = uint32_t(r[1]) >> 1;
+    for (const uint64_t* p = up_begin; p != end; ++p) {
+      Tally& t = tally[*p >> 32];
+      ++t.up;
+      t.up_face = uint32_t(*p);
+    }
+    // Judged at its first upward use, or first downward use if it has none; then cleared.
+    auto judge = [&](uint32_t hi) {
+      Tally& t = tally[hi];
+      if (t.up == 1 && t.down == 1) {
+        const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
         components.unite(f0, f1);
         face_pairs.push_back({f0, f1});
+      } else if (t.up + t.down > 0) {  // else judged already
+        const uint64_t key = uint64_t(lo) << 32 | hi;
+        const size_t n = size_t(t.up) + t.down;
+        if (n == 1) note(open, open_ex, key);
+        else if (n > 2) note(nonmanifold, nonmanifold_ex, key);
+        else note(inconsistent, inconsistent_ex, key);  // two uses the same way
       }
-      r = q;
-    }
+      t = Tally{};
+    };
+    for (const uint64_t* p = up_begin; p != end; ++p) judge(uint32_t(*p >> 32));
+    for (const uint64_t* p = down_begin; p != up_begin; ++p) judge(uint32_t(*p >> 32));
   }
   auto edge_name = [](uint64_t k) {
     return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";
