@@ -41,15 +41,18 @@ struct Key {
   double k[4];  // n / |n|, d / |n|
 };
 
-// The key of triangle t. From the double plane (n, d) with error bounds (e_n per normal
-// component, e_d): with E = sum e_n >= |n - N|, |n/|n| - N/|N|| <= 2E/|n| and
-// |d/|n| - D/|N|| <= (e_d + E |D|/|N|)/|n|, where |D|/|N| — the plane's distance to the origin —
-// is below sqrt(3) (scaled coordinates are below 1). So (4E + e_d)/|n| bounds the error; the
-// normalization's own rounding adds < 1e-15. Poorly determined planes (slivers, tiny or
-// underflowing triangles) round the exact coefficients instead (error ~1e-15).
+// The key of triangle t, from its double plane c = (n, d) with error bounds (e_n per normal
+// component, e_d). With E = sum e_n >= |n - N|: |n/|n| - N/|N|| <= 2E/|n|, and
+// |d/|n| - D/|N|| <= (e_d + E |D|/|N|)/|n| where |D|/|N|, the plane's distance to the origin, is
+// at most |a| <= |a_x| + |a_y| + |a_z| for its vertex a. That bound, held below 3e-14, plus the
+// normalization's own rounding (< 1e-15 for scaled coordinates, below 1) stays below kKeyError.
+// Poorly determined planes (slivers, tiny or underflowing triangles) round the exact
+// coefficients instead (error ~1e-15).
 Key face_key(const PreparedMesh& m, const std::array<uint32_t, 3>& t, const PlaneCoef<Approx>& c) {
+  const double* a = P(m, t[0]);
+  const double dist = std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]);
   const double len = std::sqrt(c.n[0].v * c.n[0].v + c.n[1].v * c.n[1].v + c.n[2].v * c.n[2].v);
-  const double err = 4 * (c.n[0].e + c.n[1].e + c.n[2].e) + c.d.e;
+  const double err = (2 + dist) * (c.n[0].e + c.n[1].e + c.n[2].e) + c.d.e;
   if (err <= 3e-14 * len && len < HUGE_VAL) {  // false for NaN
     const double inv = 1 / len;
     return {{c.n[0].v * inv, c.n[1].v * inv, c.n[2].v * inv, c.d.v * inv}};
@@ -175,6 +178,39 @@ class CellTable {
   size_t mask_;
 };
 
+// Set of unordered pairs of face ids (open addressing; ~0 marks an empty slot, never a pair as
+// a face is never paired with itself).
+class PairSet {
+ public:
+  explicit PairSet(size_t n) {
+    size_t cap = 16;
+    while (cap < 2 * n + 16) cap <<= 1;
+    slots_.assign(cap, kEmpty);
+    mask_ = cap - 1;
+  }
+  void insert(uint32_t a, uint32_t b) {
+    const uint64_t x = key(a, b);
+    for (size_t i = hash(x);; i = (i + 1) & mask_) {
+      if (slots_[i] == x) return;
+      if (slots_[i] == kEmpty) { slots_[i] = x; return; }
+    }
+  }
+  bool contains(uint32_t a, uint32_t b) const {
+    const uint64_t x = key(a, b);
+    for (size_t i = hash(x);; i = (i + 1) & mask_) {
+      if (slots_[i] == x) return true;
+      if (slots_[i] == kEmpty) return false;
+    }
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t(0);
+  static uint64_t key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
+  size_t hash(uint64_t x) const { return size_t((x * 0x9E3779B97F4A7C15ull) >> 32) & mask_; }
+  std::vector<uint64_t> slots_;
+  size_t mask_;
+};
+
 }  // namespace
 
 void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
@@ -195,8 +231,11 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   }
 
   // 1. Edge-adjacent coplanar faces with the same orientation (the usual way faces share a
-  //    plane): one exact orient3d confirms each pair whose keys agree.
+  //    plane): one exact orient3d confirms each pair whose keys agree. Pairs whose keys agree
+  //    but which are not coplanar (neighbours a hair apart, as rounded vertices leave refined
+  //    meshes) are kept: their classes are then known to differ without a second exact test.
   UnionFind uf(nf);
+  std::vector<std::array<uint32_t, 2>> apart;
   const auto& adj = m.adjacent;
   for (size_t i = 0; i < adj.size(); ++i) {
     if (i + kAhead < adj.size()) {
@@ -207,9 +246,14 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     if (key_match(key[pr[0]], key[pr[1]]) <= 0) continue;
     const uint32_t a = uf.find(pr[0]), b = uf.find(pr[1]);
     if (a == b) continue;
-    if (!same_plane(m, m.rep[pr[0]], m.rep[pr[1]])) continue;
+    if (!same_plane(m, m.rep[pr[0]], m.rep[pr[1]])) {
+      apart.push_back(pr);
+      continue;
+    }
     uf.unite(a, b);
   }
+  PairSet distinct(apart.size());  // class representatives of different planes
+  for (const auto& pr : apart) distinct.insert(uf.find(pr[0]), uf.find(pr[1]));
 
   // 2. Class representatives (the smallest face of each union) in face order, matched through
   //    the cell table; a new plane takes the representative's triangle.
@@ -236,7 +280,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
       for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) {
         const uint32_t of = plane_face[other - first_plane];
         const int orientation = key_match(k, key[of]);
-        if (orientation == 0 || !same_plane(m, m.rep[of], r)) continue;
+        if (orientation == 0 || (orientation > 0 && distinct.contains(f, of)) || !same_plane(m, m.rep[of], r)) continue;
         if (orientation > 0) found = other;
         else opposite = other;  // at most one plane per orientation, so this one is unlinked
       }
