@@ -241,15 +241,14 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // When 2^scale_exp is a double, multiplying by it rounds exactly like ldexp (both give the
     // correctly rounded x 2^scale_exp, subnormal results included) at a fraction of the cost;
     // otherwise (inputs of subnormal numbers only) ldexp scales each coordinate.
-    if (m.scale_exp >= -1074 && m.scale_exp <= 1023) {
-      const double factor = std::ldexp(1.0, m.scale_exp);
-      for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = mesh.positions[i] * factor;
-    } else {
-      for (size_t i = 0; i < 3 * nv; ++i) m.points[i] = m.to_scaled(mesh.positions[i]);
-    }
+    const bool exact_factor = m.scale_exp >= -1074 && m.scale_exp <= 1023;
+    const double factor = exact_factor ? std::ldexp(1.0, m.scale_exp) : 0;
     int lowest = 0;
-    for (size_t i = 0; i < 3 * nv; ++i)
-      if (m.points[i] != 0) lowest = std::min(lowest, lowest_bit_exponent(m.points[i]));
+    for (size_t i = 0; i < 3 * nv; ++i) {
+      const double x = exact_factor ? mesh.positions[i] * factor : m.to_scaled(mesh.positions[i]);
+      m.points[i] = x;
+      if (x != 0) lowest = std::min(lowest, lowest_bit_exponent(x));
+    }
     const int kLowestAllowed = -112, kMaxShift = 109;
     int shift = std::max(0, kLowestAllowed - lowest);
     if (shift > kMaxShift) {
@@ -277,10 +276,16 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     size_t n = 0;  // clean entries so far
     for (size_t f = 0; f < nf; ++f) {
       const size_t begin = n, k = face_size(f);
-      for (size_t i = 0; i < k; ++i)
-        if (n == begin || clean[n - 1] != in[i]) clean[n++] = in[i];
+      if (k == 3 && in[0] != in[1] && in[1] != in[2] && in[2] != in[0]) {  // the usual case
+        clean[n++] = in[0];
+        clean[n++] = in[1];
+        clean[n++] = in[2];
+      } else {
+        for (size_t i = 0; i < k; ++i)
+          if (n == begin || clean[n - 1] != in[i]) clean[n++] = in[i];
+        while (n - begin > 1 && clean[n - 1] == clean[begin]) --n;
+      }
       in += k;
-      while (n - begin > 1 && clean[n - 1] == clean[begin]) --n;
       if (n - begin < 3) {
         n = begin;
         ++m.dropped_faces;
