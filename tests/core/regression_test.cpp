@@ -8,6 +8,7 @@
 // vertices outside the bounding box) were fixed in the core and are enabled.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -521,5 +522,53 @@ TEST(RegressionFuzzObj, InvariantViolated_41f4303a) { replay_obj(kFuzzObj_41f430
 TEST(RegressionFuzzObj, InvariantViolated_beb1f4c9) { replay_obj(kFuzzObj_beb1f4c9, sizeof kFuzzObj_beb1f4c9); }
 TEST(RegressionFuzzObj, InvariantViolated_db409c33) { replay_obj(kFuzzObj_db409c33, sizeof kFuzzObj_db409c33); }
 TEST(RegressionFuzzObj, Hang_03c64e2c) { replay_obj(kFuzzObj_03c64e2c, sizeof kFuzzObj_03c64e2c); }
+
+// Input validation names one culprit when several exist: the first face referring to a missing
+// vertex, the smallest faulty edge (lower id, upper id), the two lowest vertex ids at the
+// lexicographically smallest shared position. Pinned so that a faster validation keeps them.
+kergen::Kernel validate(const Mesh& m) { return kergen::compute_kernel(m.view()); }
+
+TEST(RegressionValidation, IndexOutOfRangeNamesTheFaceOfAPolygonMesh) {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) kergen_test::add_point(m, i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  const std::vector<std::vector<uint32_t>> quads = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) kergen_test::add_face(m, q);
+  m.indices[14] = 99;  // face 3, third corner
+  m.indices[21] = 98;  // face 5
+  const kergen::Kernel k = validate(m);
+  EXPECT_EQ(k.error, kergen::Error::IndexOutOfRange);
+  EXPECT_EQ(k.message, "face 3 refers to vertex 99 but the mesh has 8 vertices");
+}
+
+TEST(RegressionValidation, OpenMeshNamesTheSmallestBoundaryEdge) {
+  Mesh m = kergen_test::unit_cube();
+  // Without triangles 1 (0 3 1) and 2 (4 5 7): six edges have one face each.
+  m.indices.erase(m.indices.begin() + 3, m.indices.begin() + 9);
+  const kergen::Kernel k = validate(m);
+  EXPECT_EQ(k.error, kergen::Error::OpenMesh);
+  EXPECT_EQ(k.message, "the mesh is open: 6 edge(s) belong to one face only, e.g. edge (0, 1) (Options::allow_open accepts open meshes)");
+}
+
+TEST(RegressionValidation, InconsistentOrientationNamesTheSmallestEdge) {
+  Mesh m = kergen_test::unit_cube();
+  std::swap(m.indices[1], m.indices[2]);  // triangle 0 (0 2 3) reversed
+  const kergen::Kernel k = validate(m);
+  EXPECT_EQ(k.error, kergen::Error::InconsistentOrientation);
+  EXPECT_EQ(k.message, "3 edge(s) are traversed in the same direction by both of their faces (inconsistent orientation), e.g. edge (0, 2)");
+}
+
+TEST(RegressionValidation, SharedPositionNamesTheSmallestPosition) {
+  Mesh m = kergen_test::unit_cube();
+  // The top square (triangles 2, 3) becomes a fan around vertex 8 at (1, 1, 0), the position of
+  // vertex 3; the bottom square (triangles 0, 1) a fan around vertex 9 at (0, 0, 1), that of
+  // vertex 4. Still closed and consistently oriented; (0, 0, 1) is the smaller shared position.
+  const uint32_t top = kergen_test::add_point(m, 1, 1, 0), bottom = kergen_test::add_point(m, 0, 0, 1);
+  m.indices.erase(m.indices.begin(), m.indices.begin() + 12);
+  for (const auto& e : std::vector<std::array<uint32_t, 2>>{{4, 5}, {5, 7}, {7, 6}, {6, 4}}) kergen_test::add_face(m, {e[0], e[1], top});
+  for (const auto& e : std::vector<std::array<uint32_t, 2>>{{0, 2}, {2, 3}, {3, 1}, {1, 0}}) kergen_test::add_face(m, {e[0], e[1], bottom});
+  const kergen::Kernel k = validate(m);
+  EXPECT_EQ(k.error, kergen::Error::NonManifoldEdge);
+  EXPECT_EQ(k.message, "vertices 4 and 9 have the same position: the surface touches itself there (weld them, or separate the pieces)");
+}
 
 }  // namespace
