@@ -107,7 +107,8 @@ uint64_t cell_hash(const int64_t c[4]) {
 
 // Calls visit(hash) for each cell whose closed extent lies within kBorder of the key in every
 // component: the key's own cell, plus the neighbour across any border closer than kBorder (rare).
-// A key within kBorder of key k or of -k always probes the cell that k was stored under.
+// So a key within kBorder of key k, or of -k, probes the cell that k was stored under (keys of
+// one plane are within 2 kKeyError, far inside that margin).
 template <class Visit>
 void for_each_cell(const Key& key, Visit visit) {
   int64_t base[4];
