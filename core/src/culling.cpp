@@ -87,13 +87,14 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   quiet.max_steps = 0;
   quiet.steps = nullptr;
   const double* nx = ps.nx(); const double* ny = ps.ny(); const double* nz = ps.nz(); const double* nd = ps.d();
-  std::vector<uint32_t> adj_offset, adj, mark, bfs, start_of_cell;
+  std::vector<uint32_t> adj_offset, adj, mark, bfs, start_of_cell, start_of_corner;
   std::vector<char> cell_resolved;
   std::vector<double> xyz;
+  std::vector<uint32_t> added_list, on_kernel;
+  std::sort(S.begin(), S.end());
+  TraceResult tr = trace_kernel_edges(ps, S, start, quiet);
   for (;;) {
     ++out.rounds;
-    std::sort(S.begin(), S.end());
-    TraceResult tr = trace_kernel_edges(ps, S, start, quiet);
     if (tr.internal_error) {
       out.trace = std::move(tr);
       return out;
@@ -118,7 +119,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], xyz[3 * v + k]); hi[k] = std::max(hi[k], xyz[3 * v + k]); }
     const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
     const double hx = 0.5 * (hi[0] - lo[0]), hy = 0.5 * (hi[1] - lo[1]), hz = 0.5 * (hi[2] - lo[2]);
-    size_t added = 0;
+    added_list.clear();
     // Climb starts: the vertex of K_S extreme in the direction of each cell of a cube map over
     // the sphere of normals. A cell whose four corner directions all have that vertex as their
     // strict maximum (every edge at the vertex descends along each corner) lies inside the
@@ -129,18 +130,38 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     const size_t cells = 6 * cells_per_side * cells_per_side;
     start_of_cell.resize(cells);
     cell_resolved.assign(cells, 0);
+    // Greedy climb to the extreme vertex in direction dir (a start, not a proof).
+    auto extreme = [&](const double dir[3], uint32_t at) {
+      auto g = [&](uint32_t v) { return dir[0] * xyz[3 * v] + dir[1] * xyz[3 * v + 1] + dir[2] * xyz[3 * v + 2]; };
+      double val = g(at);
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1]; ++i)
+          if (g(adj[i]) > val) { at = adj[i]; val = g(at); moved = true; }
+      }
+      return at;
+    };
+    // The corners of the cells too: along a ridge of K_S (an elongated kernel) the extreme
+    // vertex jumps within a small change of direction, and the best of a cell's centre and
+    // corner vertices starts the climb near its answer.
+    const size_t side_pts = cells_per_side + 1;
+    start_of_corner.resize(6 * side_pts * side_pts);
     {
       uint32_t at = 0;
+      for (size_t c = 0; c < start_of_corner.size(); ++c) {
+        const size_t face = c / (side_pts * side_pts), i = c / side_pts % side_pts, j = c % side_pts;
+        double dir[3];
+        cube_cell_direction(cells_per_side, (face * cells_per_side) * cells_per_side, double(i), double(j), dir);
+        at = start_of_corner[c] = extreme(dir, at);
+      }
+    }
+    {
       for (size_t cell = 0; cell < cells; ++cell) {
         double dir[3];
         cube_cell_direction(cells_per_side, cell, 0.5, 0.5, dir);
-        auto g = [&](uint32_t v) { return dir[0] * xyz[3 * v] + dir[1] * xyz[3 * v + 1] + dir[2] * xyz[3 * v + 2]; };
-        double val = g(at);
-        for (bool moved = true; moved;) {
-          moved = false;
-          for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1]; ++i)
-            if (g(adj[i]) > val) { at = adj[i]; val = g(at); moved = true; }
-        }
+        const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
+                     j = cell % cells_per_side;
+        const uint32_t at = extreme(dir, start_of_corner[(face * side_pts + i) * side_pts + j]);
         start_of_cell[cell] = at;
         bool strict = adj_offset[at + 1] > adj_offset[at];
         for (int corner = 0; corner < 4 && strict; ++corner) {
@@ -176,8 +197,17 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       const size_t cell = cube_cell(cells_per_side, a, b, c);
       uint32_t cur = cell == kNoCell ? 0 : start_of_cell[cell];
       double val = f(cur);
+      if (cell != kNoCell && !cell_resolved[cell]) {
+        const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
+                     j = cell % cells_per_side;
+        const size_t c0 = (face * side_pts + i) * side_pts + j;
+        for (size_t c : {c0, c0 + 1, c0 + side_pts, c0 + side_pts + 1}) {
+          const double fc = f(start_of_corner[c]);
+          if (fc > val) { val = fc; cur = start_of_corner[c]; }
+        }
+      }
       if (cell != kNoCell && cell_resolved[cell]) {
-        if (val > -margin) { add(l); ++added; }
+        if (val > -margin) { in_s[l] = 1; added_list.push_back(l); }
         continue;
       }
       for (;;) {
@@ -211,9 +241,9 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
         cur = higher;
         val = f(cur);
       }
-      if (val > -margin) { add(l); ++added; }
+      if (val > -margin) { in_s[l] = 1; added_list.push_back(l); }
     }
-    if (added == 0) {
+    if (added_list.empty()) {
       out.active = S;
       if ((options.on_step && *options.on_step) || options.max_steps) {
         out.trace = trace_kernel_edges(ps, S, start, options);  // the final trace, with events
@@ -222,6 +252,16 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       }
       return out;
     }
+    // Next S: the planes some vertex of K_S lies on (the others cannot touch K_S, hence neither
+    // the kernel: they stay marked as decided) and the added ones; K_S is updated, not retraced.
+    on_kernel.clear();
+    for (const auto& v : tr.vertices) on_kernel.insert(on_kernel.end(), v.tight.begin(), v.tight.end());
+    std::sort(on_kernel.begin(), on_kernel.end());
+    on_kernel.erase(std::unique(on_kernel.begin(), on_kernel.end()), on_kernel.end());
+    S = on_kernel;
+    S.insert(S.end(), added_list.begin(), added_list.end());
+    std::sort(S.begin(), S.end());
+    tr = update_kernel_trace(ps, S, tr, added_list, quiet);
   }
 }
 

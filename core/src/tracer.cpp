@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <queue>
@@ -75,7 +76,7 @@ size_t nearest_hit(const double* ax, const double* ay, const double* az, const d
 }
 
 // Indices of the planes whose value at p is not certainly negative: f_i(p) >= -b_i with the
-// rigorous bound b_i = ben_i c1 + bn1_i c2 + be0_i (see Tracer::certify).
+// rigorous bound b_i = ben_i c1 + bn1_i c2 + be0_i (see PlaneArrays::near).
 KERGEN_MULTIVERSION
 void near_planes(const double* ax, const double* ay, const double* az, const double* ad, const double* bn1,
                  const double* ben, const double* be0, size_t n, const double p[3], double c1, double c2,
@@ -129,26 +130,49 @@ uint64_t line_key(const PlaneSet& ps, const std::vector<uint32_t>& planes) {
   return (uint64_t(a) << 32) | b;
 }
 
+// Structure-of-arrays copy of a list of planes (doubles and the error terms of the filter),
+// padded to a multiple of kLanes with planes that never hit a ray (n = 0) and are never near
+// (d = -1, no error).
+struct PlaneArrays {
+  std::vector<double> ax, ay, az, ad;
+  std::vector<double> bn1, ben, be0;  // per plane: |n|_1, coefficient error of n, of d + rounding
+
+  void build(const PlaneSet& ps, const std::vector<uint32_t>& list) {
+    const size_t n = list.size(), padded = (n + kLanes - 1) / kLanes * kLanes;
+    ax.assign(padded, 0); ay.assign(padded, 0); az.assign(padded, 0); ad.assign(padded, -1);
+    bn1.assign(padded, 0); ben.assign(padded, 0); be0.assign(padded, 0);
+    for (size_t i = 0; i < n; ++i) {
+      uint32_t l = list[i];
+      ax[i] = ps.nx()[l]; ay[i] = ps.ny()[l]; az[i] = ps.nz()[l]; ad[i] = ps.d()[l];
+      auto c = ps.approx(l);
+      bn1[i] = std::fabs(ax[i]) + std::fabs(ay[i]) + std::fabs(az[i]);
+      ben[i] = c.n[0].e + c.n[1].e + c.n[2].e;
+      be0[i] = c.d.e + 4 * exact::kEps * std::fabs(ad[i]) + exact::kUnderflowFloor;
+    }
+  }
+
+  // Indices (into the list) of the planes whose sign at w the double filter cannot prove
+  // negative: f(w) >= -b with a rigorous bound from the plane coefficient errors, the vertex
+  // coordinate errors and the rounding of the evaluation.
+  void near(const VertexGeom& w, std::vector<uint32_t>& out) const {
+    out.clear();
+    double xm = 0, dx = 0;
+    for (int k = 0; k < 3; ++k) { xm = std::max(xm, std::fabs(w.x[k].v)); dx = std::max(dx, w.x[k].e); }
+    const double c1 = (xm + 2 * dx) * exact::kBoundScale, c2 = (dx + 4 * exact::kEps * xm) * exact::kBoundScale;
+    const double p[3] = {w.x[0].v, w.x[1].v, w.x[2].v};
+    near_planes(ax.data(), ay.data(), az.data(), ad.data(), bn1.data(), ben.data(), be0.data(), ax.size(), p, c1, c2,
+                out);
+  }
+};
+
 class Tracer {
  public:
   Tracer(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceOptions& opt)
       : ps_(ps), active_(active), opt_(opt), mark_(ps.size(), 0) {
-    // Compact structure-of-arrays copy of the active planes for the scan.
-    size_t n = active.size();
-    const size_t padded = (n + kLanes - 1) / kLanes * kLanes;  // padding: n = 0, d = -1, no error
-    ax_.assign(padded, 0); ay_.assign(padded, 0); az_.assign(padded, 0); ad_.assign(padded, -1);
-    bn1_.assign(padded, 0); ben_.assign(padded, 0); be0_.assign(padded, 0);
-    vertices_on_.resize(n);
+    arr_.build(ps, active);
+    vertices_on_.resize(active.size());
     slot_.assign(ps.size(), kNoPlane);
-    for (size_t i = 0; i < n; ++i) {
-      uint32_t l = active[i];
-      ax_[i] = ps.nx()[l]; ay_[i] = ps.ny()[l]; az_[i] = ps.nz()[l]; ad_[i] = ps.d()[l];
-      auto c = ps.approx(l);
-      bn1_[i] = std::fabs(ax_[i]) + std::fabs(ay_[i]) + std::fabs(az_[i]);
-      ben_[i] = c.n[0].e + c.n[1].e + c.n[2].e;
-      be0_[i] = c.d.e + 4 * exact::kEps * std::fabs(ad_[i]) + exact::kUnderflowFloor;
-      slot_[l] = uint32_t(i);
-    }
+    for (size_t i = 0; i < active.size(); ++i) slot_[active[i]] = uint32_t(i);
   }
 
   TraceResult run(const VertexGeom& start) {
@@ -158,6 +182,62 @@ class Tracer {
       return std::move(res_);
     }
     if (!add_vertex(start, tight)) return finish();
+    while (!queue_.empty()) {
+      uint32_t idx = pop();
+      Ray ray = std::move(rays_[idx]);
+      if (traced_.count(ray.key)) continue;
+      if (!trace(ray)) return finish();
+    }
+    return finish();
+  }
+
+  // The kernel of active = S' from the trace of K_S and the planes `added` (S' may also drop
+  // planes of S that no vertex of K_S lies on: they cannot touch K_S, so neither K_S'). What
+  // survives is kept without tracing: a vertex of K_S inside every added plane is a vertex of
+  // K_S' (an extreme point of a superset that the subset contains); an edge with both ends
+  // surviving lies inside every added plane (convexity), so it is an edge of K_S'. Its tight and
+  // line plane sets grow by the added planes through it. Only the rest is traced: the rays from
+  // surviving vertices along lines not yet known, and everything from the new vertices.
+  TraceResult run_update(const TraceResult& prev, const std::vector<uint32_t>& added) {
+    PlaneArrays added_arr;
+    added_arr.build(ps_, added);
+    std::vector<uint32_t> new_id(prev.vertices.size(), kNoPlane);
+    std::vector<std::vector<uint32_t>> tight_added(prev.vertices.size());
+    for (size_t v = 0; v < prev.vertices.size(); ++v) {
+      const TracedVertex& tv = prev.vertices[v];
+      added_arr.near(tv.geom, cand_);
+      bool survives = true;
+      for (uint32_t i : cand_) {
+        int sgn = side(ps_, added[i], tv.geom);
+        if (sgn > 0) { survives = false; break; }
+        if (sgn == 0) tight_added[v].push_back(added[i]);
+      }
+      if (!survives) continue;
+      std::vector<uint32_t> tight = tv.tight;
+      tight.insert(tight.end(), tight_added[v].begin(), tight_added[v].end());
+      std::sort(tight.begin(), tight.end());
+      std::sort(tight_added[v].begin(), tight_added[v].end());
+      new_id[v] = uint32_t(res_.vertices.size());
+      res_.vertices.push_back({tv.geom, tight});
+      vertex_ids_.emplace(std::move(tight), new_id[v]);
+      for (uint32_t l : res_.vertices.back().tight) {
+        if (slot_[l] == kNoPlane) { res_.internal_error = true; return finish(); }  // caller broke the contract
+        vertices_on_[slot_[l]].push_back(new_id[v]);
+      }
+    }
+    if (res_.vertices.empty()) { res_.internal_error = true; return finish(); }  // the LP vertex always survives
+    for (const TracedEdge& e : prev.edges) {
+      if (new_id[e.a] == kNoPlane || new_id[e.b] == kNoPlane) continue;
+      TracedEdge k = e;
+      k.a = new_id[e.a];
+      k.b = new_id[e.b];
+      const auto &ta = tight_added[e.a], &tb = tight_added[e.b];
+      std::set_intersection(ta.begin(), ta.end(), tb.begin(), tb.end(), std::back_inserter(k.planes));
+      std::sort(k.planes.begin(), k.planes.end());
+      traced_.insert(line_key(ps_, k.planes));
+      res_.edges.push_back(std::move(k));
+    }
+    for (uint32_t v = 0; v < res_.vertices.size(); ++v) queue_rays(v);
     while (!queue_.empty()) {
       uint32_t idx = pop();
       Ray ray = std::move(rays_[idx]);
@@ -284,16 +364,16 @@ class Tracer {
     const auto& G = res_.vertices[ray.from].tight;
     for (uint32_t l : G) {
       uint32_t i = slot_[l];
-      saved_.push_back({ax_[i], ay_[i], az_[i], ad_[i]});
-      ax_[i] = ay_[i] = az_[i] = 0;
-      ad_[i] = -1;
+      saved_.push_back({arr_.ax[i], arr_.ay[i], arr_.az[i], arr_.ad[i]});
+      arr_.ax[i] = arr_.ay[i] = arr_.az[i] = 0;
+      arr_.ad[i] = -1;
     }
     const double p[3] = {x, y, z};
     const size_t n = active_.size();
-    size_t bi = nearest_hit(ax_.data(), ay_.data(), az_.data(), ad_.data(), ax_.size(), p, u);
+    size_t bi = nearest_hit(arr_.ax.data(), arr_.ay.data(), arr_.az.data(), arr_.ad.data(), arr_.ax.size(), p, u);
     for (size_t k = 0; k < G.size(); ++k) {
       uint32_t i = slot_[G[k]];
-      ax_[i] = saved_[k][0]; ay_[i] = saved_[k][1]; az_[i] = saved_[k][2]; ad_[i] = saved_[k][3];
+      arr_.ax[i] = saved_[k][0]; arr_.ay[i] = saved_[k][1]; arr_.az[i] = saved_[k][2]; arr_.ad[i] = saved_[k][3];
     }
     saved_.clear();
     if (bi < n && approaching(ray, active_[bi])) return active_[bi];
@@ -325,14 +405,7 @@ class Tracer {
   // only the undecided ones, and planes known to contain the current line, go further.
   uint32_t certify(const VertexGeom& w, std::vector<uint32_t>& tight) {
     tight.clear();
-    cand_.clear();
-    const double x = w.x[0].v, y = w.x[1].v, z = w.x[2].v;
-    double xm = 0, dx = 0;
-    for (int k = 0; k < 3; ++k) { xm = std::max(xm, std::fabs(w.x[k].v)); dx = std::max(dx, w.x[k].e); }
-    const double c1 = (xm + 2 * dx) * exact::kBoundScale, c2 = (dx + 4 * exact::kEps * xm) * exact::kBoundScale;
-    const double p[3] = {x, y, z};
-    near_planes(ax_.data(), ay_.data(), az_.data(), ad_.data(), bn1_.data(), ben_.data(), be0_.data(), ax_.size(), p, c1,
-                c2, cand_);
+    arr_.near(w, cand_);
     for (uint32_t i : cand_) {
       uint32_t l = active_[i];
       if (mark_[l]) { tight.push_back(l); continue; }
@@ -400,8 +473,7 @@ class Tracer {
   const std::vector<uint32_t>& active_;
   TraceOptions opt_;
   std::vector<char> mark_;
-  std::vector<double> ax_, ay_, az_, ad_;
-  std::vector<double> bn1_, ben_, be0_;  // per plane: |n|_1, coefficient error of n, of d + rounding
+  PlaneArrays arr_;
   std::vector<uint32_t> cand_;
   std::vector<std::vector<uint32_t>> vertices_on_;  // per active plane: known vertices on it
   std::vector<uint32_t> slot_;
@@ -419,6 +491,12 @@ TraceResult trace_kernel_edges(const PlaneSet& ps, const std::vector<uint32_t>& 
                                const TraceOptions& options) {
   Tracer t(ps, active, options);
   return t.run(start);
+}
+
+TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceResult& prev,
+                                const std::vector<uint32_t>& added, const TraceOptions& options) {
+  Tracer t(ps, active, options);
+  return t.run_update(prev, added);
 }
 
 }  // namespace kergen

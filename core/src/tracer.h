@@ -46,6 +46,12 @@ struct TraceOptions {
 TraceResult trace_kernel_edges(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& start,
                                const TraceOptions& options);
 
+// K_S' from a complete trace `prev` of K_S, where S' = `active` holds the planes `added` and
+// every plane of S that some vertex of K_S lies on (other planes of S may be dropped). Only the
+// part of K_S the added planes cut is traced again. Emits no events for the kept part.
+TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceResult& prev,
+                                const std::vector<uint32_t>& added, const TraceOptions& options);
+
 // The complete tight set of `w` over `active` (planes in `known_tight` are not re-evaluated), or
 // the first violated plane. Returns kNoPlane when w is a kernel point.
 uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
