@@ -96,19 +96,6 @@ void near_planes(const double* ax, const double* ay, const double* az, const dou
 
 }  // namespace
 
-uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
-                        const std::vector<char>& known_tight_mark, std::vector<uint32_t>& tight) {
-  tight.clear();
-  for (uint32_t l : active) {
-    if (!known_tight_mark.empty() && known_tight_mark[l]) { tight.push_back(l); continue; }
-    int s = side(ps, l, w);
-    if (s > 0) return l;
-    if (s == 0) tight.push_back(l);
-  }
-  std::sort(tight.begin(), tight.end());
-  return kNoPlane;
-}
-
 namespace {
 
 struct Ray {
@@ -164,6 +151,28 @@ struct PlaneArrays {
                 out);
   }
 };
+
+}  // namespace
+
+uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
+                        const std::vector<char>& known_tight_mark, std::vector<uint32_t>& tight) {
+  tight.clear();
+  PlaneArrays arr;
+  arr.build(ps, active);
+  std::vector<uint32_t> cand;
+  arr.near(w, cand);  // every other plane is certainly strictly inside at w
+  for (uint32_t i : cand) {
+    const uint32_t l = active[i];
+    if (!known_tight_mark.empty() && known_tight_mark[l]) { tight.push_back(l); continue; }
+    int s = side(ps, l, w);
+    if (s > 0) return l;
+    if (s == 0) tight.push_back(l);
+  }
+  std::sort(tight.begin(), tight.end());
+  return kNoPlane;
+}
+
+namespace {
 
 class Tracer {
  public:
