@@ -47,7 +47,7 @@ void cube_cell_direction(size_t cells_per_side, size_t cell, double fi, double f
   dir[(axis + 2) % 3] = (double(j) + fj) / double(cells_per_side) * 2 - 1;
 }
 
-constexpr size_t kDirectTraceLimit = 256;  // below this many planes culling costs more than it saves
+constexpr size_t kDirectTraceLimit = 1024;  // below this many planes culling costs more than it saves
 
 }  // namespace
 
