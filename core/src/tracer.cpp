@@ -300,8 +300,9 @@ class Tracer {
 
   void queue_rays(uint32_t v) {
     const std::vector<uint32_t>& G = res_.vertices[v].tight;
-    std::unordered_set<uint64_t> seen;
-    std::vector<int> s(G.size());
+    seen_.clear();  // keys queued from this vertex (a handful: a linear search beats a hash set)
+    std::vector<int>& s = rate_;
+    s.assign(G.size(), 0);
     for (size_t i = 0; i < G.size(); ++i)
       for (size_t j = i + 1; j < G.size(); ++j) {
         uint32_t p = G[i], q = G[j];
@@ -322,7 +323,8 @@ class Tracer {
         for (size_t k = 0; k < G.size(); ++k)
           if (k == i || k == j || s[k] == 0) ray.planes.push_back(G[k]);
         ray.key = line_key(ps_, ray.planes);
-        if (traced_.count(ray.key) || !seen.insert(ray.key).second) continue;
+        if (traced_.count(ray.key) || std::find(seen_.begin(), seen_.end(), ray.key) != seen_.end()) continue;
+        seen_.push_back(ray.key);
         push(std::move(ray));
       }
   }
@@ -483,6 +485,8 @@ class Tracer {
   TraceOptions opt_;
   std::vector<char> mark_;
   PlaneArrays arr_;
+  std::vector<uint64_t> seen_;
+  std::vector<int> rate_;
   std::vector<uint32_t> cand_;
   std::vector<std::vector<uint32_t>> vertices_on_;  // per active plane: known vertices on it
   std::vector<uint32_t> slot_;
