@@ -152,17 +152,16 @@ struct PlaneArrays {
   }
 };
 
-}  // namespace
-
-uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
-                        const std::vector<char>& known_tight_mark, std::vector<uint32_t>& tight) {
+// The filter, then exact signs for the undecided planes of `list` (planes marked in
+// known_tight_mark, if given, are tight without evaluation): the complete sorted tight set of w,
+// or the first violated plane.
+uint32_t certify_over(const PlaneSet& ps, const std::vector<uint32_t>& list, const PlaneArrays& arr,
+                      const VertexGeom& w, const std::vector<char>& known_tight_mark, std::vector<uint32_t>& cand,
+                      std::vector<uint32_t>& tight) {
   tight.clear();
-  PlaneArrays arr;
-  arr.build(ps, active);
-  std::vector<uint32_t> cand;
   arr.near(w, cand);  // every other plane is certainly strictly inside at w
   for (uint32_t i : cand) {
-    const uint32_t l = active[i];
+    const uint32_t l = list[i];
     if (!known_tight_mark.empty() && known_tight_mark[l]) { tight.push_back(l); continue; }
     int s = side(ps, l, w);
     if (s > 0) return l;
@@ -170,6 +169,16 @@ uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active,
   }
   std::sort(tight.begin(), tight.end());
   return kNoPlane;
+}
+
+}  // namespace
+
+uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,
+                        const std::vector<char>& known_tight_mark, std::vector<uint32_t>& tight) {
+  PlaneArrays arr;
+  arr.build(ps, active);
+  std::vector<uint32_t> cand;
+  return certify_over(ps, active, arr, w, known_tight_mark, cand, tight);
 }
 
 namespace {
@@ -191,13 +200,7 @@ class Tracer {
       return std::move(res_);
     }
     if (!add_vertex(start, tight)) return finish();
-    while (!queue_.empty()) {
-      uint32_t idx = pop();
-      Ray ray = std::move(rays_[idx]);
-      if (traced_.count(ray.key)) continue;
-      if (!trace(ray)) return finish();
-    }
-    return finish();
+    return trace_queued();
   }
 
   // The kernel of active = S' from the trace of K_S and the planes `added` (S' may also drop
@@ -247,17 +250,22 @@ class Tracer {
       res_.edges.push_back(std::move(k));
     }
     for (uint32_t v = 0; v < res_.vertices.size(); ++v) queue_rays(v);
-    while (!queue_.empty()) {
-      uint32_t idx = pop();
-      Ray ray = std::move(rays_[idx]);
-      if (traced_.count(ray.key)) continue;
-      if (!trace(ray)) return finish();
-    }
-    return finish();
+    return trace_queued();
   }
 
  private:
   TraceResult finish() { return std::move(res_); }
+
+  // Traces the queued rays (skipping lines already traced) until none is left or a step says stop.
+  TraceResult trace_queued() {
+    while (!queue_.empty()) {
+      uint32_t idx = pop();
+      Ray ray = std::move(rays_[idx]);
+      if (traced_.count(ray.key)) continue;
+      if (!trace(ray)) break;
+    }
+    return finish();
+  }
 
   bool emit(const StepEvent& e) {
     if (opt_.steps) ++*opt_.steps;
@@ -415,17 +423,7 @@ class Tracer {
   // (plane coefficient errors, vertex coordinate errors, rounding) decides almost every plane;
   // only the undecided ones, and planes known to contain the current line, go further.
   uint32_t certify(const VertexGeom& w, std::vector<uint32_t>& tight) {
-    tight.clear();
-    arr_.near(w, cand_);
-    for (uint32_t i : cand_) {
-      uint32_t l = active_[i];
-      if (mark_[l]) { tight.push_back(l); continue; }
-      int sgn = side(ps_, l, w);
-      if (sgn > 0) return l;
-      if (sgn == 0) tight.push_back(l);
-    }
-    std::sort(tight.begin(), tight.end());
-    return kNoPlane;
+    return certify_over(ps_, active_, arr_, w, mark_, cand_, tight);
   }
 
   bool trace(const Ray& ray) {
