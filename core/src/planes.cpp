@@ -318,12 +318,19 @@ void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], 
     }
     if (accurate) return;
   }
-  // Too ill-conditioned for double-double: the exact quotient, rounded twice.
+  // Too ill-conditioned for double-double: the exact quotient q ~ num / den, and the exact
+  // remainder num - q den for the low part (without it, the local coordinates of volume and area
+  // would lose every digit below the rounding of hi: a kernel far from the origin would get a
+  // volume that depends on which vertex went this way).
   const ExactHomogeneous& e = exact_homogeneous(ps, v);
-  double den = e.den.estimate();
+  const double den = e.den.estimate();
   for (int k = 0; k < 3; ++k) {
-    hi[k] = std::ldexp(e.num[k].estimate() / den, -ps.exact_shift());
-    lo[k] = 0;
+    const double q = e.num[k].estimate() / den;
+    const double r = (e.num[k] - Expansion(q) * e.den).estimate() / den;
+    const double s = q + r;  // Dekker's fast two-sum (|r| <= |q| up to rounding): s + t = q + r
+    const double t = r - (s - q);
+    hi[k] = std::ldexp(s, -ps.exact_shift());
+    lo[k] = std::ldexp(t, -ps.exact_shift());
   }
 }
 
