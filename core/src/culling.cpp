@@ -1,12 +1,15 @@
-// Culling by iterated subset kernels (in the spirit of Clarkson's sampling LP algorithm).
-// Every round traces the kernel K_S of a plane subset S; K_S contains the kernel, so a plane
-// outside S matters only if some vertex of K_S lies outside it. Finding that vertex is a support
-// query on the convex polytope K_S: hill climbing on its vertex graph from the previous answer
-// (input planes come in spatially coherent order, so few steps are needed).
+// Culling by a subset kernel (in the spirit of Clarkson's sampling LP algorithm). The kernel
+// K_S of a random plane subset S is traced; K_S contains the kernel, so a plane outside S
+// matters only if some vertex of K_S lies outside it. Finding that vertex is a support query on
+// the convex polytope K_S: hill climbing on its vertex graph from a cube map of extreme
+// vertices. K_S is then cut by the planes found.
 #include "culling.h"
 
 #include <algorithm>
 #include <cmath>
+
+#include "climb.h"
+#include "cutting.h"
 
 namespace kergen {
 
@@ -87,173 +90,139 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   quiet.max_steps = 0;
   quiet.steps = nullptr;
   const double* nx = ps.nx(); const double* ny = ps.ny(); const double* nz = ps.nz(); const double* nd = ps.d();
-  std::vector<uint32_t> adj_offset, adj, mark, bfs, start_of_cell, start_of_corner;
+  std::vector<uint32_t> adj_offset, adj, start_of_cell, start_of_corner;
+  ClimbScratch climb;
   std::vector<char> cell_resolved;
   std::vector<double> xyz;
-  std::vector<uint32_t> added_list, on_kernel;
+  std::vector<uint32_t> added_list, added_hint, on_kernel;
   std::sort(S.begin(), S.end());
   TraceResult tr = trace_kernel_edges(ps, S, start, quiet);
-  for (;;) {
+  out.rounds = 1;
+  if (tr.internal_error) {
+    out.trace = std::move(tr);
+    return out;
+  }
+  // Vertex graph of K_S.
+  const size_t V = tr.vertices.size();
+  xyz.resize(3 * V);
+  for (size_t v = 0; v < V; ++v)
+    for (int k = 0; k < 3; ++k) xyz[3 * v + k] = tr.vertices[v].geom.x[k].v;
+  adj_offset.assign(V + 1, 0);
+  for (const auto& e : tr.edges) { adj_offset[e.a + 1]++; adj_offset[e.b + 1]++; }
+  for (size_t v = 0; v < V; ++v) adj_offset[v + 1] += adj_offset[v];
+  adj.resize(adj_offset[V]);
+  {
+    std::vector<uint32_t> fill(adj_offset.begin(), adj_offset.end() - 1);
+    for (const auto& e : tr.edges) { adj[fill[e.a]++] = e.b; adj[fill[e.b]++] = e.a; }
+  }
+  // Bounding box of K_S: max over K_S of f_l <= f_l(box centre) + sum_k |n_k| half_k, one
+  // dot product that clears most planes without a climb (they lie far from the kernel).
+  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
+  for (size_t v = 1; v < V; ++v)
+    for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], xyz[3 * v + k]); hi[k] = std::max(hi[k], xyz[3 * v + k]); }
+  const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
+  const double hx = 0.5 * (hi[0] - lo[0]), hy = 0.5 * (hi[1] - lo[1]), hz = 0.5 * (hi[2] - lo[2]);
+  added_list.clear();
+  added_hint.clear();
+  // Climb starts: the vertex of K_S extreme in the direction of each cell of a cube map over
+  // the sphere of normals. A cell whose four corner directions all have that vertex as their
+  // strict maximum (every edge at the vertex descends along each corner) lies inside the
+  // vertex's normal cone, which is convex, so every direction of the cell peaks there: planes
+  // with normals in such a cell need one evaluation, no climb. Other cells only give the climb
+  // a start a few steps from its answer, whatever the order of the planes.
+  const size_t cells_per_side = std::min<size_t>(24, std::max<size_t>(2, size_t(std::sqrt(double(planes.size()) / 100))));
+  const size_t cells = 6 * cells_per_side * cells_per_side;
+  start_of_cell.resize(cells);
+  cell_resolved.assign(cells, 0);
+  // Greedy climb to the extreme vertex in direction dir (a start, not a proof).
+  auto extreme = [&](const double dir[3], uint32_t at) {
+    auto g = [&](uint32_t v) { return dir[0] * xyz[3 * v] + dir[1] * xyz[3 * v + 1] + dir[2] * xyz[3 * v + 2]; };
+    double val = g(at);
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1]; ++i)
+        if (g(adj[i]) > val) { at = adj[i]; val = g(at); moved = true; }
+    }
+    return at;
+  };
+  // The corners of the cells too: along a ridge of K_S (an elongated kernel) the extreme
+  // vertex jumps within a small change of direction, and the best of a cell's centre and
+  // corner vertices starts the climb near its answer.
+  const size_t side_pts = cells_per_side + 1;
+  start_of_corner.resize(6 * side_pts * side_pts);
+  {
+    uint32_t at = 0;
+    for (size_t c = 0; c < start_of_corner.size(); ++c) {
+      const size_t face = c / (side_pts * side_pts), i = c / side_pts % side_pts, j = c % side_pts;
+      double dir[3];
+      cube_cell_direction(cells_per_side, (face * cells_per_side) * cells_per_side, double(i), double(j), dir);
+      at = start_of_corner[c] = extreme(dir, at);
+    }
+  }
+  {
+    for (size_t cell = 0; cell < cells; ++cell) {
+      double dir[3];
+      cube_cell_direction(cells_per_side, cell, 0.5, 0.5, dir);
+      const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
+                   j = cell % cells_per_side;
+      const uint32_t at = extreme(dir, start_of_corner[(face * side_pts + i) * side_pts + j]);
+      start_of_cell[cell] = at;
+      bool strict = adj_offset[at + 1] > adj_offset[at];
+      for (int corner = 0; corner < 4 && strict; ++corner) {
+        double cd[3];
+        cube_cell_direction(cells_per_side, cell, corner & 1, corner >> 1, cd);
+        for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1] && strict; ++i) {
+          const double* w = &xyz[3 * size_t(adj[i])];
+          const double* v = &xyz[3 * size_t(at)];
+          const double e[3] = {w[0] - v[0], w[1] - v[1], w[2] - v[2]};
+          // Strictly descending by a margin far above the rounding of the coordinates (which
+          // are below ~2): the rounded direction of a very short edge says nothing about the
+          // exact one, so such vertices are left to the climb and its plateau search.
+          const double cd1 = std::fabs(cd[0]) + std::fabs(cd[1]) + std::fabs(cd[2]);
+          strict = cd[0] * e[0] + cd[1] * e[1] + cd[2] * e[2] < -1e-9 * cd1;
+        }
+      }
+      cell_resolved[cell] = strict;
+    }
+  }
+  auto neighbors = [&](uint32_t u, const auto& fn) {
+    for (uint32_t i = adj_offset[u]; i < adj_offset[u + 1]; ++i) fn(adj[i]);
+  };
+  for (uint32_t l : planes) {
+    if (in_s[l]) continue;
+    const double a = nx[l], b = ny[l], c = nz[l], d = nd[l];
+    // Coordinates are below ~2 in magnitude (scaled input, box at 2): the rounding of a value
+    // is below 1e-15 (|n|_1 + |d|). `tie` is far above that; `margin` keeps every plane that
+    // could be violated.
+    const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
+    const double tie = 1e-12 * scale, margin = 1e-9 * scale;
+    // (The box is a double computation like the climb; 2 * margin covers its rounding.)
+    if (a * cx + b * cy + c * cz + d + std::fabs(a) * hx + std::fabs(b) * hy + std::fabs(c) * hz < -2 * margin) continue;
+    auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
+    const size_t cell = cube_cell(cells_per_side, a, b, c);
+    uint32_t cur = cell == kNoCell ? 0 : start_of_cell[cell];
+    double val = f(cur);
+    if (cell != kNoCell && !cell_resolved[cell]) {
+      const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
+                   j = cell % cells_per_side;
+      const size_t c0 = (face * side_pts + i) * side_pts + j;
+      for (size_t c : {c0, c0 + 1, c0 + side_pts, c0 + side_pts + 1}) {
+        const double fc = f(start_of_corner[c]);
+        if (fc > val) { val = fc; cur = start_of_corner[c]; }
+      }
+    }
+    if (cell != kNoCell && cell_resolved[cell]) {
+      if (val > -margin) { in_s[l] = 1; added_list.push_back(l); added_hint.push_back(cur); }
+      continue;
+    }
+    cur = climb_to_max(cur, val, f, neighbors, tie, V, climb);
+    if (val > -margin) { in_s[l] = 1; added_list.push_back(l); added_hint.push_back(cur); }
+  }
+  // Every plane outside S' = (planes some vertex of K_S lies on) + (added ones) is strictly
+  // inside at every vertex of K_S, a superset of K_S': one update gives the kernel. The planes
+  // of S no vertex lies on cannot touch K_S, hence neither K_S'; they are dropped.
+  if (!added_list.empty()) {
     ++out.rounds;
-    if (tr.internal_error) {
-      out.trace = std::move(tr);
-      return out;
-    }
-    // Vertex graph of K_S.
-    const size_t V = tr.vertices.size();
-    xyz.resize(3 * V);
-    for (size_t v = 0; v < V; ++v)
-      for (int k = 0; k < 3; ++k) xyz[3 * v + k] = tr.vertices[v].geom.x[k].v;
-    adj_offset.assign(V + 1, 0);
-    for (const auto& e : tr.edges) { adj_offset[e.a + 1]++; adj_offset[e.b + 1]++; }
-    for (size_t v = 0; v < V; ++v) adj_offset[v + 1] += adj_offset[v];
-    adj.resize(adj_offset[V]);
-    {
-      std::vector<uint32_t> fill(adj_offset.begin(), adj_offset.end() - 1);
-      for (const auto& e : tr.edges) { adj[fill[e.a]++] = e.b; adj[fill[e.b]++] = e.a; }
-    }
-    // Bounding box of K_S: max over K_S of f_l <= f_l(box centre) + sum_k |n_k| half_k, one
-    // dot product that clears most planes without a climb (they lie far from the kernel).
-    double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-    for (size_t v = 1; v < V; ++v)
-      for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], xyz[3 * v + k]); hi[k] = std::max(hi[k], xyz[3 * v + k]); }
-    const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
-    const double hx = 0.5 * (hi[0] - lo[0]), hy = 0.5 * (hi[1] - lo[1]), hz = 0.5 * (hi[2] - lo[2]);
-    added_list.clear();
-    // Climb starts: the vertex of K_S extreme in the direction of each cell of a cube map over
-    // the sphere of normals. A cell whose four corner directions all have that vertex as their
-    // strict maximum (every edge at the vertex descends along each corner) lies inside the
-    // vertex's normal cone, which is convex, so every direction of the cell peaks there: planes
-    // with normals in such a cell need one evaluation, no climb. Other cells only give the climb
-    // a start a few steps from its answer, whatever the order of the planes.
-    const size_t cells_per_side = std::min<size_t>(24, std::max<size_t>(2, size_t(std::sqrt(double(planes.size()) / 100))));
-    const size_t cells = 6 * cells_per_side * cells_per_side;
-    start_of_cell.resize(cells);
-    cell_resolved.assign(cells, 0);
-    // Greedy climb to the extreme vertex in direction dir (a start, not a proof).
-    auto extreme = [&](const double dir[3], uint32_t at) {
-      auto g = [&](uint32_t v) { return dir[0] * xyz[3 * v] + dir[1] * xyz[3 * v + 1] + dir[2] * xyz[3 * v + 2]; };
-      double val = g(at);
-      for (bool moved = true; moved;) {
-        moved = false;
-        for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1]; ++i)
-          if (g(adj[i]) > val) { at = adj[i]; val = g(at); moved = true; }
-      }
-      return at;
-    };
-    // The corners of the cells too: along a ridge of K_S (an elongated kernel) the extreme
-    // vertex jumps within a small change of direction, and the best of a cell's centre and
-    // corner vertices starts the climb near its answer.
-    const size_t side_pts = cells_per_side + 1;
-    start_of_corner.resize(6 * side_pts * side_pts);
-    {
-      uint32_t at = 0;
-      for (size_t c = 0; c < start_of_corner.size(); ++c) {
-        const size_t face = c / (side_pts * side_pts), i = c / side_pts % side_pts, j = c % side_pts;
-        double dir[3];
-        cube_cell_direction(cells_per_side, (face * cells_per_side) * cells_per_side, double(i), double(j), dir);
-        at = start_of_corner[c] = extreme(dir, at);
-      }
-    }
-    {
-      for (size_t cell = 0; cell < cells; ++cell) {
-        double dir[3];
-        cube_cell_direction(cells_per_side, cell, 0.5, 0.5, dir);
-        const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
-                     j = cell % cells_per_side;
-        const uint32_t at = extreme(dir, start_of_corner[(face * side_pts + i) * side_pts + j]);
-        start_of_cell[cell] = at;
-        bool strict = adj_offset[at + 1] > adj_offset[at];
-        for (int corner = 0; corner < 4 && strict; ++corner) {
-          double cd[3];
-          cube_cell_direction(cells_per_side, cell, corner & 1, corner >> 1, cd);
-          for (uint32_t i = adj_offset[at]; i < adj_offset[at + 1] && strict; ++i) {
-            const double* w = &xyz[3 * size_t(adj[i])];
-            const double* v = &xyz[3 * size_t(at)];
-            const double e[3] = {w[0] - v[0], w[1] - v[1], w[2] - v[2]};
-            // Strictly descending by a margin far above the rounding of the coordinates (which
-            // are below ~2): the rounded direction of a very short edge says nothing about the
-            // exact one, so such vertices are left to the climb and its plateau search.
-            const double cd1 = std::fabs(cd[0]) + std::fabs(cd[1]) + std::fabs(cd[2]);
-            strict = cd[0] * e[0] + cd[1] * e[1] + cd[2] * e[2] < -1e-9 * cd1;
-          }
-        }
-        cell_resolved[cell] = strict;
-      }
-    }
-    mark.assign(V, 0);
-    uint32_t stamp = 0;
-    for (uint32_t l : planes) {
-      if (in_s[l]) continue;
-      const double a = nx[l], b = ny[l], c = nz[l], d = nd[l];
-      // Coordinates are below ~2 in magnitude (scaled input, box at 2): the rounding of a value
-      // is below 1e-15 (|n|_1 + |d|). `tie` is far above that; `margin` keeps every plane that
-      // could be violated.
-      const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
-      const double tie = 1e-12 * scale, margin = 1e-9 * scale;
-      // (The box is a double computation like the climb; 2 * margin covers its rounding.)
-      if (a * cx + b * cy + c * cz + d + std::fabs(a) * hx + std::fabs(b) * hy + std::fabs(c) * hz < -2 * margin) continue;
-      auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
-      const size_t cell = cube_cell(cells_per_side, a, b, c);
-      uint32_t cur = cell == kNoCell ? 0 : start_of_cell[cell];
-      double val = f(cur);
-      if (cell != kNoCell && !cell_resolved[cell]) {
-        const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
-                     j = cell % cells_per_side;
-        const size_t c0 = (face * side_pts + i) * side_pts + j;
-        for (size_t c : {c0, c0 + 1, c0 + side_pts, c0 + side_pts + 1}) {
-          const double fc = f(start_of_corner[c]);
-          if (fc > val) { val = fc; cur = start_of_corner[c]; }
-        }
-      }
-      if (cell != kNoCell && cell_resolved[cell]) {
-        if (val > -margin) { in_s[l] = 1; added_list.push_back(l); }
-        continue;
-      }
-      for (;;) {
-        bool moved = false;
-        for (uint32_t i = adj_offset[cur]; i < adj_offset[cur + 1]; ++i) {
-          uint32_t w = adj[i];
-          double fw = f(w);
-          if (fw > val) { val = fw; cur = w; moved = true; }
-        }
-        if (moved) continue;
-        // A local maximum in double may sit on a plateau of vertices whose values differ below
-        // rounding (tiny kernel features). The vertices with values >= val - tie induce a
-        // connected subgraph of a convex polytope's skeleton, so searching it finds any higher
-        // vertex.
-        if (++stamp == 0) { mark.assign(V, 0); stamp = 1; }
-        uint32_t higher = kNoPlane;
-        bfs.assign(1, cur);
-        mark[cur] = stamp;
-        for (size_t qi = 0; qi < bfs.size() && higher == kNoPlane; ++qi) {
-          uint32_t u = bfs[qi];
-          for (uint32_t i = adj_offset[u]; i < adj_offset[u + 1]; ++i) {
-            uint32_t w = adj[i];
-            if (mark[w] == stamp) continue;
-            mark[w] = stamp;
-            double fw = f(w);
-            if (fw > val) { higher = w; break; }
-            if (fw >= val - tie) bfs.push_back(w);
-          }
-        }
-        if (higher == kNoPlane) break;
-        cur = higher;
-        val = f(cur);
-      }
-      if (val > -margin) { in_s[l] = 1; added_list.push_back(l); }
-    }
-    if (added_list.empty()) {
-      out.active = S;
-      if ((options.on_step && *options.on_step) || options.max_steps) {
-        out.trace = trace_kernel_edges(ps, S, start, options);  // the final trace, with events
-      } else {
-        out.trace = std::move(tr);
-      }
-      return out;
-    }
-    // Next S: the planes some vertex of K_S lies on (the others cannot touch K_S, hence neither
-    // the kernel: they stay marked as decided) and the added ones; K_S is updated, not retraced.
     on_kernel.clear();
     for (const auto& v : tr.vertices) on_kernel.insert(on_kernel.end(), v.tight.begin(), v.tight.end());
     std::sort(on_kernel.begin(), on_kernel.end());
@@ -261,8 +230,20 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     S = on_kernel;
     S.insert(S.end(), added_list.begin(), added_list.end());
     std::sort(S.begin(), S.end());
-    tr = update_kernel_trace(ps, S, tr, added_list, quiet);
+    // The cuts keep K_S's structure and touch only what each added plane removes; retracing is
+    // the fallback for what they do not handle (a flat result).
+    TraceResult cut;
+    if (cut_kernel_trace(ps, tr, added_list, added_hint, mix(rng), cut))
+      tr = std::move(cut);
+    else
+      tr = update_kernel_trace(ps, S, tr, added_list, quiet);
   }
+  out.active = S;
+  if (!tr.internal_error && ((options.on_step && *options.on_step) || options.max_steps))
+    out.trace = trace_kernel_edges(ps, S, start, options);  // the final trace, with events
+  else
+    out.trace = std::move(tr);
+  return out;
 }
 
 }  // namespace kergen

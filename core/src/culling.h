@@ -15,11 +15,12 @@ struct CulledTrace {
 };
 
 // Kernel of `planes` from the kernel vertex `start` (tight set computed over `planes`).
-// Clarkson-style iteration: trace the kernel K_S of a subset S (S holds start's tight planes,
-// `always` — e.g. bounding planes — and a random sample), then add every plane some vertex of
-// K_S violates; when none is violated K_S is the kernel. Violation is found per plane by hill
-// climbing on K_S's vertex graph in the plane's normal direction, in double with a margin far
-// above rounding, so a violated plane is never missed (near-touching planes are merely kept).
+// Clarkson-style sampling: trace the kernel K_S of a subset S (S holds start's tight planes,
+// `always` — e.g. bounding planes — and a random sample), find every plane some vertex of K_S
+// violates, and cut K_S by them (cutting.h; retraced where the cuts do not apply): every other
+// plane holds K_S, hence the result, strictly. Violation is found per plane by hill climbing on
+// K_S's vertex graph in the plane's normal direction, in double with a margin far above
+// rounding, so a violated plane is never missed (near-touching planes are merely kept).
 // Events are emitted only by the final trace.
 CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<uint32_t>& always,
                                const VertexGeom& start, const TraceOptions& options, uint64_t seed);

@@ -244,4 +244,29 @@ inline Mesh cubes_sharing_edge() {
   return a;
 }
 
+// UV sphere (convex: the kernel is the shape) with nu x nv cells, quads split into triangles;
+// `twist` turns ring i by twist * i radians, so each quad's two triangles are almost coplanar
+// and the kernel has tiny features (vertices ~1e-16 apart).
+inline Mesh uv_sphere(int nu, int nv, double twist) {
+  Mesh m;
+  const double pi = 3.14159265358979323846;
+  m.positions = {0, 0, -1};
+  for (int i = 1; i < nv; ++i)
+    for (int j = 0; j < nu; ++j) {
+      double th = pi * i / nv - pi / 2, ph = 2 * pi * j / nu + twist * i;
+      m.positions.insert(m.positions.end(), {std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), std::sin(th)});
+    }
+  m.positions.insert(m.positions.end(), {0, 0, 1});
+  auto id = [&](int i, int j) { return uint32_t(1 + (i - 1) * nu + (j % nu)); };
+  const uint32_t top = uint32_t(m.positions.size() / 3 - 1);
+  for (int j = 0; j < nu; ++j) m.indices.insert(m.indices.end(), {0, id(1, j + 1), id(1, j)});
+  for (int i = 1; i < nv - 1; ++i)
+    for (int j = 0; j < nu; ++j) {
+      m.indices.insert(m.indices.end(), {id(i, j), id(i, j + 1), id(i + 1, j + 1)});
+      m.indices.insert(m.indices.end(), {id(i, j), id(i + 1, j + 1), id(i + 1, j)});
+    }
+  for (int j = 0; j < nu; ++j) m.indices.insert(m.indices.end(), {top, id(nv - 1, j), id(nv - 1, j + 1)});
+  return m;
+}
+
 }  // namespace kergen_test

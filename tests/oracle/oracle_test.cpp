@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cgal_oracle.h"
+#include "fixtures.h"
 #include "kergen/io.h"
 #include "kergen/kergen.h"
 
@@ -419,38 +420,12 @@ TEST(OracleSelfCheck, AnalyticMeshes) {
 // UV spheres with quads split into triangles: each quad's two triangles are almost coplanar, so
 // the exact kernel has many tiny features (vertices ~1e-16 apart). This once exposed a culling
 // miss (a support query stuck on a rounding-level plateau); no shared mesh shows it.
-namespace {
-
-kergen::Mesh uv_sphere(int nu, int nv, double twist) {
-  kergen::Mesh m;
-  const double pi = 3.14159265358979323846;
-  m.positions = {0, 0, -1};
-  for (int i = 1; i < nv; ++i)
-    for (int j = 0; j < nu; ++j) {
-      double th = pi * i / nv - pi / 2, ph = 2 * pi * j / nu + twist * i;
-      m.positions.insert(m.positions.end(), {std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), std::sin(th)});
-    }
-  m.positions.insert(m.positions.end(), {0, 0, 1});
-  auto id = [&](int i, int j) { return uint32_t(1 + (i - 1) * nu + (j % nu)); };
-  const uint32_t top = uint32_t(m.positions.size() / 3 - 1);
-  for (int j = 0; j < nu; ++j) m.indices.insert(m.indices.end(), {0, id(1, j + 1), id(1, j)});
-  for (int i = 1; i < nv - 1; ++i)
-    for (int j = 0; j < nu; ++j) {
-      m.indices.insert(m.indices.end(), {id(i, j), id(i, j + 1), id(i + 1, j + 1)});
-      m.indices.insert(m.indices.end(), {id(i, j), id(i + 1, j + 1), id(i + 1, j)});
-    }
-  for (int j = 0; j < nu; ++j) m.indices.insert(m.indices.end(), {top, id(nv - 1, j), id(nv - 1, j + 1)});
-  return m;
-}
-
-}  // namespace
-
 TEST(OracleGenerated, NearConvexSpheres) {
   struct Case { int nu, nv; double twist; };
   const Case cases[] = {{12, 6, 0}, {20, 10, 0}, {24, 12, 0.05}, {40, 20, 0}, {33, 17, 0.013}};
   int checked = 0;
   for (const Case& c : cases) {
-    kergen::Mesh m = uv_sphere(c.nu, c.nv, c.twist);
+    kergen::Mesh m = kergen_test::uv_sphere(c.nu, c.nv, c.twist);
     kergen::Kernel ours = kergen::compute_kernel(m.view());
     kergen_oracle::OracleResult ref = kergen_oracle::oracle_kernel(m);
     std::string name = "uv_sphere(" + std::to_string(c.nu) + "," + std::to_string(c.nv) + "," + std::to_string(c.twist) + ")";

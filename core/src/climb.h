@@ -1,0 +1,51 @@
+// Hill climbing to the maximum of a linear function over the vertex graph of a convex polytope
+// (shared by culling's violation test and the incremental cuts).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace kergen {
+
+struct ClimbScratch {
+  std::vector<uint32_t> mark, bfs;
+  uint32_t stamp = 0;
+};
+
+// From `cur` (value `val` = f(cur)), returns a vertex whose value `val` no vertex exceeds, for
+// values exact up to rounding far below `tie`: greedy ascent, then, at a local maximum in double,
+// a search of the plateau of vertices within `tie` of it (they induce a connected subgraph of a
+// convex polytope's skeleton, so any higher vertex is reachable through them).
+// f(v) gives the double value; neighbors(v, fn) calls fn(w) for each neighbour w of v; there are
+// at most num_vertices vertex ids.
+template <class Value, class Neighbors>
+uint32_t climb_to_max(uint32_t cur, double& val, const Value& f, const Neighbors& neighbors, double tie,
+                      size_t num_vertices, ClimbScratch& s) {
+  for (;;) {
+    bool moved = false;
+    neighbors(cur, [&](uint32_t w) {
+      const double fw = f(w);
+      if (fw > val) { val = fw; cur = w; moved = true; }
+    });
+    if (moved) continue;
+    if (s.mark.size() < num_vertices) s.mark.resize(num_vertices, 0);
+    if (++s.stamp == 0) { s.mark.assign(s.mark.size(), 0); s.stamp = 1; }
+    uint32_t higher = uint32_t(-1);
+    s.bfs.assign(1, cur);
+    s.mark[cur] = s.stamp;
+    for (size_t qi = 0; qi < s.bfs.size() && higher == uint32_t(-1); ++qi) {
+      neighbors(s.bfs[qi], [&](uint32_t w) {
+        if (higher != uint32_t(-1) || s.mark[w] == s.stamp) return;
+        s.mark[w] = s.stamp;
+        const double fw = f(w);
+        if (fw > val) higher = w;
+        else if (fw >= val - tie) s.bfs.push_back(w);
+      });
+    }
+    if (higher == uint32_t(-1)) return cur;
+    cur = higher;
+    val = f(cur);
+  }
+}
+
+}  // namespace kergen

@@ -1,0 +1,243 @@
+// Incremental plane cuts of a convex polytope with exact incidences (see cutting.h).
+//
+// Why a cut is exact: a vertex is removed iff side() > 0 (exact sign); an edge from a removed
+// vertex to a kept one inside the plane gets the vertex (p, q, h) of its line and the plane;
+// the new face's edges join the cut points (new vertices and vertices on h) two by two: the
+// cut points on another plane g lie on the line g ∩ h, and a face of a convex polytope that
+// lies on a line holds exactly two vertices, so every pair sharing g is an edge and more than
+// two would be an inconsistency.
+#include "cutting.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "climb.h"
+
+namespace kergen {
+
+namespace {
+
+enum : int8_t { kUnseen = 0, kInside = 1, kOn = 2, kOutside = 3 };
+
+void insert_sorted(std::vector<uint32_t>& v, uint32_t x) {
+  auto it = std::lower_bound(v.begin(), v.end(), x);
+  if (it == v.end() || *it != x) v.insert(it, x);
+}
+
+class Cutter {
+ public:
+  Cutter(const PlaneSet& ps, const TraceResult& prev) : ps_(ps), vertices_(prev.vertices), edges_(prev.edges) {
+    const size_t V = vertices_.size();
+    alive_v_.assign(V, 1);
+    alive_e_.assign(edges_.size(), 1);
+    adj_.resize(V);
+    xyz_.resize(3 * V);
+    for (size_t v = 0; v < V; ++v)
+      for (int k = 0; k < 3; ++k) xyz_[3 * v + k] = vertices_[v].geom.x[k].v;
+    for (uint32_t e = 0; e < edges_.size(); ++e) {
+      adj_[edges_[e].a].push_back(e);
+      adj_[edges_[e].b].push_back(e);
+    }
+    replaced_by_.assign(V, kNoPlane);
+    state_.assign(V, kUnseen);
+    alive_count_ = V;
+    traced_lines_ = prev.traced_lines;
+  }
+
+  // Cuts by plane h; false when the result is not handled (see cutting.h).
+  bool cut(uint32_t h, uint32_t hint) {
+    const double a = ps_.nx()[h], b = ps_.ny()[h], c = ps_.nz()[h], d = ps_.d()[h];
+    // Same bounds as culling's: coordinates below ~2, rounding far below `tie` and `margin`.
+    const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
+    const double tie = 1e-12 * scale, margin = 1e-9 * scale;
+    auto f = [&](uint32_t v) { return a * xyz_[3 * v] + b * xyz_[3 * v + 1] + c * xyz_[3 * v + 2] + d; };
+    auto neighbors = [&](uint32_t u, const auto& fn) {
+      for (uint32_t e : adj_[u]) fn(other(e, u));
+    };
+    uint32_t cur = hint < alive_v_.size() ? hint : 0;
+    while (!alive_v_[cur]) cur = replaced_by_[cur];
+    double val = f(cur);
+    cur = climb_to_max(cur, val, f, neighbors, tie, vertices_.size(), climb_);
+    if (val <= -margin) return true;  // strictly inside at every vertex: no change
+
+    // Every vertex with f >= 0 is joined to the maximum by an ascending path, and `cur` too
+    // (f(cur) > -margin up to rounding), so a search over f >= -2 margin from cur meets them all.
+    region_.assign(1, cur);
+    state_[cur] = kInside;
+    out_.clear();
+    on_.clear();
+    for (size_t i = 0; i < region_.size(); ++i) {
+      const uint32_t v = region_[i];
+      const double fv = f(v);
+      const int s = fv <= -margin ? -1 : side(ps_, h, vertices_[v].geom);
+      state_[v] = s > 0 ? kOutside : s == 0 ? kOn : kInside;
+      if (s > 0) out_.push_back(v);
+      if (s == 0) on_.push_back(v);
+      for (uint32_t e : adj_[v]) {
+        const uint32_t w = other(e, v);
+        if (state_[w] == kUnseen && f(w) >= -2 * margin) {
+          state_[w] = kInside;
+          region_.push_back(w);
+        }
+      }
+    }
+    const bool ok = apply(h);
+    for (uint32_t v : region_)
+      if (v < state_.size()) state_[v] = kUnseen;
+    return ok;
+  }
+
+  void finish(TraceResult& out) {
+    std::vector<uint32_t> id(vertices_.size(), kNoPlane);
+    out = TraceResult();
+    for (uint32_t v = 0; v < vertices_.size(); ++v) {
+      if (!alive_v_[v]) continue;
+      id[v] = uint32_t(out.vertices.size());
+      out.vertices.push_back(std::move(vertices_[v]));
+    }
+    for (uint32_t e = 0; e < edges_.size(); ++e) {
+      if (!alive_e_[e]) continue;
+      TracedEdge te = std::move(edges_[e]);
+      te.a = id[te.a];
+      te.b = id[te.b];
+      out.edges.push_back(std::move(te));
+    }
+    out.traced_lines = traced_lines_;
+  }
+
+ private:
+  uint32_t other(uint32_t e, uint32_t v) const { return edges_[e].a == v ? edges_[e].b : edges_[e].a; }
+
+  bool apply(uint32_t h) {
+    // The vertices and edges on h gain it (all that changes when h only touches).
+    for (uint32_t v : on_) insert_sorted(vertices_[v].tight, h);
+    for (uint32_t v : on_)
+      for (uint32_t e : adj_[v])
+        if (state_[other(e, v)] == kOn && edges_[e].a == v) insert_sorted(edges_[e].planes, h);
+    if (out_.empty()) return true;
+    if (out_.size() + on_.size() >= alive_count_) return false;  // nothing strictly inside: flat
+    const uint32_t opposite = ps_.opposite(h);
+    cut_points_ = on_;
+    for (uint32_t v : out_) {
+      for (uint32_t e : adj_[v]) {
+        if (!alive_e_[e]) continue;
+        const uint32_t w = other(e, v);
+        if (state_[w] == kOutside) {
+          alive_e_[e] = 0;
+        } else if (state_[w] == kOn) {
+          alive_e_[e] = 0;
+          auto& aw = adj_[w];
+          aw.erase(std::find(aw.begin(), aw.end(), e));
+        } else {
+          // The edge leaves the removed part: it now ends where its line meets h.
+          TracedEdge& te = edges_[e];
+          TracedVertex nv;
+          nv.geom = make_vertex(ps_, te.p, te.q, h);
+          nv.tight = te.planes;
+          insert_sorted(nv.tight, h);
+          const uint32_t n = add_vertex(std::move(nv));
+          (te.a == v ? te.a : te.b) = n;
+          adj_[n].push_back(e);
+          cut_points_.push_back(n);
+        }
+      }
+      adj_[v].clear();
+      alive_v_[v] = 0;
+      --alive_count_;
+    }
+    const uint32_t any_cut_point = cut_points_.empty() ? kNoPlane : cut_points_[0];
+    if (any_cut_point == kNoPlane) return false;
+    for (uint32_t v : out_) replaced_by_[v] = any_cut_point;
+
+    // The new face: cut points grouped by their other planes.
+    by_plane_.clear();
+    for (uint32_t cpt : cut_points_)
+      for (uint32_t g : vertices_[cpt].tight) {
+        if (g == opposite) return false;  // flat
+        if (g != h) by_plane_.push_back({g, cpt});
+      }
+    std::sort(by_plane_.begin(), by_plane_.end());
+    for (size_t i = 0; i < by_plane_.size();) {
+      size_t j = i;
+      while (j < by_plane_.size() && by_plane_[j].first == by_plane_[i].first) ++j;
+      if (j - i > 2) return false;
+      if (j - i == 2 && !connect(by_plane_[i].first, h, by_plane_[i].second, by_plane_[i + 1].second)) return false;
+      i = j;
+    }
+    for (uint32_t cpt : cut_points_)
+      if (adj_[cpt].size() < 3) return false;
+    return true;
+  }
+
+  uint32_t add_vertex(TracedVertex&& v) {
+    const uint32_t id = uint32_t(vertices_.size());
+    for (int k = 0; k < 3; ++k) xyz_.push_back(v.geom.x[k].v);
+    vertices_.push_back(std::move(v));
+    alive_v_.push_back(1);
+    adj_.emplace_back();
+    replaced_by_.push_back(kNoPlane);
+    state_.push_back(kUnseen);
+    ++alive_count_;
+    return id;
+  }
+
+  // Edge between cut points u and w on the line of planes g and h (unless it exists).
+  bool connect(uint32_t g, uint32_t h, uint32_t u, uint32_t w) {
+    for (uint32_t e : adj_[u])
+      if (other(e, u) == w) return true;
+    const auto &tu = vertices_[u].tight, &tw = vertices_[w].tight;
+    // Direction u -> w = sigma (n_g x n_h): for a plane r through u but not w, f_r drops from 0
+    // at u, and its rate along n_g x n_h is sign det3(n_r, n_g, n_h), so sigma is minus that.
+    int sigma = 0;
+    for (uint32_t r : tu) {
+      if (std::binary_search(tw.begin(), tw.end(), r)) continue;
+      const int s = sign_det3_normals(ps_, r, g, h);
+      if (s != 0) { sigma = -s; break; }
+    }
+    if (sigma == 0) return false;
+    TracedEdge te;
+    te.a = u; te.b = w; te.p = g; te.q = h; te.sigma = sigma;
+    std::set_intersection(tu.begin(), tu.end(), tw.begin(), tw.end(), std::back_inserter(te.planes));
+    const uint32_t id = uint32_t(edges_.size());
+    edges_.push_back(std::move(te));
+    alive_e_.push_back(1);
+    adj_[u].push_back(id);
+    adj_[w].push_back(id);
+    return true;
+  }
+
+  const PlaneSet& ps_;
+  std::vector<TracedVertex> vertices_;
+  std::vector<TracedEdge> edges_;
+  std::vector<char> alive_v_, alive_e_;
+  std::vector<std::vector<uint32_t>> adj_;  // edge ids per vertex
+  std::vector<double> xyz_;
+  std::vector<uint32_t> replaced_by_;       // a cut point of the cut that removed the vertex
+  std::vector<int8_t> state_;
+  size_t alive_count_ = 0, traced_lines_ = 0;
+  ClimbScratch climb_;
+  std::vector<uint32_t> region_, out_, on_, cut_points_;
+  std::vector<std::pair<uint32_t, uint32_t>> by_plane_;
+};
+
+}  // namespace
+
+bool cut_kernel_trace(const PlaneSet& ps, const TraceResult& prev, const std::vector<uint32_t>& added,
+                      const std::vector<uint32_t>& hints, uint64_t seed, TraceResult& out) {
+  if (prev.vertices.empty() || !prev.complete || prev.internal_error) return false;
+  std::vector<uint32_t> order(added.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  // Random order: the expected total change of incremental half-space intersection is small
+  // in random order, while input order (spatially coherent) can rebuild the same region often.
+  for (size_t i = order.size(); i > 1; --i) {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    std::swap(order[i - 1], order[size_t((seed >> 33) % i)]);
+  }
+  Cutter cutter(ps, prev);
+  for (uint32_t i : order)
+    if (!cutter.cut(added[i], i < hints.size() ? hints[i] : 0)) return false;
+  cutter.finish(out);
+  return true;
+}
+
+}  // namespace kergen
