@@ -214,45 +214,51 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
   return *v.exact;
 }
 
+// The input point on planes a, b and c (three planes with independent normals meet in one
+// point), or kNoPoint.
+int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
+  if (ps.explicit_plane(a) || ps.explicit_plane(b) || ps.explicit_plane(c)) return kNoPoint;
+  // An input vertex on all three planes by construction is the vertex itself.
+  const uint32_t planes[3] = {a, b, c};
+  int smallest = 0;
+  for (int i = 1; i < 3; ++i)
+    if (ps.points_on(planes[i]).size() < ps.points_on(planes[smallest]).size()) smallest = i;
+  for (uint32_t p : ps.points_on(planes[smallest])) {
+    bool on_all = true;
+    for (int i = 0; i < 3 && on_all; ++i)
+      if (i != smallest && !ps.point_on_plane(p, planes[i])) on_all = false;
+    if (on_all) return int32_t(p);
+  }
+  // An input vertex on two of the planes by construction may lie on the third geometrically
+  // (structured meshes): one exact orient3d per such vertex decides it.
+  for (int i = 0; i < 3; ++i) {
+    uint32_t p1 = planes[(i + 1) % 3], p2 = planes[(i + 2) % 3], third = planes[i];
+    if (ps.points_on(p1).size() > ps.points_on(p2).size()) std::swap(p1, p2);
+    if (ps.points_on(p1).size() > 64) continue;
+    const auto& r = ps.rep(third);
+    for (uint32_t p : ps.points_on(p1)) {
+      if (!ps.point_on_plane(p, p2)) continue;
+      if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift()) == 0) return int32_t(p);
+    }
+  }
+  return kNoPoint;
+}
+
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point) {
   VertexGeom v;
   v.basis[0] = a; v.basis[1] = b; v.basis[2] = c;
   v.det_sign = sign_det3_normals(ps, a, b, c);
   assert(v.det_sign != 0 && "make_vertex: planes with dependent normals");
 
-  // An input vertex on all three planes by construction is the vertex itself.
-  if (find_input_point && !ps.explicit_plane(a) && !ps.explicit_plane(b) && !ps.explicit_plane(c)) {
-    const uint32_t planes[3] = {a, b, c};
-    int smallest = 0;
-    for (int i = 1; i < 3; ++i)
-      if (ps.points_on(planes[i]).size() < ps.points_on(planes[smallest]).size()) smallest = i;
-    for (uint32_t p : ps.points_on(planes[smallest])) {
-      bool on_all = true;
-      for (int i = 0; i < 3 && on_all; ++i)
-        if (i != smallest && !ps.point_on_plane(p, planes[i])) on_all = false;
-      if (on_all) {
-        v.mesh_point = int32_t(p);
-        const double* x = ps.point(p);
-        for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);
-        return v;
-      }
+  if (find_input_point) {
+    v.mesh_point = input_point_on(ps, a, b, c);
+    if (v.mesh_point != kNoPoint) {
+      const double* x = ps.point(uint32_t(v.mesh_point));
+      for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);
+      return v;
     }
-    // An input vertex on two of the planes by construction may lie on the third geometrically
-    // (structured meshes): one exact orient3d per such vertex decides it.
-    for (int i = 0; i < 3; ++i) {
-      uint32_t p1 = planes[(i + 1) % 3], p2 = planes[(i + 2) % 3], third = planes[i];
-      if (ps.points_on(p1).size() > ps.points_on(p2).size()) std::swap(p1, p2);
-      if (ps.points_on(p1).size() > 64) continue;
-      const auto& r = ps.rep(third);
-      for (uint32_t p : ps.points_on(p1)) {
-        if (!ps.point_on_plane(p, p2)) continue;
-        if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift()) != 0) continue;
-        v.mesh_point = int32_t(p);
-        const double* x = ps.point(p);
-        for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);
-        return v;
-      }
-    }
+  } else {
+    v.late_point = kPointNotSearched;
   }
 
   Approx num[3], den;
@@ -351,9 +357,24 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   int s = f.sign();
   if (s != 2) return s;
   ++ps.exact_fallbacks;
-  if (v.mesh_point != kNoPoint) {  // explicit plane at an input point: exact coordinates
+  int32_t point = v.mesh_point;
+  if (point == kNoPoint) {
+    // A vertex built without the search (an LP candidate) that the filter cannot place is
+    // usually an input point where four or more planes meet: worth a search before the exact
+    // Cramer solve.
+    if (v.late_point == kPointNotSearched) v.late_point = input_point_on(ps, v.basis[0], v.basis[1], v.basis[2]);
+    point = v.late_point;
+    if (point != kNoPoint) {
+      if (ps.point_on_plane(uint32_t(point), l)) return 0;
+      if (!ps.explicit_plane(l)) {
+        const auto& r = ps.rep(l);
+        return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(uint32_t(point)), ps.exact_shift());
+      }
+    }
+  }
+  if (point != kNoPoint) {  // explicit plane at an input point: exact coordinates
     const auto& e = ps.exact(l);
-    Scaled x(ps.point(uint32_t(v.mesh_point)), ps.exact_shift());
+    Scaled x(ps.point(uint32_t(point)), ps.exact_shift());
     return (e.n[0] * Expansion(x.v[0]) + e.n[1] * Expansion(x.v[1]) + e.n[2] * Expansion(x.v[2]) + e.d).sign();
   }
   // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached

@@ -29,6 +29,7 @@ struct PlaneCoef {
 
 constexpr uint32_t kNoPlane = 0xffffffffu;
 constexpr int32_t kNoPoint = -1;
+constexpr int32_t kPointNotSearched = -2;
 
 class PlaneSet {
  public:
@@ -154,6 +155,9 @@ struct VertexGeom {
   // at this vertex is one 4-term dot product instead of a 4x4 determinant.
   mutable std::shared_ptr<const DDHomogeneous> dd;
   mutable std::shared_ptr<const ExactHomogeneous> exact;
+  // For a vertex built without the input-point search: the search's answer, found on the first
+  // side test the filter cannot decide (kPointNotSearched until then).
+  mutable int32_t late_point = kNoPoint;
 };
 
 // Plane of an input triangle with error bounds, without adding it to a set.
