@@ -132,7 +132,9 @@ class Cutter {
           // The edge leaves the removed part: it now ends where its line meets h.
           TracedEdge& te = edges_[e];
           TracedVertex nv;
-          nv.geom = make_vertex(ps_, te.p, te.q, h);
+          // Most cut vertices are later cut away again: the input-point search is left to the
+          // first side test the filter cannot decide.
+          nv.geom = make_vertex(ps_, te.p, te.q, h, false);
           nv.tight = te.planes;
           insert_sorted(nv.tight, h);
           const uint32_t n = add_vertex(std::move(nv));
