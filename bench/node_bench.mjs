@@ -94,15 +94,15 @@ async function main() {
     process.exit(1);
   }
 
-  let native = new Map();
-  if (a.native) {
-    const out = execFileSync(a.native, ['--json', '--no-epick', '--no-epeck', '--runs', String(a.runs), ...list.map((e) => e.file)],
+  // The native runs of a mesh come right before its wasm runs (one process per mesh), so a
+  // change of machine speed during the benchmark (shared hosts) does not skew the ratio.
+  const nativeRow = (file) => {
+    if (!a.native) return null;
+    const out = execFileSync(a.native, ['--json', '--no-epick', '--no-epeck', '--runs', String(a.runs), file],
       { encoding: 'utf8', maxBuffer: 1 << 26, stdio: ['ignore', 'pipe', 'ignore'] });
-    for (const line of out.split('\n').filter(Boolean)) {
-      const row = JSON.parse(line);
-      native.set(row.mesh, row);
-    }
-  }
+    const line = out.split('\n').find(Boolean);
+    return line ? JSON.parse(line) : null;
+  };
 
   const wasmStat = fs.statSync(wasmPath);
   if (!a.json) {
@@ -118,6 +118,7 @@ async function main() {
       console.log(a.json ? JSON.stringify({ mesh: label, error: String(e.message) }) : `| ${label} | | ERROR ${e.message} |`);
       continue;
     }
+    const nat = nativeRow(file);
     const options = mesh.faceSizes ? { faceSizes: mesh.faceSizes } : {};
     const times = [], results = [];
     let result = null, error = null;
@@ -141,7 +142,6 @@ async function main() {
       const order = times.map((t, i) => i).sort((x, y) => times[x] - times[y]);
       result = results[order[Math.floor(order.length / 2)]];
     }
-    const nat = native.get(file);
     const natMs = nat && !nat.error ? nat.ours_ms : NaN;
     if (a.json) {
       const o = { mesh: label, node: process.version, runs: a.runs, faces: mesh.faces, wasm_ms: ms };
