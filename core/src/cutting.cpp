@@ -82,8 +82,7 @@ class Cutter {
       }
     }
     const bool ok = apply(h);
-    for (uint32_t v : region_)
-      if (v < state_.size()) state_[v] = kUnseen;
+    for (uint32_t v : region_) state_[v] = kUnseen;
     return ok;
   }
 
