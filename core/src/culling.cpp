@@ -122,8 +122,6 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], xyz[3 * v + k]); hi[k] = std::max(hi[k], xyz[3 * v + k]); }
   const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]), cz = 0.5 * (lo[2] + hi[2]);
   const double hx = 0.5 * (hi[0] - lo[0]), hy = 0.5 * (hi[1] - lo[1]), hz = 0.5 * (hi[2] - lo[2]);
-  added_list.clear();
-  added_hint.clear();
   // Climb starts: the vertex of K_S extreme in the direction of each cell of a cube map over
   // the sphere of normals. A cell whose four corner directions all have that vertex as their
   // strict maximum (every edge at the vertex descends along each corner) lies inside the
@@ -223,7 +221,6 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   // of S no vertex lies on cannot touch K_S, hence neither K_S'; they are dropped.
   if (!added_list.empty()) {
     ++out.rounds;
-    on_kernel.clear();
     for (const auto& v : tr.vertices) on_kernel.insert(on_kernel.end(), v.tight.begin(), v.tight.end());
     std::sort(on_kernel.begin(), on_kernel.end());
     on_kernel.erase(std::unique(on_kernel.begin(), on_kernel.end()), on_kernel.end());

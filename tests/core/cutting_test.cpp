@@ -58,6 +58,11 @@ struct PlanesWithStart {
     EXPECT_EQ(lp.outcome, LpResult::Outcome::Optimal);
     start = lp.vertex;
   }
+  std::vector<uint32_t> planes_and_box() const {
+    std::vector<uint32_t> v = mesh_planes;
+    v.insert(v.end(), box.begin(), box.end());
+    return v;
+  }
 };
 
 // K_S for a random half of the planes (plus start's and the box), then S' and the cuts.
@@ -66,8 +71,7 @@ void check_cuts(const Mesh& m, const char* name, uint64_t seed) {
   std::normal_distribution<double> N(0, 1);
   const double dir[3] = {N(rng), N(rng), N(rng)};
   PlanesWithStart s(m, dir);
-  std::vector<uint32_t> all = s.mesh_planes;
-  all.insert(all.end(), s.box.begin(), s.box.end());
+  std::vector<uint32_t> all = s.planes_and_box();
   std::vector<char> in_s(s.ps->size(), 0);
   std::vector<uint32_t> S = s.box, added, hints;
   Tight start_tight;
@@ -142,16 +146,21 @@ TEST(Cutting, MatchesRetracingOnDegenerateShapes) {
   }
 }
 
+// The unit cube traced over its planes and the box: the polytope the explicit cuts start from.
+struct TracedCube {
+  static constexpr double kDir[3] = {0.31, -0.52, 0.79};
+  PlanesWithStart s{kergen_test::unit_cube(), kDir};
+  std::vector<uint32_t> all = s.planes_and_box();
+  TraceResult cube = trace_kernel_edges(*s.ps, all, s.start, TraceOptions());
+};
+
 TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
   // The unit cube and planes that touch it only along its edge x = y = 1 and at its corner
   // (1, 1, 1) (sums of its face planes, exact in double): nothing is cut, but the vertices and
   // the edge on them must list them, as a full trace does.
-  const double dir[3] = {0.31, -0.52, 0.79};
-  PlanesWithStart s(kergen_test::unit_cube(), dir);
-  std::vector<uint32_t> all = s.mesh_planes;
-  all.insert(all.end(), s.box.begin(), s.box.end());
-  TraceResult cube = trace_kernel_edges(*s.ps, all, s.start, TraceOptions());
-  ASSERT_EQ(cube.vertices.size(), 8u);
+  TracedCube t;
+  ASSERT_EQ(t.cube.vertices.size(), 8u);
+  PlanesWithStart& s = t.s;
   uint32_t face[3] = {kNoPlane, kNoPlane, kNoPlane};  // the faces x = 1, y = 1, z = 1
   const double* n[3] = {s.ps->nx(), s.ps->ny(), s.ps->nz()};
   for (uint32_t l : s.mesh_planes)
@@ -166,10 +175,10 @@ TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
     return s.ps->add_explicit(c[0], c[1], c[2], c[3]);
   };
   const std::vector<uint32_t> added = {sum(2), sum(3)};
-  all.insert(all.end(), added.begin(), added.end());
+  t.all.insert(t.all.end(), added.begin(), added.end());
   TraceResult cut;
-  ASSERT_TRUE(cut_kernel_trace(*s.ps, cube, added, {0, 0}, 1, cut));
-  TraceResult full = trace_kernel_edges(*s.ps, all, s.start, TraceOptions());
+  ASSERT_TRUE(cut_kernel_trace(*s.ps, t.cube, added, {0, 0}, 1, cut));
+  TraceResult full = trace_kernel_edges(*s.ps, t.all, s.start, TraceOptions());
   EXPECT_EQ(cut.vertices.size(), 8u);
   EXPECT_TRUE(canonical(cut) == canonical(full));
   size_t on_corner = 0;
@@ -181,12 +190,9 @@ TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
 TEST(Cutting, DeclinesAFlatResult) {
   // The unit cube cut by x <= 0, the opposite of its own face x >= 0: the result is the square
   // x = 0, which the cuts leave to tracing.
-  const double dir[3] = {0.31, -0.52, 0.79};
-  PlanesWithStart s(kergen_test::unit_cube(), dir);
-  std::vector<uint32_t> all = s.mesh_planes;
-  all.insert(all.end(), s.box.begin(), s.box.end());
-  TraceResult cube = trace_kernel_edges(*s.ps, all, s.start, TraceOptions());
-  ASSERT_EQ(cube.vertices.size(), 8u);
+  TracedCube t;
+  ASSERT_EQ(t.cube.vertices.size(), 8u);
+  PlanesWithStart& s = t.s;
   uint32_t face_x0 = kNoPlane;
   for (uint32_t l : s.mesh_planes)
     if (s.ps->nx()[l] < 0 && s.ps->ny()[l] == 0 && s.ps->nz()[l] == 0) face_x0 = l;
@@ -194,7 +200,7 @@ TEST(Cutting, DeclinesAFlatResult) {
   const uint32_t x_le_0 = s.ps->add_explicit(1, 0, 0, -s.ps->d()[face_x0] / -s.ps->nx()[face_x0]);
   s.ps->set_opposite(face_x0, x_le_0);
   TraceResult out;
-  EXPECT_FALSE(cut_kernel_trace(*s.ps, cube, {x_le_0}, {0}, 1, out));
+  EXPECT_FALSE(cut_kernel_trace(*s.ps, t.cube, {x_le_0}, {0}, 1, out));
 }
 
 }  // namespace

@@ -257,11 +257,15 @@ TEST(RegressionLargeOffset, PlusPrismOffset1e15) { expect_translation_invariant(
 // The bumpy sphere of the fuzz decoder (star-shaped, generic planes, faces in a shuffled order)
 // moved to z = offset: every
 // kernel vertex must lie inside the shape's bounding box (the kernel is inside the shape).
-void expect_bumpy_sphere_kernel_inside(double offset) {
-  SCOPED_TRACE("offset " + std::to_string(offset));
+Mesh shuffled_bumpy_sphere_at(double offset) {
   Mesh m = kergen_test::transformed(kfuzz::kernel_input::bumpy_sphere(5, 4), 1, 0, 0, offset);
   kfuzz::kernel_input::Bytes no_bytes{nullptr, 0};
   kfuzz::kernel_input::shuffle(m, no_bytes, false);  // the face order of fuzz input 9cae0f90
+  return m;
+}
+void expect_bumpy_sphere_kernel_inside(double offset) {
+  SCOPED_TRACE("offset " + std::to_string(offset));
+  const Mesh m = shuffled_bumpy_sphere_at(offset);
   const kergen::Kernel k = kergen::compute_kernel(m.view());
   ASSERT_TRUE(k.ok()) << k.message;
   ASSERT_EQ(k.type, kergen::KernelType::Polyhedron);
@@ -291,9 +295,7 @@ TEST(RegressionLargeOffset, BumpySphereOffset1e15) { expect_bumpy_sphere_kernel_
 // a vertex was reached by (0.15% apart). Tracing from other vertices first must give the same
 // volume.
 TEST(RegressionLargeOffset, VolumeDoesNotDependOnTraceOrder) {
-  Mesh m = kergen_test::transformed(kfuzz::kernel_input::bumpy_sphere(5, 4), 1, 0, 0, 1e15);
-  kfuzz::kernel_input::Bytes no_bytes{nullptr, 0};
-  kfuzz::kernel_input::shuffle(m, no_bytes, false);
+  const Mesh m = shuffled_bumpy_sphere_at(1e15);
   std::vector<double> volumes;
   for (const std::array<double, 3>& from : {std::array<double, 3>{0, 0, 0}, {1, 1, 1e15}, {-1, 0.5, 1e15 - 1}, {0.2, -1, 1e15 + 1}}) {
     kergen::Options o;
@@ -306,7 +308,6 @@ TEST(RegressionLargeOffset, VolumeDoesNotDependOnTraceOrder) {
   }
   for (double v : volumes) EXPECT_NEAR(v, volumes[0], 1e-12 * volumes[0]);
 }
-
 
 // fuzz_obj findings (OBJ bytes as found by the fuzzer, replayed through read_obj + compute_kernel
 // + the invariants). Open core bugs: negative kernel volume, kernel volume above the shape's
