@@ -28,9 +28,11 @@ PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
 // Triangles of a polygon that is not exactly planar (often: planar up to rounding, e.g. after a
 // rotation). Convex polygons get a fan from their first corner; non-convex ones are ear-clipped
 // in the projection along the dominant axis of the Newell normal, which keeps every triangle
-// oriented like the polygon (a fan would fold over a reflex corner and invert planes). Falls back to a fan when no ear is found (self-overlapping
-// input) or the polygon is large (over 128 corners).
-std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k) {
+// oriented like the polygon (a fan would fold over a reflex corner and invert planes). Falls
+// back to a fan when no ear is found (self-overlapping input) or the polygon is large (over 128
+// corners). Then, up to 128 corners, inward folds are flipped outward where they can be.
+std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k,
+                                                         int exact_shift) {
   std::vector<std::array<uint32_t, 3>> out;
   auto P = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
   double n[3] = {0, 0, 0};
@@ -60,8 +62,51 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   bool convex = true;
   for (size_t i = 0; i < k && convex; ++i)
     if (cross(loop[(i + k - 1) % k], loop[i], loop[(i + 1) % k]) < 0) convex = false;
+  // Where two triangles of the split meet along a diagonal (x, y), the far corner q of the
+  // second may lie strictly outside the plane of the first (x, y, p): the surface folds inward,
+  // and both planes cut into the solid. A polygon that is non-planar by rounding then loses
+  // slivers of rounding size to the kernel, each corner of them a vertex of nearly coplanar
+  // planes whose side tests need exact arithmetic. Flipping the diagonal to (p, q) folds it
+  // outward; it is done only when both new triangles have clearly positive area in the
+  // projection (their planes keep the polygon's orientation). For a convex polygon every corner
+  // is extreme in the projection, so the flips reach the outward-folded split (the upper convex
+  // hull of the corners): near the polygon the triangles' half-spaces meet in the solid itself.
+  // Each flip moves the surface strictly outward, so none is undone; the cap only guards the loop.
+  auto fold_outward = [&]() {
+    if (k > 128) return;
+    size_t flips = 0;
+    const size_t cap = 4 * k * k;
+    bool changed = true;
+    while (changed && flips < cap) {
+      changed = false;
+      for (size_t i = 0; i < out.size() && flips < cap; ++i) {
+        for (int e = 0; e < 3; ++e) {
+          const uint32_t x = out[i][e], y = out[i][(e + 1) % 3], p = out[i][(e + 2) % 3];
+          size_t j = 0;
+          int g = 0;
+          for (; j < out.size(); ++j) {
+            if (j == i) continue;
+            for (g = 0; g < 3; ++g)
+              if (out[j][g] == y && out[j][(g + 1) % 3] == x) break;
+            if (g < 3) break;
+          }
+          if (j == out.size()) continue;
+          const uint32_t q = out[j][(g + 2) % 3];
+          if (orient3d(P(x), P(y), P(p), P(q), exact_shift) <= 0) continue;
+          const double tol = 1e-12 * (sq(x, q) + sq(q, p) + sq(p, x) + sq(q, y) + sq(y, p));
+          if (!(cross(x, q, p) > tol && cross(q, y, p) > tol)) continue;
+          out[i] = {x, q, p};
+          out[j] = {q, y, p};
+          ++flips;
+          changed = true;
+          break;  // this triangle changed: its edges are looked at again on the next sweep
+        }
+      }
+    }
+  };
   if (convex) {
     for (size_t i = 1; i + 1 < k; ++i) out.push_back({loop[0], loop[i], loop[i + 1]});
+    fold_outward();
     return out;
   }
   // The best-shaped ear first (area over squared edge lengths): a sliver's plane is poorly
@@ -93,6 +138,7 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     idx.erase(idx.begin() + long(best));
   }
   for (size_t i = 1; i + 1 < idx.size(); ++i) out.push_back({idx[0], idx[i], idx[i + 1]});
+  fold_outward();
   return out;
 }
 
@@ -468,8 +514,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
 
   // Plane-carrying faces: drop exact zero-area ones; planar polygons keep one representative
   // triangle at their lexicographically smallest vertex (a strictly convex corner, so the
-  // triangle has the polygon's orientation); non-planar polygons are fan-triangulated.
-  // As long as every face is kept whole, the plane faces are the clean faces: their loops are
+  // triangle has the polygon's orientation); non-planar polygons are split into triangles
+  // (triangulate_polygon). As long as every face is kept whole, the plane faces are the clean faces: their loops are
   // copied (and the face numbering changes) only from the first face dropped or split on, so in
   // the usual case the clean loops and edge pairs are moved over as they are.
   size_t degenerate = 0, nonplanar = 0;
@@ -513,7 +559,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     renumber(f);
     bool any = false;
-    for (const auto& tri : triangulate_polygon(m.points, loop, k)) {
+    for (const auto& tri : triangulate_polygon(m.points, loop, k, m.exact_shift)) {
       if (collinear(P(tri[0]), P(tri[1]), P(tri[2]), m.exact_shift)) continue;
       m.loops.insert(m.loops.end(), tri.begin(), tri.end());
       m.loop_offsets.push_back(uint32_t(m.loops.size()));

@@ -25,7 +25,7 @@ struct PreparedMesh {
 
   // Faces that carry a plane: a loop of vertex ids (CCW from outside after any flip) and a
   // representative triangle with the loop's orientation. Planar polygons stay whole; zero-area
-  // faces are gone; non-planar polygons are fan-triangulated.
+  // faces are gone; non-planar polygons are split into triangles (folded outward where possible).
   std::vector<uint32_t> loop_offsets;  // size = faces + 1
   std::vector<uint32_t> loops;
   std::vector<std::array<uint32_t, 3>> rep;

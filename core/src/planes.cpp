@@ -84,6 +84,7 @@ uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
   d_.push_back(d); ed_.push_back(0);
   opposite_.push_back(kNoPlane);
   exact_.emplace_back();
+  dd_.emplace_back();
   return uint32_t(size() - 1);
 }
 
@@ -93,6 +94,7 @@ void PlaneSet::pop_last() {
   enx_.pop_back(); eny_.pop_back(); enz_.pop_back(); ed_.pop_back();
   opposite_.pop_back();
   exact_.pop_back();
+  dd_.pop_back();
 }
 
 const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
@@ -142,14 +144,92 @@ PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double*
 }
 
 
-namespace {
-PlaneCoef<exact::ApproxDD> dd_plane(const PlaneSet& ps, uint32_t i) {
-  if (ps.explicit_plane(i)) {
-    auto a = ps.approx(i);  // exact doubles
-    return {{a.n[0].v, a.n[1].v, a.n[2].v}, a.d.v};
+const PlaneCoef<exact::ApproxDD>& PlaneSet::dd(uint32_t i) const {
+  if (!dd_[i]) {
+    auto p = std::make_unique<PlaneCoef<exact::ApproxDD>>();
+    if (explicit_plane(i)) {
+      *p = {{nx_[i], ny_[i], nz_[i]}, d_[i]};  // exact doubles
+    } else {
+      *p = plane_from_points<exact::ApproxDD>(point(rep_[i][0]), point(rep_[i][1]), point(rep_[i][2]));
+    }
+    dd_[i] = std::move(p);
   }
-  const auto& r = ps.rep(i);
-  return plane_from_points<exact::ApproxDD>(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]));
+  return *dd_[i];
+}
+
+namespace {
+const PlaneCoef<exact::ApproxDD>& dd_plane(const PlaneSet& ps, uint32_t i) { return ps.dd(i); }
+
+// Two input points on both planes p and q by construction (then the line of p and q is the line
+// through them), searched from the plane with fewer points; false when there are none or the
+// search would be long.
+bool shared_input_points(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t& x, uint32_t& y) {
+  if (ps.explicit_plane(p) || ps.explicit_plane(q)) return false;
+  if (ps.points_on(p).size() > ps.points_on(q).size()) std::swap(p, q);
+  if (ps.points_on(p).size() > 256) return false;
+  int found = 0;
+  for (uint32_t pt : ps.points_on(p)) {
+    if (!ps.point_on_plane(pt, q)) continue;
+    (found == 0 ? x : y) = pt;
+    if (++found == 2) return true;
+  }
+  return false;
+}
+
+// Exact sign of n_c . (Y - X) = f_c(Y) - f_c(X) for input points X, Y.
+int sign_rate_between(const PlaneSet& ps, uint32_t c, uint32_t x, uint32_t y) {
+  const double *X = ps.point(x), *Y = ps.point(y);
+  if (!ps.explicit_plane(c)) {
+    const auto& r = ps.rep(c);
+    const double *r0 = ps.point(r[0]), *r1 = ps.point(r[1]), *r2 = ps.point(r[2]);
+    if (ps.point_on_plane(x, c)) return orient3d(r0, r1, r2, Y, ps.exact_shift());
+    if (ps.point_on_plane(y, c)) return -orient3d(r0, r1, r2, X, ps.exact_shift());
+  }
+  auto pa = ps.approx(c);
+  Approx dv[3];
+  for (int k = 0; k < 3; ++k) dv[k] = Approx(Y[k]) - Approx(X[k]);
+  int s = (pa.n[0] * dv[0] + pa.n[1] * dv[1] + pa.n[2] * dv[2]).sign();
+  if (s != 2) return s;
+  const auto& e = ps.exact(c);
+  Scaled sx(X, ps.exact_shift()), sy(Y, ps.exact_shift());
+  Expansion r;
+  for (int k = 0; k < 3; ++k) r = r + e.n[k] * Expansion::difference(sy.v[k], sx.v[k]);
+  return r.sign();
+}
+
+// Exact sign of det3(n_a, n_b, n_c) when planes a and b both hold input points x != y (2 when
+// the shortcut does not apply). With d = y - x and e = w - x for an input point w of plane b off
+// the line, n_b = s k (d x e) with k > 0 and s = sign(n_b . (d x e)), so
+//   n_a x n_b = s k (n_a . e) d   and   det3 = n_c . (n_a x n_b) = s k f_a(w) (n_c . d),
+// three signs of degree 3 in the input (two of them orient3d of input points) where Cramer-like
+// evaluation needs degree 6 and, for nearly coplanar a and b, exact expansions.
+int sign_det3_on_line(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, uint32_t x, uint32_t y) {
+  const int shift = ps.exact_shift();
+  const double *X = ps.point(x), *Y = ps.point(y);
+  uint32_t w = kNoPlane;
+  for (uint32_t r : ps.rep(b))
+    if (r != x && r != y && !collinear(X, Y, ps.point(r), shift)) { w = r; break; }
+  if (w == kNoPlane) return 2;
+  const double* W = ps.point(w);
+  // s: n_b is parallel to d x e, so n_b . (d x e) = +-|n_b||d x e| has no cancellation.
+  int s;
+  {
+    auto pb = ps.approx(b);
+    Approx d[3], e[3];
+    for (int k = 0; k < 3; ++k) { d[k] = Approx(Y[k]) - Approx(X[k]); e[k] = Approx(W[k]) - Approx(X[k]); }
+    s = (pb.n[0] * (d[1] * e[2] - d[2] * e[1]) + pb.n[1] * (d[2] * e[0] - d[0] * e[2]) + pb.n[2] * (d[0] * e[1] - d[1] * e[0])).sign();
+    if (s == 2) {
+      const auto& eb = ps.exact(b);
+      Scaled sx(X, shift), sy(Y, shift), sw(W, shift);
+      Expansion D[3], E[3];
+      for (int k = 0; k < 3; ++k) { D[k] = Expansion::difference(sy.v[k], sx.v[k]); E[k] = Expansion::difference(sw.v[k], sx.v[k]); }
+      s = (eb.n[0] * (D[1] * E[2] - D[2] * E[1]) + eb.n[1] * (D[2] * E[0] - D[0] * E[2]) + eb.n[2] * (D[0] * E[1] - D[1] * E[0])).sign();
+    }
+  }
+  const auto& ra = ps.rep(a);
+  const int fa = orient3d(ps.point(ra[0]), ps.point(ra[1]), ps.point(ra[2]), W, shift);
+  if (s == 0 || fa == 0) return 0;
+  return s * fa * sign_rate_between(ps, c, x, y);
 }
 }  // namespace
 
@@ -158,6 +238,16 @@ int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   if (s != 2) return s;
   s = det3_normals(dd_plane(ps, a), dd_plane(ps, b), dd_plane(ps, c)).sign();
   if (s != 2) return s;
+  // Two of the planes through one input edge (nearly coplanar triangles of a fine tessellation
+  // or of a split polygon): the signs of the line's formula. det3 is cyclic, so the pair goes
+  // first.
+  const uint32_t t[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    uint32_t x, y;
+    if (!shared_input_points(ps, t[(i + 1) % 3], t[(i + 2) % 3], x, y)) continue;
+    s = sign_det3_on_line(ps, t[(i + 1) % 3], t[(i + 2) % 3], t[i], x, y);
+    if (s != 2) return s;
+  }
   ++ps.exact_fallbacks;
   return det3_normals(ps.exact(a), ps.exact(b), ps.exact(c)).sign();
 }
@@ -192,26 +282,66 @@ int LineDirection::rate_sign(const PlaneSet& ps, uint32_t m) const {
 }
 
 
-// Double-double homogeneous coordinates of a plane-triple vertex, computed once and shared by
-// copies of the vertex.
-const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
-  if (!v.dd) {
-    auto h = std::make_shared<DDHomogeneous>();
-    cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
-    v.dd = std::move(h);
-  }
-  return *v.dd;
+namespace {
+// The vertex as the point of line xy on plane c: which basis plane is c, and x, y.
+struct VertexLine {
+  uint32_t x = 0, y = 0, c = kNoPlane;
+};
+VertexLine vertex_line(const PlaneSet& ps, const VertexGeom& v) {
+  VertexLine l;
+  for (int i = 0; i < 3; ++i)
+    if (shared_input_points(ps, v.basis[(i + 1) % 3], v.basis[(i + 2) % 3], l.x, l.y)) {
+      l.c = v.basis[i];
+      return l;
+    }
+  return l;
 }
+
+// num = a y - b x, den = a - b with a = f_c(x), b = f_c(y) (X and Y: the points in T's units).
+template <class T>
+void on_line(const PlaneCoef<T>& c, const double* X, const double* Y, T num[3], T& den) {
+  const T a = c.n[0] * T(X[0]) + c.n[1] * T(X[1]) + c.n[2] * T(X[2]) + c.d;
+  const T b = c.n[0] * T(Y[0]) + c.n[1] * T(Y[1]) + c.n[2] * T(Y[2]) + c.d;
+  for (int k = 0; k < 3; ++k) num[k] = a * T(Y[k]) - b * T(X[k]);
+  den = a - b;
+}
+}  // namespace
 
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
     auto h = std::make_shared<ExactHomogeneous>();
-    cramer(ps.exact(v.basis[0]), ps.exact(v.basis[1]), ps.exact(v.basis[2]), h->num, h->den);
+    const VertexLine l = vertex_line(ps, v);
+    if (l.c != kNoPlane) {
+      Scaled x(ps.point(l.x), ps.exact_shift()), y(ps.point(l.y), ps.exact_shift());
+      on_line(ps.exact(l.c), x.v, y.v, h->num, h->den);
+    } else {
+      cramer(ps.exact(v.basis[0]), ps.exact(v.basis[1]), ps.exact(v.basis[2]), h->num, h->den);
+    }
     for (auto& c : h->num) c.compress();
     h->den.compress();
     v.exact = std::move(h);
   }
   return *v.exact;
+}
+
+// Double-double homogeneous coordinates of a plane-triple vertex, computed once and shared by
+// copies of the vertex.
+const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
+  if (!v.dd) {
+    auto h = std::make_shared<DDHomogeneous>();
+    const VertexLine l = vertex_line(ps, v);
+    if (l.c != kNoPlane) {
+      on_line(dd_plane(ps, l.c), ps.point(l.x), ps.point(l.y), h->num, h->den);
+      // a - b = n_c . (x - y) is not 0 (the line crosses plane c) and rarely tiny.
+      h->den_sign = h->den.sign();
+      if (h->den_sign == 2) h->den_sign = exact_homogeneous(ps, v).den.sign();
+    } else {
+      cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
+      h->den_sign = v.det_sign;
+    }
+    v.dd = std::move(h);
+  }
+  return *v.dd;
 }
 
 // The input point on planes a, b and c (three planes with independent normals meet in one
@@ -383,7 +513,7 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     const DDHomogeneous& h = dd_homogeneous(ps, v);
     auto pl = dd_plane(ps, l);
     int sf = (pl.n[0] * h.num[0] + pl.n[1] * h.num[1] + pl.n[2] * h.num[2] + pl.d * h.den).sign();
-    if (sf != 2) return sf * v.det_sign;
+    if (sf != 2) return sf * h.den_sign;
   }
   const ExactHomogeneous& h = exact_homogeneous(ps, v);
   const auto& e = ps.exact(l);
@@ -438,6 +568,9 @@ T edge_in_facet_formula(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const Plan
 }  // namespace
 
 int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, uint32_t s) {
+  // (n_p x n_q) . (n_p x n_q) = |n_p x n_q|^2 > 0 for the independent normals of an edge.
+  if (h == p && s == q) return 1;
+  if (h == q && s == p) return -1;
   int r = edge_in_facet_formula(ps.approx(p), ps.approx(q), ps.approx(h), ps.approx(s)).sign();
   if (r != 2) return r;
   ++ps.exact_fallbacks;
@@ -449,6 +582,7 @@ void PlaneSet::reserve(size_t n) {
   for (auto* v : {&nx_, &ny_, &nz_, &d_, &enx_, &eny_, &enz_, &ed_}) v->reserve(n);
   opposite_.reserve(n);
   exact_.reserve(n);
+  dd_.reserve(n);
 }
 
 uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c, const PlaneCoef<Approx>& p) {
@@ -459,6 +593,7 @@ uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c, const Pla
   d_.push_back(p.d.v); ed_.push_back(p.d.e);
   opposite_.push_back(kNoPlane);
   exact_.emplace_back();
+  dd_.emplace_back();
   return uint32_t(size() - 1);
 }
 

@@ -69,6 +69,8 @@ class PlaneSet {
     return {{Approx(nx_[i], enx_[i]), Approx(ny_[i], eny_[i]), Approx(nz_[i], enz_[i])}, Approx(d_[i], ed_[i])};
   }
   const PlaneCoef<Expansion>& exact(uint32_t i) const;
+  // Double-double coefficients (exact for explicit planes), computed on first use.
+  const PlaneCoef<exact::ApproxDD>& dd(uint32_t i) const;
   template <class T> PlaneCoef<T> coef(uint32_t i) const;
 
   const double* point(uint32_t p) const { return &(*points_)[3 * size_t(p)]; }
@@ -90,6 +92,7 @@ class PlaneSet {
   std::vector<uint32_t> opposite_;
   std::vector<uint32_t> plane_offsets_, plane_points_, point_offsets_, point_planes_;
   mutable std::vector<std::unique_ptr<PlaneCoef<Expansion>>> exact_;
+  mutable std::vector<std::unique_ptr<PlaneCoef<exact::ApproxDD>>> dd_;
 
  public:
   // Capacity for n planes in all (a mesh's planes are then added without regrowth).
@@ -136,10 +139,14 @@ T det3_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>&
   return det3(p.n[0], p.n[1], p.n[2], q.n[0], q.n[1], q.n[2], r.n[0], r.n[1], r.n[2]);
 }
 
-// Homogeneous coordinates of a plane-triple vertex: x_k = num[k] / den (Cramer's rule), in
-// double-double with error bounds and exactly.
+// Homogeneous coordinates of a plane-triple vertex, x_k = num[k] / den, in double-double with
+// error bounds and exactly: Cramer's rule in general; when two of the planes share two input
+// points x and y (the vertex is on the line xy), num = a y - b x and den = a - b with a, b the
+// third plane's values at x and y (lower degree, and well conditioned where the two planes are
+// nearly coplanar, as the triangles of a finely tessellated or a rounding-split flat face are).
 struct DDHomogeneous {
   exact::ApproxDD num[3], den;
+  int den_sign = 0;  // exact sign of den
 };
 struct ExactHomogeneous {
   Expansion num[3], den;

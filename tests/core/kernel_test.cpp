@@ -441,3 +441,53 @@ TEST(Kernel, FromStartsAtTheExtremeVertexTowardsThePoint) {
 }
 
 }  // namespace
+
+namespace {
+// A convex prism over a regular n-gon, rotated: its caps and sides become non-planar by
+// rounding (each vertex off its face's plane by an ulp, either way).
+Mesh rotated_prism(int n, double angle) {
+  std::vector<std::array<double, 2>> poly;
+  for (int i = 0; i < n; ++i) poly.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n)});
+  Mesh m = prism(poly, 0.8);
+  const double ax[3] = {1 / std::sqrt(14.0), 2 / std::sqrt(14.0), 3 / std::sqrt(14.0)};
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    double* p = &m.positions[3 * v];
+    const double d = ax[0] * p[0] + ax[1] * p[1] + ax[2] * p[2];
+    const double x[3] = {ax[1] * p[2] - ax[2] * p[1], ax[2] * p[0] - ax[0] * p[2], ax[0] * p[1] - ax[1] * p[0]};
+    double q[3];
+    for (int k = 0; k < 3; ++k) q[k] = p[k] * c + x[k] * s + ax[k] * d * (1 - c);
+    for (int k = 0; k < 3; ++k) p[k] = q[k];
+  }
+  return m;
+}
+}  // namespace
+
+// A polygon that is non-planar only by rounding is split into triangles that fold outward
+// wherever its corners allow (for a convex polygon: always, since every corner is extreme in
+// the projection). The kernel of a convex shape is then the shape itself, corner for corner,
+// instead of the shape minus slivers of rounding size cut by inward folds.
+TEST(Kernel, RoundingSplitPolygonsFoldOutward) {
+  size_t split_meshes = 0;
+  for (int n : {5, 6, 8, 12})
+    for (double angle : {0.3, 0.7, 1.9, 2.6}) {
+      const Mesh m = rotated_prism(n, angle);
+      const Kernel k = run(m);
+      ASSERT_TRUE(k.ok()) << k.message;
+      bool split = false;
+      for (const auto& w : k.warnings) split |= w.kind == Warning::Kind::NonPlanarFacesSplit;
+      split_meshes += split;
+      expect_valid_polyhedron(m, k);
+      ASSERT_EQ(k.type, KernelType::Polyhedron);
+      // Every kernel vertex is a corner of the prism, and every corner is a kernel vertex.
+      EXPECT_EQ(k.num_vertices(), m.num_vertices()) << n << " " << angle;
+      std::set<std::array<double, 3>> corners;
+      for (size_t v = 0; v < m.num_vertices(); ++v)
+        corners.insert({m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]});
+      for (size_t v = 0; v < k.num_vertices(); ++v)
+        EXPECT_TRUE(corners.count({k.vertices[3 * v], k.vertices[3 * v + 1], k.vertices[3 * v + 2]}))
+            << n << " " << angle << ": kernel vertex " << v << " is not a corner";
+      EXPECT_NEAR(k.volume, k.shape_volume, 1e-12 * k.shape_volume);
+    }
+  EXPECT_GT(split_meshes, 8u) << "the rotations no longer make the faces non-planar";
+}

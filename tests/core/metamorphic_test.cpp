@@ -247,9 +247,9 @@ void check_order_invariance(const std::string& name, const Mesh& m) {
   ASSERT_TRUE(k0.ok()) << k0.message;
   std::mt19937 rng(12345);
   auto loops = loops_of(m);
-  // Non-planar polygons are fan-triangulated from their first corner, so rotating such a loop
-  // changes the input (by the non-planarity) and may add or remove tiny kernel faces: then the
-  // kernel is only the same as a solid (volume to 1e-12).
+  // Non-planar polygons are split from their first corner (then folded outward where possible),
+  // so rotating such a loop may change the input (by the non-planarity) and add or remove tiny
+  // kernel faces: then the kernel is only the same as a solid (volume to 1e-12).
   bool split = false;
   for (const auto& w : k0.warnings) split |= w.kind == kergen::Warning::Kind::NonPlanarFacesSplit;
   for (int trial = 0; trial < 3; ++trial) {

@@ -50,6 +50,76 @@ struct Plane {
   NT d;
 };
 
+using Triangle = std::array<uint32_t, 3>;
+
+// The core's split of a non-planar convex polygon (loop oriented outward), restated here: a fan
+// from the first corner, then every diagonal where the surface folds inward (the far corner of
+// the neighbouring triangle strictly outside a triangle's plane, decided here in exact
+// arithmetic) is flipped when both new triangles have clearly positive area in the projection
+// along the dominant axis of the Newell normal (the same double-precision rule as the core, so
+// both sides split alike), sweeping the triangles in the same order until nothing changes.
+// Non-convex polygons (which the core ear-clips) keep a plain fan here: no shared mesh has one.
+std::vector<Triangle> split_like_core(const std::vector<Vec>& P, const double* pos, const std::vector<uint32_t>& loop) {
+  const size_t k = loop.size();
+  auto D = [&](uint32_t v) { return pos + 3 * size_t(v); };
+  double n[3] = {0, 0, 0};
+  for (size_t i = 0; i < k; ++i) {
+    const double *a = D(loop[i]), *b = D(loop[(i + 1) % k]);
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const double orient = n[axis] >= 0 ? 1 : -1;
+  auto area2 = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const double *pa = D(a), *pb = D(b), *pc = D(c);
+    return orient * ((pb[u] - pa[u]) * (pc[w] - pa[w]) - (pb[w] - pa[w]) * (pc[u] - pa[u]));
+  };
+  auto sq = [&](uint32_t a, uint32_t b) {
+    const double *pa = D(a), *pb = D(b);
+    return (pb[u] - pa[u]) * (pb[u] - pa[u]) + (pb[w] - pa[w]) * (pb[w] - pa[w]);
+  };
+  std::vector<Triangle> out;
+  for (size_t i = 1; i + 1 < k; ++i) out.push_back({loop[0], loop[i], loop[i + 1]});
+  bool convex = true;
+  for (size_t i = 0; i < k && convex; ++i)
+    if (area2(loop[(i + k - 1) % k], loop[i], loop[(i + 1) % k]) < 0) convex = false;
+  if (!convex || k > 128) return out;
+  bool changed = true;
+  size_t flips = 0;
+  const size_t cap = 4 * k * k;
+  while (changed && flips < cap) {
+    changed = false;
+    for (size_t i = 0; i < out.size() && flips < cap; ++i) {
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t x = out[i][e], y = out[i][(e + 1) % 3], p = out[i][(e + 2) % 3];
+        size_t j = 0;
+        int g = 0;
+        for (; j < out.size(); ++j) {
+          if (j == i) continue;
+          for (g = 0; g < 3; ++g)
+            if (out[j][g] == y && out[j][(g + 1) % 3] == x) break;
+          if (g < 3) break;
+        }
+        if (j == out.size()) continue;
+        const uint32_t q = out[j][(g + 2) % 3];
+        if (!CGAL::is_positive(dot(cross(sub(P[y], P[x]), sub(P[p], P[x])), sub(P[q], P[x])))) continue;
+        const double tol = 1e-12 * (sq(x, q) + sq(q, p) + sq(p, x) + sq(q, y) + sq(y, p));
+        if (!(area2(x, q, p) > tol && area2(q, y, p) > tol)) continue;
+        out[i] = {x, q, p};
+        out[j] = {q, y, p};
+        ++flips;
+        changed = true;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 const char* verdict_name(Verdict v) {
@@ -146,6 +216,7 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
   // ---- planes and the exact enclosed volume (x6) --------------------------------------------
   std::vector<Plane> planes;
   planes.reserve(nf);
+  std::vector<std::vector<uint32_t>> non_planar;
   NT vol6 = 0;
   size_t offset = 0;
   for (size_t f = 0; f < nf; ++f) {
@@ -175,14 +246,8 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
     } else if (k == 3) {
       ++r.degenerate_faces;  // exactly collinear triangle
     } else {
-      bool any = false;
-      for (size_t j = 1; j + 1 < k; ++j) {
-        const Vec c = cross(sub(P[loop[j]], p0), sub(P[loop[j + 1]], p0));
-        if (is_zero(c)) continue;
-        planes.push_back({c, -dot(c, p0)});
-        any = true;
-      }
-      if (any) ++r.non_planar_faces; else ++r.degenerate_faces;
+      // Split once the orientation is known (the fold test depends on it).
+      non_planar.emplace_back(loop, loop + k);
     }
   }
   if (CGAL::is_zero(vol6)) {
@@ -196,6 +261,17 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
       for (int a = 0; a < 3; ++a) p.n[a] = -p.n[a];
       p.d = -p.d;
     }
+  for (std::vector<uint32_t>& loop : non_planar) {
+    if (r.flipped) std::reverse(loop.begin(), loop.end());
+    bool any = false;
+    for (const Triangle& t : split_like_core(P, mesh.positions.data(), loop)) {
+      const Vec c = cross(sub(P[t[1]], P[t[0]]), sub(P[t[2]], P[t[0]]));
+      if (is_zero(c)) continue;
+      planes.push_back({c, -dot(c, P[t[0]])});
+      any = true;
+    }
+    if (any) ++r.non_planar_faces; else ++r.degenerate_faces;
+  }
   r.planes = planes.size();
 
   // Exact deduplication of oriented planes: scale so the first non-zero normal component is +-1.

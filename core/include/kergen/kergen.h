@@ -116,7 +116,7 @@ struct Warning {
   enum class Kind : int {
     OrientationFlipped,    // faces were clockwise seen from outside; the mesh was flipped
     DegenerateFacesDropped,  // zero-area faces (exactly collinear vertices) were ignored
-    NonPlanarFacesSplit,   // polygons whose vertices are not coplanar were fan-triangulated
+    NonPlanarFacesSplit,   // polygons whose vertices are not coplanar were split into triangles
     UnusedVertices,        // vertices not referenced by any face
   };
   Kind kind;
