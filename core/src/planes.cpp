@@ -160,20 +160,20 @@ const PlaneCoef<exact::ApproxDD>& PlaneSet::dd(uint32_t i) const {
 namespace {
 const PlaneCoef<exact::ApproxDD>& dd_plane(const PlaneSet& ps, uint32_t i) { return ps.dd(i); }
 
-// Two input points on both planes p and q by construction (then the line of p and q is the line
-// through them), searched from the plane with fewer points; false when there are none or the
-// search would be long.
-bool shared_input_points(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t& x, uint32_t& y) {
-  if (ps.explicit_plane(p) || ps.explicit_plane(q)) return false;
+// How many input points (0, 1 or 2, stopping at 2) lie on both planes p and q by construction,
+// in x then y, searched from the plane with fewer points; 0 when the search would be long. Two
+// make the line of p and q the line through them.
+int shared_input_points(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t& x, uint32_t& y) {
+  if (ps.explicit_plane(p) || ps.explicit_plane(q)) return 0;
   if (ps.points_on(p).size() > ps.points_on(q).size()) std::swap(p, q);
-  if (ps.points_on(p).size() > 256) return false;
+  if (ps.points_on(p).size() > 256) return 0;
   int found = 0;
   for (uint32_t pt : ps.points_on(p)) {
     if (!ps.point_on_plane(pt, q)) continue;
     (found == 0 ? x : y) = pt;
-    if (++found == 2) return true;
+    if (++found == 2) break;
   }
-  return false;
+  return found;
 }
 
 // Exact sign of n_c . (Y - X) = f_c(Y) - f_c(X) for input points X, Y.
@@ -244,7 +244,7 @@ int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   const uint32_t t[3] = {a, b, c};
   for (int i = 0; i < 3; ++i) {
     uint32_t x, y;
-    if (!shared_input_points(ps, t[(i + 1) % 3], t[(i + 2) % 3], x, y)) continue;
+    if (shared_input_points(ps, t[(i + 1) % 3], t[(i + 2) % 3], x, y) < 2) continue;
     s = sign_det3_on_line(ps, t[(i + 1) % 3], t[(i + 2) % 3], t[i], x, y);
     if (s != 2) return s;
   }
@@ -283,21 +283,28 @@ int LineDirection::rate_sign(const PlaneSet& ps, uint32_t m) const {
 
 
 namespace {
-// The vertex as the point of line xy on plane c: which basis plane is c, and x, y.
-struct VertexLine {
-  uint32_t x = 0, y = 0, c = kNoPlane;
+// The vertex through input points: on the line xy of two basis planes (kind 2), or on their
+// line through the input point x (kind 1); c is the third basis plane.
+struct VertexAnchor {
+  int kind = 0;
+  uint32_t x = 0, y = 0, c = kNoPlane, a = kNoPlane, b = kNoPlane;
 };
-VertexLine vertex_line(const PlaneSet& ps, const VertexGeom& v) {
-  VertexLine l;
-  for (int i = 0; i < 3; ++i)
-    if (shared_input_points(ps, v.basis[(i + 1) % 3], v.basis[(i + 2) % 3], l.x, l.y)) {
-      l.c = v.basis[i];
-      return l;
-    }
-  return l;
+VertexAnchor vertex_anchor(const PlaneSet& ps, const VertexGeom& v) {
+  VertexAnchor best;
+  for (int i = 0; i < 3; ++i) {
+    VertexAnchor t;
+    t.a = v.basis[(i + 1) % 3];
+    t.b = v.basis[(i + 2) % 3];
+    t.c = v.basis[i];
+    t.kind = shared_input_points(ps, t.a, t.b, t.x, t.y);
+    if (t.kind == 2) return t;
+    if (t.kind > best.kind) best = t;
+  }
+  return best;
 }
 
-// num = a y - b x, den = a - b with a = f_c(x), b = f_c(y) (X and Y: the points in T's units).
+// Homogeneous coordinates in T (X, Y: the points in T's units).
+// Line xy: num = a y - b x, den = a - b with a = f_c(x), b = f_c(y).
 template <class T>
 void on_line(const PlaneCoef<T>& c, const double* X, const double* Y, T num[3], T& den) {
   const T a = c.n[0] * T(X[0]) + c.n[1] * T(X[1]) + c.n[2] * T(X[2]) + c.d;
@@ -305,15 +312,28 @@ void on_line(const PlaneCoef<T>& c, const double* X, const double* Y, T num[3], 
   for (int k = 0; k < 3; ++k) num[k] = a * T(Y[k]) - b * T(X[k]);
   den = a - b;
 }
+// Line of planes a and b through x, direction u = n_a x n_b: v = x + t u with f_c(v) = 0, so
+// num = x den - f_c(x) u and den = n_c . u = det3(n_a, n_b, n_c) (Cramer's degrees, but about a
+// third of its products, and f_c(x) stays accurate when the vertex is near x).
+template <class T>
+void on_point_line(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, const double* X, T num[3], T& den) {
+  const std::array<T, 3> u = cross_normals(a, b);
+  den = c.n[0] * u[0] + c.n[1] * u[1] + c.n[2] * u[2];
+  const T fx = c.n[0] * T(X[0]) + c.n[1] * T(X[1]) + c.n[2] * T(X[2]) + c.d;
+  for (int k = 0; k < 3; ++k) num[k] = T(X[k]) * den - fx * u[k];
+}
 }  // namespace
 
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
     auto h = std::make_shared<ExactHomogeneous>();
-    const VertexLine l = vertex_line(ps, v);
-    if (l.c != kNoPlane) {
+    const VertexAnchor l = vertex_anchor(ps, v);
+    if (l.kind == 2) {
       Scaled x(ps.point(l.x), ps.exact_shift()), y(ps.point(l.y), ps.exact_shift());
       on_line(ps.exact(l.c), x.v, y.v, h->num, h->den);
+    } else if (l.kind == 1) {
+      Scaled x(ps.point(l.x), ps.exact_shift());
+      on_point_line(ps.exact(l.a), ps.exact(l.b), ps.exact(l.c), x.v, h->num, h->den);
     } else {
       cramer(ps.exact(v.basis[0]), ps.exact(v.basis[1]), ps.exact(v.basis[2]), h->num, h->den);
     }
@@ -329,12 +349,15 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
 const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.dd) {
     auto h = std::make_shared<DDHomogeneous>();
-    const VertexLine l = vertex_line(ps, v);
-    if (l.c != kNoPlane) {
+    const VertexAnchor l = vertex_anchor(ps, v);
+    if (l.kind == 2) {
       on_line(dd_plane(ps, l.c), ps.point(l.x), ps.point(l.y), h->num, h->den);
       // a - b = n_c . (x - y) is not 0 (the line crosses plane c) and rarely tiny.
       h->den_sign = h->den.sign();
       if (h->den_sign == 2) h->den_sign = exact_homogeneous(ps, v).den.sign();
+    } else if (l.kind == 1) {
+      on_point_line(dd_plane(ps, l.a), dd_plane(ps, l.b), dd_plane(ps, l.c), ps.point(l.x), h->num, h->den);
+      h->den_sign = v.det_sign;  // det3(n_a, n_b, n_c) is a cyclic shift of the basis order
     } else {
       cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
       h->den_sign = v.det_sign;

@@ -143,7 +143,8 @@ T det3_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>&
 // error bounds and exactly: Cramer's rule in general; when two of the planes share two input
 // points x and y (the vertex is on the line xy), num = a y - b x and den = a - b with a, b the
 // third plane's values at x and y (lower degree, and well conditioned where the two planes are
-// nearly coplanar, as the triangles of a finely tessellated or a rounding-split flat face are).
+// nearly coplanar, as the triangles of a finely tessellated or a rounding-split flat face are);
+// when they share one input point x, from x and the line's direction (fewer products).
 struct DDHomogeneous {
   exact::ApproxDD num[3], den;
   int den_sign = 0;  // exact sign of den

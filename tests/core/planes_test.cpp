@@ -1,6 +1,7 @@
-// Plane predicates on nearly coplanar planes that share an input edge (fine tessellations,
-// rounding-split polygons): the line shortcuts of sign_det3_normals and of the homogeneous
-// coordinates must give exactly what the textbook formulas give in exact expansions.
+// Plane predicates on nearly coplanar planes that share an input edge or point (fine
+// tessellations, rounding-split polygons): the shortcuts of sign_det3_normals and of the
+// homogeneous coordinates through input points must give exactly what the textbook formulas
+// (Cramer's rule) give in exact expansions.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -45,15 +46,16 @@ int exact_side(const PlaneSet& ps, uint32_t l, uint32_t a, uint32_t b, uint32_t 
   return (L.n[0] * x + L.n[1] * y + L.n[2] * z + L.d * den).sign() * den.sign();
 }
 
-// Pairs of planes through one input edge: the planes of the two faces beside each mesh edge.
-std::vector<std::array<uint32_t, 2>> planes_along_edges(const Planes& p) {
+// Pairs of planes through one input edge (the planes of the two faces beside a mesh edge:
+// shared == 2) or through exactly one input point (faces around a mesh vertex: shared == 1).
+std::vector<std::array<uint32_t, 2>> planes_sharing(const Planes& p, int wanted) {
   std::vector<std::array<uint32_t, 2>> pairs;
   const PlaneSet& ps = *p.ps;
   for (uint32_t a = 0; a < ps.size(); ++a)
     for (uint32_t b = a + 1; b < ps.size(); ++b) {
       int shared = 0;
       for (uint32_t pt : ps.points_on(a)) shared += ps.point_on_plane(pt, b);
-      if (shared >= 2) pairs.push_back({a, b});
+      if (std::min(shared, 2) == wanted) pairs.push_back({a, b});
     }
   return pairs;
 }
@@ -62,19 +64,24 @@ struct Tally {
   size_t det_checked = 0, det_undecided_by_filters = 0, side_checked = 0;
 };
 
-// Every pair along an edge with every third plane, in all argument orders; then the vertex of
-// each independent triple against every plane.
+// Pairs along an edge or through a point with nearby and random third planes, in all argument
+// orders; then the vertex of each independent triple against nearby and random planes.
 void check_mesh(const Mesh& m, const std::string& name, Tally& t, size_t max_pairs = 400) {
   SCOPED_TRACE(name);
   Planes p(m);
   const PlaneSet& ps = *p.ps;
-  auto pairs = planes_along_edges(p);
-  ASSERT_FALSE(pairs.empty());
   std::mt19937 rng(7);
-  std::shuffle(pairs.begin(), pairs.end(), rng);
-  if (pairs.size() > max_pairs) pairs.resize(max_pairs);
+  std::vector<std::array<uint32_t, 3>> pairs;  // a, b, shared points
+  for (uint32_t shared : {2, 1}) {
+    auto some = planes_sharing(p, int(shared));
+    ASSERT_FALSE(some.empty()) << shared;
+    std::shuffle(some.begin(), some.end(), rng);
+    if (some.size() > max_pairs / 2) some.resize(max_pairs / 2);
+    for (const auto& pr : some) pairs.push_back({pr[0], pr[1], shared});
+  }
   for (const auto& pr : pairs) {
     const uint32_t a = pr[0], b = pr[1];
+    const bool on_edge = pr[2] == 2;
     // Third planes: the nearest in index (neighbouring faces, the nearly coplanar ones) and a
     // few at random.
     std::vector<uint32_t> thirds;
@@ -88,7 +95,7 @@ void check_mesh(const Mesh& m, const std::string& name, Tally& t, size_t max_pai
             << "planes " << o[0] << " " << o[1] << " " << o[2];
         ++t.det_checked;
       }
-      if (det3_normals(ps.approx(a), ps.approx(b), ps.approx(c)).sign() == 2 &&
+      if (on_edge && det3_normals(ps.approx(a), ps.approx(b), ps.approx(c)).sign() == 2 &&
           det3_normals(ps.dd(a), ps.dd(b), ps.dd(c)).sign() == 2) {
         // Decided by the line formula, not by the general exact stage (which counts itself).
         const size_t before = ps.exact_fallbacks;
