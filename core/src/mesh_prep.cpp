@@ -515,9 +515,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // Plane-carrying faces: drop exact zero-area ones; planar polygons keep one representative
   // triangle at their lexicographically smallest vertex (a strictly convex corner, so the
   // triangle has the polygon's orientation); non-planar polygons are split into triangles
-  // (triangulate_polygon). As long as every face is kept whole, the plane faces are the clean faces: their loops are
-  // copied (and the face numbering changes) only from the first face dropped or split on, so in
-  // the usual case the clean loops and edge pairs are moved over as they are.
+  // (triangulate_polygon). As long as every face is kept whole, the plane faces are the clean
+  // faces: their loops are copied (and the face numbering changes) only from the first face
+  // dropped or split on, so in the usual case the clean loops and edge pairs are moved over as
+  // they are.
   size_t degenerate = 0, nonplanar = 0;
   bool renumbered = false;
   std::vector<uint32_t> face_of_clean;  // used once renumbered
