@@ -560,7 +560,22 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     renumber(f);
     bool any = false;
-    for (const auto& tri : triangulate_polygon(m.points, loop, k, m.exact_shift)) {
+    const auto tris = triangulate_polygon(m.points, loop, k, m.exact_shift);
+    {
+      // The shape's volume above came from a fan; the split may fold differently: use its volume.
+      auto det_c = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
+        double a[3], bb[3], cc[3];
+        for (int q = 0; q < 3; ++q) { a[q] = P(i0)[q] - c[q]; bb[q] = P(i1)[q] - c[q]; cc[q] = P(i2)[q] - c[q]; }
+        return a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) + a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
+      };
+      double delta = 0;
+      for (const auto& t : tris) delta += det_c(t[0], t[1], t[2]);
+      // (that fan was over the loop before any flip: from its first corner, now the last)
+      for (size_t i = 1; i + 1 < k; ++i)
+        delta -= flip ? det_c(loop[k - 1], loop[k - 2 - i], loop[k - 1 - i]) : det_c(loop[0], loop[i], loop[i + 1]);
+      m.volume += delta / 6;
+    }
+    for (const auto& tri : tris) {
       if (collinear(P(tri[0]), P(tri[1]), P(tri[2]), m.exact_shift)) continue;
       m.loops.insert(m.loops.end(), tri.begin(), tri.end());
       m.loop_offsets.push_back(uint32_t(m.loops.size()));

@@ -53,16 +53,68 @@ export function bboxDiagonal(positions) {
 export function halfSpaces(positions, loops, orientation = 1) {
   const planes = [];
   for (const loop of loops) {
-    const a = vtx(positions, loop[0]);
-    for (let k = 1; k + 1 < loop.length; k++) {
-      const n = cross(sub(vtx(positions, loop[k]), a), sub(vtx(positions, loop[k + 1]), a));
+    for (const [i, j, k] of splitPolygon(positions, orientation > 0 ? loop : [...loop].reverse())) {
+      const a = vtx(positions, i);
+      const n = cross(sub(vtx(positions, j), a), sub(vtx(positions, k), a));
       const len = norm(n);
       if (len === 0) continue;
-      const u = [(orientation * n[0]) / len, (orientation * n[1]) / len, (orientation * n[2]) / len];
-      planes.push({ n: u, d: dot(u, a) });
+      planes.push({ n: [n[0] / len, n[1] / len, n[2] / len], d: dot(n, a) / len });
     }
   }
   return planes;
+}
+
+// The core's split of a convex polygon that is not planar (see triangulate_polygon in
+// core/src/mesh_prep.cpp), restated in double precision: a fan from the first corner, then every
+// diagonal where the surface folds inward is flipped while both new triangles keep a positive
+// area in the projection along the dominant axis of the Newell normal. Folds of rounding size
+// may be judged differently here, but they move a plane by far less than the checks' tolerance.
+function splitPolygon(positions, loop) {
+  const k = loop.length;
+  const tris = [];
+  for (let i = 1; i + 1 < k; i++) tris.push([loop[0], loop[i], loop[i + 1]]);
+  if (k <= 3 || k > 128) return tris;
+  const P = (v) => vtx(positions, v);
+  const nw = [0, 0, 0];
+  for (let i = 0; i < k; i++) {
+    const a = P(loop[i]), b = P(loop[(i + 1) % k]);
+    nw[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    nw[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    nw[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  let axis = 0;
+  for (let c = 1; c < 3; c++) if (Math.abs(nw[c]) > Math.abs(nw[axis])) axis = c;
+  const u = (axis + 1) % 3, w = (axis + 2) % 3, s = nw[axis] >= 0 ? 1 : -1;
+  const area2 = (a, b, c) => {
+    const pa = P(a), pb = P(b), pc = P(c);
+    return s * ((pb[u] - pa[u]) * (pc[w] - pa[w]) - (pb[w] - pa[w]) * (pc[u] - pa[u]));
+  };
+  for (let i = 0; i < k; i++) if (area2(loop[(i + k - 1) % k], loop[i], loop[(i + 1) % k]) < 0) return tris;  // non-convex
+  const orient = (a, b, c, p) => dot(cross(sub(P(b), P(a)), sub(P(c), P(a))), sub(P(p), P(a)));
+  let changed = true;
+  let flips = 0;
+  while (changed && flips < 4 * k * k) {
+    changed = false;
+    for (let i = 0; i < tris.length; i++) {
+      for (let e = 0; e < 3; e++) {
+        const x = tris[i][e], y = tris[i][(e + 1) % 3], p = tris[i][(e + 2) % 3];
+        let j = -1, g = -1;
+        for (let t = 0; t < tris.length && j < 0; t++) {
+          if (t === i) continue;
+          for (let h = 0; h < 3; h++) if (tris[t][h] === y && tris[t][(h + 1) % 3] === x) { j = t; g = h; }
+        }
+        if (j < 0) continue;
+        const q = tris[j][(g + 2) % 3];
+        if (!(orient(x, y, p, q) > 0) || !(area2(x, q, p) > 0 && area2(q, y, p) > 0)) continue;
+        tris[i] = [x, q, p];
+        tris[j] = [q, y, p];
+        flips++;
+        changed = true;
+        break;
+      }
+    }
+  }
+  return tris;
 }
 
 /** Largest violation max(n·p − d) of point p over the half-spaces (<= 0 inside). */
