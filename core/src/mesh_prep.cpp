@@ -486,16 +486,18 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     c[k] = 0.5 * (m.bbox_min[k] + m.bbox_max[k]);
     ext = std::max(ext, m.bbox_max[k] - m.bbox_min[k]);
   }
+  // Six times the signed volume of the tetrahedron (c, p0, p1, p2).
+  auto vol6_about_centre = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
+    const double *p0 = &m.points[3 * size_t(i0)], *p1 = &m.points[3 * size_t(i1)], *p2 = &m.points[3 * size_t(i2)];
+    double a[3], bb[3], cc[3];
+    for (int k = 0; k < 3; ++k) { a[k] = p0[k] - c[k]; bb[k] = p1[k] - c[k]; cc[k] = p2[k] - c[k]; }
+    return a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) + a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
+  };
   double vol6 = 0, vol6_abs = 0;
   for (size_t f = 0; f < cf; ++f) {
     size_t b = clean_offsets[f], e = clean_offsets[f + 1];
-    const double* p0 = &m.points[3 * clean[b]];
     for (size_t i = b + 1; i + 1 < e; ++i) {
-      const double* p1 = &m.points[3 * clean[i]];
-      const double* p2 = &m.points[3 * clean[i + 1]];
-      double a[3], bb[3], cc[3];
-      for (int k = 0; k < 3; ++k) { a[k] = p0[k] - c[k]; bb[k] = p1[k] - c[k]; cc[k] = p2[k] - c[k]; }
-      double d = a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) + a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
+      const double d = vol6_about_centre(clean[b], clean[i], clean[i + 1]);
       vol6 += d;
       vol6_abs += std::fabs(d);
     }
@@ -563,16 +565,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     const auto tris = triangulate_polygon(m.points, loop, k, m.exact_shift);
     {
       // The shape's volume above came from a fan; the split may fold differently: use its volume.
-      auto det_c = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
-        double a[3], bb[3], cc[3];
-        for (int q = 0; q < 3; ++q) { a[q] = P(i0)[q] - c[q]; bb[q] = P(i1)[q] - c[q]; cc[q] = P(i2)[q] - c[q]; }
-        return a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) + a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
-      };
       double delta = 0;
-      for (const auto& t : tris) delta += det_c(t[0], t[1], t[2]);
+      for (const auto& t : tris) delta += vol6_about_centre(t[0], t[1], t[2]);
       // (that fan was over the loop before any flip: from its first corner, now the last)
       for (size_t i = 1; i + 1 < k; ++i)
-        delta -= flip ? det_c(loop[k - 1], loop[k - 2 - i], loop[k - 1 - i]) : det_c(loop[0], loop[i], loop[i + 1]);
+        delta -= flip ? vol6_about_centre(loop[k - 1], loop[k - 2 - i], loop[k - 1 - i])
+                      : vol6_about_centre(loop[0], loop[i], loop[i + 1]);
       m.volume += delta / 6;
     }
     for (const auto& tri : tris) {

@@ -158,8 +158,6 @@ const PlaneCoef<exact::ApproxDD>& PlaneSet::dd(uint32_t i) const {
 }
 
 namespace {
-const PlaneCoef<exact::ApproxDD>& dd_plane(const PlaneSet& ps, uint32_t i) { return ps.dd(i); }
-
 // How many input points (0, 1 or 2, stopping at 2) lie on both planes p and q by construction,
 // in x then y, searched from the plane with fewer points; 0 when the search would be long. Two
 // make the line of p and q the line through them.
@@ -197,6 +195,17 @@ int sign_rate_between(const PlaneSet& ps, uint32_t c, uint32_t x, uint32_t y) {
   return r.sign();
 }
 
+// n . ((Y - X) x (W - X)) = det3(n, Y - X, W - X), with the differences exact in T.
+template <class T>
+T normal_dot_cross(const PlaneCoef<T>& p, const double* X, const double* Y, const double* W) {
+  T d[3], e[3];
+  for (int k = 0; k < 3; ++k) {
+    d[k] = difference((T*)nullptr, Y[k], X[k]);
+    e[k] = difference((T*)nullptr, W[k], X[k]);
+  }
+  return det3(p.n[0], p.n[1], p.n[2], d[0], d[1], d[2], e[0], e[1], e[2]);
+}
+
 // Exact sign of det3(n_a, n_b, n_c) when planes a and b both hold input points x != y (2 when
 // the shortcut does not apply). With d = y - x and e = w - x for an input point w of plane b off
 // the line, n_b = s k (d x e) with k > 0 and s = sign(n_b . (d x e)), so
@@ -214,16 +223,10 @@ int sign_det3_on_line(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, ui
   // s: n_b is parallel to d x e, so n_b . (d x e) = +-|n_b||d x e| has no cancellation.
   int s;
   {
-    auto pb = ps.approx(b);
-    Approx d[3], e[3];
-    for (int k = 0; k < 3; ++k) { d[k] = Approx(Y[k]) - Approx(X[k]); e[k] = Approx(W[k]) - Approx(X[k]); }
-    s = (pb.n[0] * (d[1] * e[2] - d[2] * e[1]) + pb.n[1] * (d[2] * e[0] - d[0] * e[2]) + pb.n[2] * (d[0] * e[1] - d[1] * e[0])).sign();
+    s = normal_dot_cross(ps.approx(b), X, Y, W).sign();
     if (s == 2) {
-      const auto& eb = ps.exact(b);
       Scaled sx(X, shift), sy(Y, shift), sw(W, shift);
-      Expansion D[3], E[3];
-      for (int k = 0; k < 3; ++k) { D[k] = Expansion::difference(sy.v[k], sx.v[k]); E[k] = Expansion::difference(sw.v[k], sx.v[k]); }
-      s = (eb.n[0] * (D[1] * E[2] - D[2] * E[1]) + eb.n[1] * (D[2] * E[0] - D[0] * E[2]) + eb.n[2] * (D[0] * E[1] - D[1] * E[0])).sign();
+      s = normal_dot_cross(ps.exact(b), sx.v, sy.v, sw.v).sign();
     }
   }
   const auto& ra = ps.rep(a);
@@ -236,7 +239,7 @@ int sign_det3_on_line(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, ui
 int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   int s = det3_normals(ps.approx(a), ps.approx(b), ps.approx(c)).sign();
   if (s != 2) return s;
-  s = det3_normals(dd_plane(ps, a), dd_plane(ps, b), dd_plane(ps, c)).sign();
+  s = det3_normals(ps.dd(a), ps.dd(b), ps.dd(c)).sign();
   if (s != 2) return s;
   // Two of the planes through one input edge (nearly coplanar triangles of a fine tessellation
   // or of a split polygon): the signs of the line's formula. det3 is cyclic, so the pair goes
@@ -306,9 +309,12 @@ VertexAnchor vertex_anchor(const PlaneSet& ps, const VertexGeom& v) {
 // Homogeneous coordinates in T (X, Y: the points in T's units).
 // Line xy: num = a y - b x, den = a - b with a = f_c(x), b = f_c(y).
 template <class T>
+T plane_value(const PlaneCoef<T>& c, const double* X) {
+  return c.n[0] * T(X[0]) + c.n[1] * T(X[1]) + c.n[2] * T(X[2]) + c.d;
+}
+template <class T>
 void on_line(const PlaneCoef<T>& c, const double* X, const double* Y, T num[3], T& den) {
-  const T a = c.n[0] * T(X[0]) + c.n[1] * T(X[1]) + c.n[2] * T(X[2]) + c.d;
-  const T b = c.n[0] * T(Y[0]) + c.n[1] * T(Y[1]) + c.n[2] * T(Y[2]) + c.d;
+  const T a = plane_value(c, X), b = plane_value(c, Y);
   for (int k = 0; k < 3; ++k) num[k] = a * T(Y[k]) - b * T(X[k]);
   den = a - b;
 }
@@ -319,7 +325,7 @@ template <class T>
 void on_point_line(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, const double* X, T num[3], T& den) {
   const std::array<T, 3> u = cross_normals(a, b);
   den = c.n[0] * u[0] + c.n[1] * u[1] + c.n[2] * u[2];
-  const T fx = c.n[0] * T(X[0]) + c.n[1] * T(X[1]) + c.n[2] * T(X[2]) + c.d;
+  const T fx = plane_value(c, X);
   for (int k = 0; k < 3; ++k) num[k] = T(X[k]) * den - fx * u[k];
 }
 }  // namespace
@@ -351,15 +357,15 @@ const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
     auto h = std::make_shared<DDHomogeneous>();
     const VertexAnchor l = vertex_anchor(ps, v);
     if (l.kind == 2) {
-      on_line(dd_plane(ps, l.c), ps.point(l.x), ps.point(l.y), h->num, h->den);
+      on_line(ps.dd(l.c), ps.point(l.x), ps.point(l.y), h->num, h->den);
       // a - b = n_c . (x - y) is not 0 (the line crosses plane c) and rarely tiny.
       h->den_sign = h->den.sign();
       if (h->den_sign == 2) h->den_sign = exact_homogeneous(ps, v).den.sign();
     } else if (l.kind == 1) {
-      on_point_line(dd_plane(ps, l.a), dd_plane(ps, l.b), dd_plane(ps, l.c), ps.point(l.x), h->num, h->den);
+      on_point_line(ps.dd(l.a), ps.dd(l.b), ps.dd(l.c), ps.point(l.x), h->num, h->den);
       h->den_sign = v.det_sign;  // det3(n_a, n_b, n_c) is a cyclic shift of the basis order
     } else {
-      cramer(dd_plane(ps, v.basis[0]), dd_plane(ps, v.basis[1]), dd_plane(ps, v.basis[2]), h->num, h->den);
+      cramer(ps.dd(v.basis[0]), ps.dd(v.basis[1]), ps.dd(v.basis[2]), h->num, h->den);
       h->den_sign = v.det_sign;
     }
     v.dd = std::move(h);
@@ -528,13 +534,13 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   if (point != kNoPoint) {  // explicit plane at an input point: exact coordinates
     const auto& e = ps.exact(l);
     Scaled x(ps.point(uint32_t(point)), ps.exact_shift());
-    return (e.n[0] * Expansion(x.v[0]) + e.n[1] * Expansion(x.v[1]) + e.n[2] * Expansion(x.v[2]) + e.d).sign();
+    return plane_value(e, x.v).sign();
   }
   // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached
   // per vertex).
   {
     const DDHomogeneous& h = dd_homogeneous(ps, v);
-    auto pl = dd_plane(ps, l);
+    auto pl = ps.dd(l);
     int sf = (pl.n[0] * h.num[0] + pl.n[1] * h.num[1] + pl.n[2] * h.num[2] + pl.d * h.den).sign();
     if (sf != 2) return sf * h.den_sign;
   }

@@ -35,16 +35,23 @@ int exact_det_sign(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
   return det3_normals(ps.exact(a), ps.exact(b), ps.exact(c)).sign();
 }
 
-// Sign of f_l at the vertex of planes a, b, c by Cramer's rule in expansions.
-int exact_side(const PlaneSet& ps, uint32_t l, uint32_t a, uint32_t b, uint32_t c) {
-  const auto &A = ps.exact(a), &B = ps.exact(b), &C = ps.exact(c), &L = ps.exact(l);
-  const Expansion den = det3_normals(A, B, C);
-  const Expansion ma = -A.d, mb = -B.d, mc = -C.d;
-  const Expansion x = det3(ma, A.n[1], A.n[2], mb, B.n[1], B.n[2], mc, C.n[1], C.n[2]);
-  const Expansion y = det3(A.n[0], ma, A.n[2], B.n[0], mb, B.n[2], C.n[0], mc, C.n[2]);
-  const Expansion z = det3(A.n[0], A.n[1], ma, B.n[0], B.n[1], mb, C.n[0], C.n[1], mc);
-  return (L.n[0] * x + L.n[1] * y + L.n[2] * z + L.d * den).sign() * den.sign();
-}
+// The vertex of planes a, b, c by Cramer's rule in expansions: x_k = num[k] / den.
+struct Cramer {
+  Expansion num[3], den;
+  Cramer(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
+    const auto &A = ps.exact(a), &B = ps.exact(b), &C = ps.exact(c);
+    den = det3_normals(A, B, C);
+    const Expansion ma = -A.d, mb = -B.d, mc = -C.d;
+    num[0] = det3(ma, A.n[1], A.n[2], mb, B.n[1], B.n[2], mc, C.n[1], C.n[2]);
+    num[1] = det3(A.n[0], ma, A.n[2], B.n[0], mb, B.n[2], C.n[0], mc, C.n[2]);
+    num[2] = det3(A.n[0], A.n[1], ma, B.n[0], B.n[1], mb, C.n[0], C.n[1], mc);
+  }
+  // Sign of f_l at the vertex.
+  int side(const PlaneSet& ps, uint32_t l) const {
+    const auto& L = ps.exact(l);
+    return (L.n[0] * num[0] + L.n[1] * num[1] + L.n[2] * num[2] + L.d * den).sign() * den.sign();
+  }
+};
 
 // Pairs of planes through one input edge (the planes of the two faces beside a mesh edge:
 // shared == 2) or through exactly one input point (faces around a mesh vertex: shared == 1).
@@ -105,20 +112,18 @@ void check_mesh(const Mesh& m, const std::string& name, Tally& t, size_t max_pai
       }
       if (exact_det_sign(ps, a, b, c) == 0) continue;
       const VertexGeom v = make_vertex(ps, a, b, c, false);
+      const Cramer ref(ps, a, b, c);
       std::vector<uint32_t> tested = thirds;
       for (int i = 0; i < 16; ++i) tested.push_back(uint32_t(rng() % ps.size()));
       for (uint32_t l : tested) {
-        ASSERT_EQ(side(ps, l, v), exact_side(ps, l, a, b, c)) << "plane " << l << " at vertex " << a << " " << b << " " << c;
+        ASSERT_EQ(side(ps, l, v), ref.side(ps, l)) << "plane " << l << " at vertex " << a << " " << b << " " << c;
         ++t.side_checked;
       }
       // Coordinates from the line formula agree with Cramer's quotient to double-double accuracy.
       double hi[3], lo[3];
       precise_coordinates(ps, v, hi, lo);
-      const auto &A = ps.exact(a), &B = ps.exact(b), &C = ps.exact(c);
-      const Expansion den = det3_normals(A, B, C);
-      const Expansion x = det3(-A.d, A.n[1], A.n[2], -B.d, B.n[1], B.n[2], -C.d, C.n[1], C.n[2]);
-      const double ref = std::ldexp(x.estimate() / den.estimate(), -ps.exact_shift());
-      EXPECT_NEAR(hi[0], ref, 4e-16 * std::fabs(ref) + 1e-300);
+      const double x0 = std::ldexp(ref.num[0].estimate() / ref.den.estimate(), -ps.exact_shift());
+      EXPECT_NEAR(hi[0], x0, 4e-16 * std::fabs(x0) + 1e-300);
     }
   }
 }
