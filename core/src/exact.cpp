@@ -3,6 +3,7 @@
 // two_product error-free transformations, zero-eliminating expansion sum and scaling, compression.
 #include "exact.h"
 
+#include <algorithm>
 #include <cassert>
 
 namespace kergen {
@@ -148,35 +149,50 @@ ApproxDD dd_difference(double a, double b) {
   return {x, y, 0};
 }
 
-int orient3d_exact_differences(const double* a, const double* b, const double* c, const double* p) {
-  double u[3], v[3], w[3];
+int orient3d_adaptive(const double* a, const double* b, const double* c, const double* p) {
+  // Shewchuk's orient3dadapt (1997, section 4.3), stages B and C, with his variables: the rows
+  // u = b - a, v = c - a, w = p - a are his (ad, bd, cd), so det3(u, v, w) is his determinant.
+  double u[3], v[3], w[3], ut[3], vt[3], wt[3];
+  bool exact_differences = true;
   for (int k = 0; k < 3; ++k) {
-    double t;
-    two_sum(b[k], -a[k], u[k], t);
-    if (t != 0) return 2;
-    two_sum(c[k], -a[k], v[k], t);
-    if (t != 0) return 2;
-    two_sum(p[k], -a[k], w[k], t);
-    if (t != 0) return 2;
+    two_sum(b[k], -a[k], u[k], ut[k]);
+    two_sum(c[k], -a[k], v[k], vt[k]);
+    two_sum(p[k], -a[k], w[k], wt[k]);
+    exact_differences &= ut[k] == 0 && vt[k] == 0 && wt[k] == 0;
   }
-  // det3(u, v, w) = u0 (v1 w2 - v2 w1) - u1 (v0 w2 - v2 w0) + u2 (v0 w1 - v1 w0), each minor an
+  // Stage B: the determinant of the rounded differences, exactly, by the z column:
+  // u_z (v_x w_y - w_x v_y) + v_z (w_x u_y - u_x w_y) + w_z (u_x v_y - v_x u_y), each minor an
   // exact 4-component expansion, each term at most 8 components, the sum at most 24.
-  auto minor = [](double a1, double b2, double a2, double b1, double* out) {
+  auto minor = [](double p1, double q1, double p2, double q2, double* out) {  // p1 q1 - p2 q2
     double x[2], y[2];
-    two_product(a1, b2, x[1], x[0]);
-    two_product(-a2, b1, y[1], y[0]);
+    two_product(p1, q1, x[1], x[0]);
+    two_product(-p2, q2, y[1], y[0]);
     return expansion_sum(x, 2, y, 2, out);
   };
-  double m0[4], m1[4], m2[4], t0[8], t1[8], t2[8], s01[16], all[24];
-  size_t n0 = minor(v[1], w[2], v[2], w[1], m0);
-  size_t n1 = minor(v[0], w[2], v[2], w[0], m1);
-  size_t n2 = minor(v[0], w[1], v[1], w[0], m2);
-  size_t k0 = scale_expansion(m0, n0, u[0], t0);
-  size_t k1 = scale_expansion(m1, n1, -u[1], t1);
-  size_t k2 = scale_expansion(m2, n2, u[2], t2);
-  size_t k01 = expansion_sum(t0, k0, t1, k1, s01);
-  size_t kall = expansion_sum(s01, k01, t2, k2, all);
-  return kall == 0 ? 0 : (all[kall - 1] > 0 ? 1 : -1);
+  double bc[4], ca[4], ab[4], t0[8], t1[8], t2[8], s01[16], fin[24];
+  const size_t nbc = minor(v[0], w[1], w[0], v[1], bc);
+  const size_t nca = minor(w[0], u[1], u[0], w[1], ca);
+  const size_t nab = minor(u[0], v[1], v[0], u[1], ab);
+  const size_t k0 = scale_expansion(bc, nbc, u[2], t0);
+  const size_t k1 = scale_expansion(ca, nca, v[2], t1);
+  const size_t k2 = scale_expansion(ab, nab, w[2], t2);
+  const size_t k01 = expansion_sum(t0, k0, t1, k1, s01);
+  const size_t n = expansion_sum(s01, k01, t2, k2, fin);
+  if (exact_differences) return n == 0 ? 0 : (fin[n - 1] > 0 ? 1 : -1);
+  double det = 0;
+  for (size_t i = 0; i < n; ++i) det += fin[i];
+  const double permanent = (std::fabs(v[0] * w[1]) + std::fabs(w[0] * v[1])) * std::fabs(u[2]) +
+                           (std::fabs(w[0] * u[1]) + std::fabs(u[0] * w[1])) * std::fabs(v[2]) +
+                           (std::fabs(u[0] * v[1]) + std::fabs(v[0] * u[1])) * std::fabs(w[2]);
+  const double bound_b = (3.0 + 28.0 * kEps) * kEps * permanent;
+  if (det >= bound_b || -det >= bound_b) return det > 0 ? 1 : (det < 0 ? -1 : 0);  // bound 0: det exact
+  // Stage C: the first-order terms of the difference tails, in floating point.
+  const double bound_c = (26.0 + 288.0 * kEps) * kEps * kEps * permanent + (3.0 + 8.0 * kEps) * kEps * std::fabs(det);
+  det += (u[2] * ((v[0] * wt[1] + w[1] * vt[0]) - (v[1] * wt[0] + w[0] * vt[1])) + ut[2] * (v[0] * w[1] - v[1] * w[0])) +
+         (v[2] * ((w[0] * ut[1] + u[1] * wt[0]) - (w[1] * ut[0] + u[0] * wt[1])) + vt[2] * (w[0] * u[1] - w[1] * u[0])) +
+         (w[2] * ((u[0] * vt[1] + v[1] * ut[0]) - (u[1] * vt[0] + v[0] * ut[1])) + wt[2] * (u[0] * v[1] - u[1] * v[0]));
+  if (det >= bound_c || -det >= bound_c) return det > 0 ? 1 : (det < 0 ? -1 : 0);
+  return 2;
 }
 
 void Expansion::compress() {
@@ -214,25 +230,59 @@ Expansion operator+(const Expansion& a, const Expansion& b) {
   r.n_ = expansion_sum(a.p_, a.n_, b.p_, b.n_, r.reserve(a.n_ + b.n_));
   return r;
 }
+void Expansion::swap(Expansion& o) noexcept {
+  const bool inline_a = p_ == buf_, inline_b = o.p_ == o.buf_;
+  if (inline_a && inline_b) {
+    for (size_t i = 0, m = std::max(n_, o.n_); i < m; ++i) std::swap(buf_[i], o.buf_[i]);
+  } else if (!inline_a && !inline_b) {
+    heap_.swap(o.heap_);
+    p_ = heap_.data();
+    o.p_ = o.heap_.data();
+  } else {  // the inline one's components move to the other's buffer, the heap block the other way
+    Expansion& in = inline_a ? *this : o;
+    Expansion& out = inline_a ? o : *this;
+    for (size_t i = 0; i < in.n_; ++i) out.buf_[i] = in.buf_[i];
+    in.heap_.swap(out.heap_);
+    in.p_ = in.heap_.data();
+    out.p_ = out.buf_;
+  }
+  std::swap(n_, o.n_);
+}
+
 Expansion Expansion::operator-() const {
-  Expansion r = *this;
-  for (size_t i = 0; i < r.n_; ++i) r.p_[i] = -r.p_[i];
+  Expansion r;
+  double* h = r.reserve(n_);
+  for (size_t i = 0; i < n_; ++i) h[i] = -p_[i];
+  r.n_ = n_;
   return r;
 }
 Expansion operator-(const Expansion& a, const Expansion& b) {
-  Expansion nb = -b;
-  return a + nb;
+  // a + (-b) with -b negated on the stack when it fits (no temporary Expansion).
+  if (b.n_ <= Expansion::kInline) {
+    double nb[Expansion::kInline];
+    for (size_t i = 0; i < b.n_; ++i) nb[i] = -b.p_[i];
+    Expansion r;
+    r.n_ = expansion_sum(a.p_, a.n_, nb, b.n_, r.reserve(a.n_ + b.n_));
+    return r;
+  }
+  return a + (-b);
 }
 
 Expansion operator*(const Expansion& a, const Expansion& b) {
   const Expansion& small = a.size() <= b.size() ? a : b;
   const Expansion& large = a.size() <= b.size() ? b : a;
+  if (small.n_ <= 1) {  // a double times an expansion: one scaling
+    Expansion r;
+    if (small.n_ == 1) r.n_ = scale_expansion(large.p_, large.n_, small.p_[0], r.reserve(2 * large.n_));
+    if (r.n_ > 4) r.compress();
+    return r;
+  }
   Expansion acc, next, term;
   double* t = term.reserve(2 * large.n_);
   for (size_t i = 0; i < small.n_; ++i) {
     term.n_ = scale_expansion(large.p_, large.n_, small.p_[i], t);
     next.n_ = expansion_sum(acc.p_, acc.n_, term.p_, term.n_, next.reserve(acc.n_ + term.n_));
-    std::swap(acc, next);
+    acc.swap(next);
   }
   if (acc.n_ > 4) acc.compress();
   return acc;

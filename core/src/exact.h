@@ -45,6 +45,7 @@ class Expansion {
   static Expansion difference(double a, double b);  // a - b exactly
   static Expansion product(double a, double b);     // a * b exactly
   void compress();  // same value, fewest components (worth it for values used many times)
+  void swap(Expansion& o) noexcept;
 
  private:
   // Components live inline up to kInline (no allocation for the common small predicates).
@@ -104,9 +105,11 @@ inline Approx operator/(Approx a, Approx b) {
   return {x, e * kBoundScale * kBoundScale + kUnderflowFloor};
 }
 
-// Exact sign of det3(b - a, c - a, p - a) when every coordinate difference is exact in double
-// (the common case for nearby points); 2 when some difference is not (use the general path).
-int orient3d_exact_differences(const double* a, const double* b, const double* c, const double* p);
+// Sign of det3(b - a, c - a, p - a) by Shewchuk's adaptive stages B and C: exact when every
+// coordinate difference is exact in double (nearby points), else certified by the two error
+// bounds; 2 when neither decides (exact zeros, mostly: use the full exact formula). Inputs are
+// the scaled points (no underflow in the products, see PreparedMesh::exact_shift).
+int orient3d_adaptive(const double* a, const double* b, const double* c, const double* p);
 
 // Double-double with a rigorous error bound: |(hi + lo) - exact| <= e. A second filter stage
 // (about 106 bits) for values too close to zero for Approx; exact zeros still fall through.

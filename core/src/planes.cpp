@@ -564,10 +564,11 @@ int orient3d(const double* a, const double* b, const double* c, const double* p,
   const double bound = (7.0 * exact::kEps + 56.0 * exact::kEps * exact::kEps) * perm;
   if (det > bound) return 1;
   if (det < -bound) return -1;
-  // Undecided here is nearly always an exact zero (coplanar faces, points on planes): straight to
-  // the exact stages (a second, running-error filter rarely decided anything there).
+  // Undecided here: exact zeros (coplanar faces, points on planes) and nearly coplanar points
+  // (polygons non-planar by rounding). Shewchuk's adaptive stages decide the latter; the full
+  // exact formula is left for the zeros.
   Scaled sa(a, shift), sb(b, shift), sc(c, shift), sp(p, shift);
-  int s = exact::orient3d_exact_differences(sa.v, sb.v, sc.v, sp.v);
+  int s = exact::orient3d_adaptive(sa.v, sb.v, sc.v, sp.v);
   if (s != 2) return s;
   return orient3d_formula<Expansion>(sa.v, sb.v, sc.v, sp.v).sign();
 }

@@ -93,6 +93,44 @@ TEST(Exact, Orient3dMatchesIntegerArithmetic) {
   EXPECT_GT(zeros, 5000);
 }
 
+// Points with arbitrary doubles (inexact differences) that are coplanar up to rounding, or
+// exactly (repeated points), or off by a relative 1e-17..1e-12: the adaptive stages must agree
+// with the plain expansion determinant of the exact differences.
+TEST(Exact, Orient3dNearlyCoplanarMatchesExpansions) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int zeros = 0, nonzero_near = 0;
+  for (int i = 0; i < 40000; ++i) {
+    double d[4][3];
+    const double scale = std::ldexp(1.0, int(rng() % 40) - 20);  // differences of unlike magnitudes
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) d[j][k] = U(rng) * (j == 0 ? 1 : scale) + (j == 0 ? 0 : d[0][k]);
+    const double s = U(rng), t = U(rng);
+    const double off = (i % 4 == 0) ? 0 : std::ldexp(U(rng), -int(rng() % 30) - 50);
+    for (int k = 0; k < 3; ++k) d[3][k] = d[0][k] + s * (d[1][k] - d[0][k]) + t * (d[2][k] - d[0][k]) + off;
+    if (i % 7 == 0) {  // exactly coplanar: a repeated point
+      const int j = int(rng() % 3);
+      for (int k = 0; k < 3; ++k) d[3][k] = d[j][k];
+    }
+    Expansion u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = Expansion::difference(d[1][k], d[0][k]);
+      v[k] = Expansion::difference(d[2][k], d[0][k]);
+      w[k] = Expansion::difference(d[3][k], d[0][k]);
+    }
+    const int expect = kergen::det3(u[0], u[1], u[2], v[0], v[1], v[2], w[0], w[1], w[2]).sign();
+    zeros += expect == 0;
+    // nearly coplanar: the double determinant's own bound cannot decide it
+    const Approx a = kergen::det3(Approx(u[0].estimate()), Approx(u[1].estimate()), Approx(u[2].estimate()),
+                                  Approx(v[0].estimate()), Approx(v[1].estimate()), Approx(v[2].estimate()),
+                                  Approx(w[0].estimate()), Approx(w[1].estimate()), Approx(w[2].estimate()));
+    nonzero_near += expect != 0 && a.sign() == 2;
+    ASSERT_EQ(kergen::orient3d(d[0], d[1], d[2], d[3]), expect) << i;
+  }
+  EXPECT_GT(zeros, 4000);
+  EXPECT_GT(nonzero_near, 10000);
+}
+
 TEST(Exact, CollinearIsExact) {
   double a[3] = {0.1, 0.2, 0.3}, b[3] = {0.1 + 1.0, 0.2 + 2.0, 0.3 + 3.0};
   double c[3] = {a[0] + 2 * (b[0] - a[0]), a[1] + 2 * (b[1] - a[1]), a[2] + 2 * (b[2] - a[2])};
