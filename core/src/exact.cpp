@@ -225,9 +225,15 @@ double Expansion::estimate() const {
   return s;
 }
 
+// Results longer than this are compressed: sums and products of uncompressed expansions grow
+// with every operation (a product costs the product of the lengths), while their values rarely
+// need more than a few components.
+constexpr size_t kCompressAbove = 4;
+
 Expansion operator+(const Expansion& a, const Expansion& b) {
   Expansion r;
   r.n_ = expansion_sum(a.p_, a.n_, b.p_, b.n_, r.reserve(a.n_ + b.n_));
+  if (r.n_ > kCompressAbove) r.compress();
   return r;
 }
 void Expansion::swap(Expansion& o) noexcept {
@@ -263,6 +269,7 @@ Expansion operator-(const Expansion& a, const Expansion& b) {
     for (size_t i = 0; i < b.n_; ++i) nb[i] = -b.p_[i];
     Expansion r;
     r.n_ = expansion_sum(a.p_, a.n_, nb, b.n_, r.reserve(a.n_ + b.n_));
+    if (r.n_ > kCompressAbove) r.compress();
     return r;
   }
   return a + (-b);
@@ -274,7 +281,7 @@ Expansion operator*(const Expansion& a, const Expansion& b) {
   if (small.n_ <= 1) {  // a double times an expansion: one scaling
     Expansion r;
     if (small.n_ == 1) r.n_ = scale_expansion(large.p_, large.n_, small.p_[0], r.reserve(2 * large.n_));
-    if (r.n_ > 4) r.compress();
+    if (r.n_ > kCompressAbove) r.compress();
     return r;
   }
   Expansion acc, next, term;
@@ -284,7 +291,7 @@ Expansion operator*(const Expansion& a, const Expansion& b) {
     next.n_ = expansion_sum(acc.p_, acc.n_, term.p_, term.n_, next.reserve(acc.n_ + term.n_));
     acc.swap(next);
   }
-  if (acc.n_ > 4) acc.compress();
+  if (acc.n_ > kCompressAbove) acc.compress();
   return acc;
 }
 
