@@ -155,4 +155,32 @@ TEST(Planes, LineShortcutsMatchExpansionsOnVoronoiCells) {
   EXPECT_GT(t.det_undecided_by_filters, 0u) << "the sample no longer exercises the exact shortcut";
 }
 
+// The filtered plane of a triangle (the doubles every float scan uses) must contain the exact
+// plane within its bounds: general triangles, slivers, nearly degenerate ones and triangles far
+// from their size's scale.
+TEST(Planes, ApproxPlaneBoundsContainTheExactPlane) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> U(-1, 1);
+  size_t tight = 0;
+  for (int i = 0; i < 50000; ++i) {
+    double p[3][3];
+    const double size = std::ldexp(1.0, -int(rng() % 30));
+    for (int k = 0; k < 3; ++k) p[0][k] = U(rng);
+    for (int j = 1; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) p[j][k] = p[0][k] + size * U(rng);
+    if (i % 3 == 0)  // nearly collinear: c close to the line ab
+      for (int k = 0; k < 3; ++k) p[2][k] = p[0][k] + 0.37 * (p[1][k] - p[0][k]) + std::ldexp(U(rng), -40) * size;
+    const PlaneCoef<Approx> a = approx_plane(p[0], p[1], p[2]);
+    const PlaneCoef<Expansion> e = exact_plane(p[0], p[1], p[2]);
+    const Approx* av[4] = {&a.n[0], &a.n[1], &a.n[2], &a.d};
+    const Expansion* ev[4] = {&e.n[0], &e.n[1], &e.n[2], &e.d};
+    for (int k = 0; k < 4; ++k) {
+      const double err = std::fabs((*ev[k] - Expansion(av[k]->v)).estimate());
+      ASSERT_LE(err, av[k]->e) << "case " << i << " coefficient " << k;
+      tight += err > 0.05 * av[k]->e;
+    }
+  }
+  EXPECT_GT(tight, 1000u) << "bounds far looser than the actual errors";
+}
+
 }  // namespace
