@@ -221,14 +221,12 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   // Loads a few iterations ahead are prefetched: the loops below are bound by cache misses on
   // keys and table slots of faces spread over the mesh.
   constexpr size_t kAhead = 8;
-  std::vector<PlaneCoef<Approx>> coef;  // the plane of each face's triangle, as PlaneSet keeps it
-  std::vector<Key> key;
-  coef.reserve(nf);
-  key.reserve(nf);
+  // (The planes' coefficients are not kept: recomputing them for the class representatives costs
+  // less than writing and reading them back for every face.)
+  std::vector<Key> key(nf);
   for (uint32_t f = 0; f < nf; ++f) {
     const auto& t = m.rep[f];
-    coef.push_back(approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2])));
-    key.push_back(face_key(m, t, coef.back()));
+    key[f] = face_key(m, t, approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2])));
   }
 
   // 1. Edge-adjacent coplanar faces with the same orientation (the usual way faces share a
@@ -290,7 +288,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
       class_plane[f] = found;
       continue;
     }
-    const uint32_t id = ps.add_from_points(r[0], r[1], r[2], coef[f]);
+    const uint32_t id = ps.add_from_points(r[0], r[1], r[2]);
     class_plane[f] = id;
     plane_face.push_back(f);
     next.push_back(table.push(root_hash[i], id));
