@@ -223,10 +223,11 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   constexpr size_t kAhead = 8;
   // (The planes' coefficients are not kept: recomputing them for the class representatives costs
   // less than writing and reading them back for every face.)
-  std::vector<Key> key(nf);
+  std::vector<Key> key;
+  key.reserve(nf);
   for (uint32_t f = 0; f < nf; ++f) {
     const auto& t = m.rep[f];
-    key[f] = face_key(m, t, approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2])));
+    key.push_back(face_key(m, t, approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]))));
   }
 
   // 1. Edge-adjacent coplanar faces with the same orientation (the usual way faces share a
