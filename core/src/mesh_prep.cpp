@@ -142,6 +142,17 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   return out;
 }
 
+// The number of trailing zero bits of a non-zero 64-bit integer.
+inline int count_trailing_zeros(uint64_t x) {
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_ctzll(x);
+#else
+  int n = 0;
+  while (!(x & 1)) { x >>= 1; ++n; }
+  return n;
+#endif
+}
+
 // The exponent of the lowest set bit of a finite non-zero double, read from its bits:
 // x = mant 2^(biased - 1075), with the implicit leading bit for normal numbers, and
 // x = mant 2^-1074 for subnormal ones.
@@ -152,25 +163,22 @@ int lowest_bit_exponent(double x) {
   int biased = int((bits >> 52) & 0x7ff);
   if (biased) mant |= uint64_t(1) << 52;
   else biased = 1;
-  // mant & -mant keeps the lowest set bit; converted to a double (a power of two below 2^53,
-  // exact), its exponent field is that bit's position plus 1023.
-  const double low = double(mant & (~mant + 1));
-  uint64_t low_bits;
-  std::memcpy(&low_bits, &low, sizeof low_bits);
-  return biased - 1075 + int(low_bits >> 52) - 1023;
+  return biased - 1075 + count_trailing_zeros(mant);  // mant != 0 for x != 0
 }
 
 // Whether two used vertices have the same position (coordinates compared with ==, so -0 and
-// +0 are one position): a hash table of the used vertices, expected linear time.
+// +0 are one position): a hash table of the used vertices, expected linear time. The table is
+// larger than the caches for big meshes, so slots are hashed a block ahead and prefetched.
 bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used) {
   size_t bits = 1;
   while ((size_t(1) << bits) < 2 * num_used) ++bits;  // load factor <= 1/2
   const uint32_t kEmpty = 0xffffffffu;
-  std::vector<uint32_t> table(size_t(1) << bits, kEmpty);
-  const size_t mask = table.size() - 1;
-  for (uint32_t v = 0; v < used.size(); ++v) {
-    if (!used[v]) continue;
-    const double* p = &pts[3 * size_t(v)];
+  std::vector<uint32_t> table_store(size_t(1) << bits, kEmpty);
+  uint32_t* table = table_store.data();
+  const size_t mask = table_store.size() - 1;
+  const double* P = pts.data();
+  auto home = [&](uint32_t v) {
+    const double* p = P + 3 * size_t(v);
     uint64_t h = 0;
     for (int k = 0; k < 3; ++k) {
       const double x = p[k] + 0.0;  // -0 + 0 = +0: equal coordinates hash alike
@@ -178,10 +186,31 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
       std::memcpy(&b, &x, sizeof b);
       h = (h ^ b ^ (b >> 29)) * 0x9e3779b97f4a7c15ull;  // the high bits depend on every input bit
     }
-    for (size_t slot = size_t(h >> (64 - bits));; slot = (slot + 1) & mask) {
-      if (table[slot] == kEmpty) { table[slot] = v; break; }
-      const double* q = &pts[3 * size_t(table[slot])];
-      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return true;
+    return size_t(h >> (64 - bits));
+  };
+  constexpr size_t kBlock = 16;
+  uint32_t ids[kBlock];
+  size_t slots[kBlock];
+  const char* us = used.data();
+  const size_t nv = used.size();
+  for (size_t v0 = 0; v0 < nv;) {
+    size_t n = 0;
+    for (; v0 < nv && n < kBlock; ++v0) {
+      if (!us[v0]) continue;
+      ids[n] = uint32_t(v0);
+      slots[n] = home(uint32_t(v0));
+#if defined(__GNUC__) || defined(__clang__)
+      __builtin_prefetch(table + slots[n]);
+#endif
+      ++n;
+    }
+    for (size_t j = 0; j < n; ++j) {
+      const double* p = P + 3 * size_t(ids[j]);
+      for (size_t slot = slots[j];; slot = (slot + 1) & mask) {
+        if (table[slot] == kEmpty) { table[slot] = ids[j]; break; }
+        const double* q = P + 3 * size_t(table[slot]);
+        if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return true;
+      }
     }
   }
   return false;
@@ -203,6 +232,20 @@ std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, co
     if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return {order[i - 1], order[i]};
   }
   return {0, 0};  // not reached: called only when a shared position exists
+}
+
+// The static filter of collinear() (planes.cpp) alone: true when some component of the cross
+// product (b - a) x (c - a) of the rounded differences is certainly non-zero, each within
+// 5 eps (|u_i v_j| + |u_j v_i|) of the exact one; false when the exact test has to decide.
+inline bool certainly_not_collinear(const double* a, const double* b, const double* c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  bool certain = false;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double x = u[i] * v[j], y = u[j] * v[i];
+    certain |= std::fabs(x - y) > 5 * exact::kEps * (std::fabs(x) + std::fabs(y)) + exact::kUnderflowFloor;
+  }
+  return certain;
 }
 
 bool lex_less(const double* a, const double* b) {
@@ -249,15 +292,36 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   }
   auto face_size = [&](size_t f) -> size_t { return mesh.face_sizes ? mesh.face_sizes[f] : 3; };
 
-  // The largest magnitude (for the scale below) is gathered in the same pass.
+  // Finite coordinates and the largest magnitude (for the scale below) in one branch-free pass
+  // over the bits: without the sign bit, doubles order like their bit patterns, and every NaN
+  // or infinity lies at or above that of infinity. The culprit is looked for only if needed.
   double maxabs = 0;
-  for (size_t i = 0; i < 3 * nv; ++i) {
-    if (!std::isfinite(mesh.positions[i])) {
+  {
+    const double* pos = mesh.positions;
+    const uint64_t kAbs = ~(uint64_t(1) << 63), kInf = 0x7ff0000000000000ull;
+    uint64_t top[4] = {0, 0, 0, 0};  // four chains: the maxima do not wait on each other
+    const size_t n = 3 * nv;
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4)
+      for (int j = 0; j < 4; ++j) {
+        uint64_t b;
+        std::memcpy(&b, pos + i + j, sizeof b);
+        top[j] = std::max(top[j], b & kAbs);
+      }
+    for (; i < n; ++i) {
+      uint64_t b;
+      std::memcpy(&b, pos + i, sizeof b);
+      top[0] = std::max(top[0], b & kAbs);
+    }
+    const uint64_t top_bits = std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
+    if (top_bits >= kInf) {
+      i = 0;
+      while (std::isfinite(pos[i])) ++i;
       std::ostringstream s;
-      s << "vertex " << i / 3 << " has a non-finite coordinate (" << mesh.positions[i] << ")";
+      s << "vertex " << i / 3 << " has a non-finite coordinate (" << pos[i] << ")";
       return fail(m, Error::NonFiniteCoordinate, s.str());
     }
-    maxabs = std::max(maxabs, std::fabs(mesh.positions[i]));
+    std::memcpy(&maxabs, &top_bits, sizeof maxabs);
   }
   // Indices in range: the largest one first (a branch-free pass), the culprit only if needed.
   uint32_t max_index = 0;
@@ -311,43 +375,59 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // Faces without repeated consecutive vertices; faces left with < 3 distinct vertices carry
   // no area and no edges of their own (a -> b -> a pairs cancel), so they are dropped here.
   // The same pass marks the used vertices and counts the edge uses per bucket of the edge
-  // check below.
-  std::vector<uint32_t> clean_offsets{0}, clean(mesh.num_indices);
-  clean_offsets.reserve(nf + 1);
+  // check below. (Raw pointers in the loops: the stores through char would otherwise make the
+  // compiler reload every vector's pointers after each one.)
+  std::vector<uint32_t> clean(mesh.num_indices), clean_offsets(nf + 1);
   std::vector<char> used(nv, 0);
   // Edge uses are bucketed by their lower vertex id and direction: bucket 2 lo + 1 holds the
   // uses running up from lo (lo -> hi, hi > lo), bucket 2 lo those running down to lo.
-  std::vector<uint32_t> bucket(2 * nv + 1, 0);  // bucket[b + 1]: size of bucket b, then starts
+  // bucket[b + 1]: size of bucket b, then its end, then (after the fill) its start.
+  std::vector<uint32_t> bucket(2 * nv + 2, 0);
+  size_t cf = 0;  // clean faces
   {
     const uint32_t* in = mesh.indices;
-    size_t n = 0;  // clean entries so far
+    uint32_t* cl = clean.data();
+    uint32_t* off = clean_offsets.data();
+    char* us = used.data();
+    uint32_t* count = bucket.data() + 1;
+    auto count_use = [count](uint32_t u, uint32_t v) { count[2 * size_t(std::min(u, v)) + (u < v)]++; };
+    size_t n = 0, dropped = 0;  // clean entries so far, faces dropped
     for (size_t f = 0; f < nf; ++f) {
-      const size_t begin = n, k = face_size(f);
+      const size_t begin = n, k = mesh.face_sizes ? mesh.face_sizes[f] : 3;
       if (k == 3 && in[0] != in[1] && in[1] != in[2] && in[2] != in[0]) {  // the usual case
-        clean[n++] = in[0];
-        clean[n++] = in[1];
-        clean[n++] = in[2];
-      } else {
-        for (size_t i = 0; i < k; ++i)
-          if (n == begin || clean[n - 1] != in[i]) clean[n++] = in[i];
-        while (n - begin > 1 && clean[n - 1] == clean[begin]) --n;
+        const uint32_t a = in[0], b = in[1], c = in[2];
+        cl[n] = a;
+        cl[n + 1] = b;
+        cl[n + 2] = c;
+        n += 3;
+        in += 3;
+        off[++cf] = uint32_t(n);
+        us[a] = us[b] = us[c] = 1;
+        count_use(a, b);
+        count_use(b, c);
+        count_use(c, a);
+        continue;
       }
+      for (size_t i = 0; i < k; ++i)
+        if (n == begin || cl[n - 1] != in[i]) cl[n++] = in[i];
+      while (n - begin > 1 && cl[n - 1] == cl[begin]) --n;
       in += k;
       if (n - begin < 3) {
         n = begin;
-        ++m.dropped_faces;
+        ++dropped;
         continue;
       }
-      clean_offsets.push_back(uint32_t(n));
+      off[++cf] = uint32_t(n);
       for (size_t i = begin; i < n; ++i) {
-        const uint32_t u = clean[i], v = clean[i + 1 < n ? i + 1 : begin];
-        used[u] = 1;
-        bucket[2 * size_t(std::min(u, v)) + (u < v) + 1]++;
+        const uint32_t u = cl[i], v = cl[i + 1 < n ? i + 1 : begin];
+        us[u] = 1;
+        count_use(u, v);
       }
     }
     clean.resize(n);
+    clean_offsets.resize(cf + 1);
+    m.dropped_faces += dropped;
   }
-  const size_t cf = clean_offsets.size() - 1;
   if (cf == 0) return fail(m, Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
 
   // Edge check (counting sort into the buckets, no hashing and no comparison sort). The uses of
@@ -355,15 +435,25 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // on a closed, consistently oriented 2-manifold every edge has one use each way, and its two
   // faces are a pair. A use is stored as upper id << 32 | face.
   for (size_t b = 0; b < 2 * nv; ++b) bucket[b + 1] += bucket[b];
+  const uint32_t total_uses = bucket[2 * nv];
+  bucket[2 * nv + 1] = total_uses;
   // (Left uninitialized: every entry is written below.)
-  std::unique_ptr<uint64_t[]> half(new uint64_t[bucket[2 * nv]]);
+  std::unique_ptr<uint64_t[]> half(new uint64_t[total_uses]);
   {
-    std::vector<uint32_t> fill(bucket.begin(), bucket.end() - 1);
-    for (size_t f = 0; f < cf; ++f)
-      for (size_t i = clean_offsets[f], e = clean_offsets[f + 1]; i < e; ++i) {
-        uint32_t u = clean[i], v = clean[i + 1 < e ? i + 1 : clean_offsets[f]];
-        half[fill[2 * size_t(std::min(u, v)) + (u < v)]++] = uint64_t(std::max(u, v)) << 32 | f;
+    // Filled backwards, each use at its bucket's end moved down by one: the buckets keep the
+    // uses in face order, and bucket[b + 1] ends at the start of bucket b (no separate cursor
+    // array). Then bucket b is [bucket[b + 1], bucket[b + 2]).
+    const uint32_t* cl = clean.data();
+    const uint32_t* off = clean_offsets.data();
+    uint32_t* cursor = bucket.data() + 1;
+    uint64_t* h = half.get();
+    for (size_t f = cf; f-- > 0;) {
+      const size_t b = off[f], e = off[f + 1];
+      for (size_t i = e; i-- > b;) {
+        const uint32_t u = cl[i], v = cl[i + 1 < e ? i + 1 : b];
+        h[--cursor[2 * size_t(std::min(u, v)) + (u < v)]] = uint64_t(std::max(u, v)) << 32 | f;
       }
+    }
   }
   // Faulty edges are counted; the one named is the smallest (lower id, upper id).
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
@@ -372,46 +462,68 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     ++count;
     example = std::min(example, key);
   };
+  // Connected pieces = faces - successful unions (no pass over the classes afterwards).
   UnionFind components(cf);
+  size_t unions = 0;
   // Pairs of faces sharing an edge, by lower vertex id, then in the order of the faces using
-  // the edge upwards; each pair lists its lower face first.
-  std::vector<std::array<uint32_t, 2>> face_pairs;
-  face_pairs.reserve(bucket[2 * nv] / 2);
-  struct Tally { uint32_t up = 0, down = 0, up_face = 0, down_face = 0; };
-  std::vector<Tally> tally(nv);  // per upper vertex id; all zero between lower vertices
-  for (size_t lo = 0; lo < nv; ++lo) {
-    const uint64_t* down_begin = half.get() + bucket[2 * lo];
-    const uint64_t* up_begin = half.get() + bucket[2 * lo + 1];
-    const uint64_t* end = half.get() + bucket[2 * lo + 2];
-    for (const uint64_t* p = down_begin; p != up_begin; ++p) {
-      Tally& t = tally[*p >> 32];
-      ++t.down;
-      t.down_face = uint32_t(*p);
-    }
-    for (const uint64_t* p = up_begin; p != end; ++p) {
-      Tally& t = tally[*p >> 32];
-      ++t.up;
-      t.up_face = uint32_t(*p);
-    }
-    // Judged at its first upward use, or first downward use if it has none; then cleared.
-    auto judge = [&](uint32_t hi) {
-      Tally& t = tally[hi];
-      if (t.up == 1 && t.down == 1) {
-        const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
-        components.unite(f0, f1);
-        face_pairs.push_back({f0, f1});
-      } else if (t.up + t.down > 0) {  // else judged already
-        const uint64_t key = uint64_t(lo) << 32 | hi;
-        const size_t n = size_t(t.up) + t.down;
-        if (n == 1) note(open, open_ex, key);
-        else if (n > 2) note(nonmanifold, nonmanifold_ex, key);
-        else note(inconsistent, inconsistent_ex, key);  // two uses the same way
-      }
-      t = Tally{};
+  // the edge upwards; each pair lists its lower face first. At most one pair per two uses;
+  // written through a pointer (push_back went through a stack copy, a store-forwarding stall).
+  std::vector<std::array<uint32_t, 2>> face_pairs(total_uses / 2);
+  {
+    struct Tally { uint32_t up = 0, down = 0, up_face = 0, down_face = 0; };
+    std::vector<Tally> tally_store(nv);  // per upper vertex id; all zero between lower vertices
+    Tally* tally = tally_store.data();
+    uint32_t* parent = components.parent.data();
+    auto find = [parent](uint32_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
     };
-    for (const uint64_t* p = up_begin; p != end; ++p) judge(uint32_t(*p >> 32));
-    for (const uint64_t* p = down_begin; p != up_begin; ++p) judge(uint32_t(*p >> 32));
+    std::array<uint32_t, 2>* pair_out = face_pairs.data();
+    const uint64_t* h = half.get();
+    const uint32_t* start = bucket.data() + 1;
+    for (size_t lo = 0; lo < nv; ++lo) {
+      const uint64_t* down_begin = h + start[2 * lo];
+      const uint64_t* up_begin = h + start[2 * lo + 1];
+      const uint64_t* end = h + start[2 * lo + 2];
+      for (const uint64_t* p = down_begin; p != up_begin; ++p) {
+        Tally& t = tally[*p >> 32];
+        ++t.down;
+        t.down_face = uint32_t(*p);
+      }
+      for (const uint64_t* p = up_begin; p != end; ++p) {
+        Tally& t = tally[*p >> 32];
+        ++t.up;
+        t.up_face = uint32_t(*p);
+      }
+      // Judged at its first upward use, or first downward use if it has none; then cleared.
+      auto judge = [&](uint32_t hi) {
+        Tally& t = tally[hi];
+        if (t.up == 1 && t.down == 1) {
+          const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
+          (*pair_out)[0] = f0;
+          (*pair_out)[1] = f1;
+          ++pair_out;
+          // (the smaller root wins, as in UnionFind::unite)
+          const uint32_t r0 = find(f0), r1 = find(f1);
+          if (r0 != r1) {
+            parent[std::max(r0, r1)] = std::min(r0, r1);
+            ++unions;
+          }
+        } else if (t.up + t.down > 0) {  // else judged already
+          const uint64_t key = uint64_t(lo) << 32 | hi;
+          const size_t n = size_t(t.up) + t.down;
+          if (n == 1) note(open, open_ex, key);
+          else if (n > 2) note(nonmanifold, nonmanifold_ex, key);
+          else note(inconsistent, inconsistent_ex, key);  // two uses the same way
+        }
+        t = Tally{};
+      };
+      for (const uint64_t* p = up_begin; p != end; ++p) judge(uint32_t(*p >> 32));
+      for (const uint64_t* p = down_begin; p != up_begin; ++p) judge(uint32_t(*p >> 32));
+    }
+    face_pairs.resize(size_t(pair_out - face_pairs.data()));
   }
+  half.reset();
   auto edge_name = [](uint64_t k) {
     return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";
   };
@@ -433,11 +545,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         for (size_t i = clean_offsets[f]; i < clean_offsets[f + 1]; ++i) {
           uint32_t v = clean[i];
           if (first_face[v] == 0xffffffffu) first_face[v] = uint32_t(f);
-          else components.unite(first_face[v], uint32_t(f));
+          else unions += components.unite(first_face[v], uint32_t(f));
         }
     }
-    size_t pieces = 0;
-    for (size_t f = 0; f < cf; ++f) pieces += components.find(uint32_t(f)) == f;
+    const size_t pieces = cf - unions;
     if (pieces > 1) {
       return fail(m, Error::MultipleComponents, "the mesh has " + std::to_string(pieces) + " separate pieces; the kernel is defined for one closed surface");
     }
@@ -459,25 +570,37 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
 
   // Bounding box of the used vertices. It is defined as if taken over every use in loop order:
   // ties keep the held bound, so a zero bound has the sign of the first zero met. Over the used
-  // vertices in id order the values are the same; only a zero bound may differ (in sign), and it
-  // is then taken again in loop order.
-  auto reset_bbox = [&] {
-    for (int k = 0; k < 3; ++k) { m.bbox_min[k] = INFINITY; m.bbox_max[k] = -INFINITY; }
-  };
-  auto grow_bbox = [&](uint32_t v) {
-    for (int k = 0; k < 3; ++k) {
-      m.bbox_min[k] = std::min(m.bbox_min[k], m.points[3 * size_t(v) + k]);
-      m.bbox_max[k] = std::max(m.bbox_max[k], m.points[3 * size_t(v) + k]);
+  // vertices in id order the values are the same; only a zero bound may differ (in sign). All
+  // values on that side are then >= 0 (<= 0 for a maximum), so the bound in loop order is the
+  // first zero coordinate met in loop order: it is looked up there.
+  {
+    double lo3[3] = {INFINITY, INFINITY, INFINITY}, hi3[3] = {-INFINITY, -INFINITY, -INFINITY};
+    const double* pts = m.points.data();
+    const char* us = used.data();
+    for (size_t v = 0; v < nv; ++v) {
+      if (!us[v]) continue;
+      for (int k = 0; k < 3; ++k) {
+        lo3[k] = std::min(lo3[k], pts[3 * v + k]);
+        hi3[k] = std::max(hi3[k], pts[3 * v + k]);
+      }
     }
-  };
-  reset_bbox();
-  for (uint32_t v = 0; v < nv; ++v)
-    if (used[v]) grow_bbox(v);
-  bool zero_bound = false;
-  for (int k = 0; k < 3; ++k) zero_bound |= m.bbox_min[k] == 0 || m.bbox_max[k] == 0;
-  if (zero_bound) {
-    reset_bbox();
-    for (uint32_t v : clean) grow_bbox(v);
+    bool zero[3];
+    int zeros = 0;
+    for (int k = 0; k < 3; ++k) zeros += zero[k] = lo3[k] == 0 || hi3[k] == 0;
+    for (size_t i = 0; i < clean.size() && zeros > 0; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double x = pts[3 * size_t(clean[i]) + k];
+        if (zero[k] && x == 0) {
+          if (lo3[k] == 0) lo3[k] = x;
+          if (hi3[k] == 0) hi3[k] = x;
+          zero[k] = false;
+          --zeros;
+        }
+      }
+    for (int k = 0; k < 3; ++k) {
+      m.bbox_min[k] = lo3[k];
+      m.bbox_max[k] = hi3[k];
+    }
   }
 
   // Enclosed volume (double; relative to the box centre for accuracy).
@@ -541,7 +664,26 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     m.rep.push_back(rep);
   };
-  for (size_t f = 0; f < cf; ++f) {
+  // The usual leading run: triangles that a float filter certifies as non-degenerate are kept
+  // whole with themselves as representatives, written in place. The loop below takes over at
+  // the first face that is not such a triangle.
+  size_t first_general = 0;
+  {
+    m.rep.resize(cf);
+    std::array<uint32_t, 3>* rep_out = m.rep.data();
+    const uint32_t* cl = clean.data();
+    const uint32_t* off = clean_offsets.data();
+    const double* pts = m.points.data();
+    for (; first_general < cf; ++first_general) {
+      const size_t b = off[first_general];
+      if (off[first_general + 1] - b != 3) break;
+      const uint32_t i0 = cl[b], i1 = cl[b + 1], i2 = cl[b + 2];
+      if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) break;
+      rep_out[first_general] = {i0, i1, i2};
+    }
+    m.rep.resize(first_general);
+  }
+  for (size_t f = first_general; f < cf; ++f) {
     const uint32_t* loop = &clean[clean_offsets[f]];
     size_t k = clean_offsets[f + 1] - clean_offsets[f];
     auto P = [&](uint32_t v) { return &m.points[3 * size_t(v)]; };

@@ -1,0 +1,82 @@
+// prepare_mesh: details of the validation pass that the kernel results do not show directly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "mesh_prep.h"
+
+namespace {
+
+using namespace kergen;
+
+// A unit cube, 12 triangles counter-clockwise seen from outside.
+Mesh unit_cube() {
+  Mesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+  m.indices = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+               2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+  return m;
+}
+
+// A zero bound of the box has the sign of the first zero coordinate met in loop order, not of
+// the lowest vertex id: the first face starts at vertex 2 here, vertex 0 comes later.
+TEST(MeshPrep, ZeroBoundTakesTheSignOfTheFirstZeroInLoopOrder) {
+  for (bool negative_first : {true, false}) {
+    Mesh m = unit_cube();
+    m.indices[0] = 2, m.indices[1] = 3, m.indices[2] = 0;  // (0, 2, 3) rotated
+    m.positions[3 * 2] = negative_first ? -0.0 : 0.0;
+    m.positions[3 * 0] = negative_first ? 0.0 : -0.0;
+    PreparedMesh p = prepare_mesh(m.view(), Options{});
+    ASSERT_EQ(p.error, Error::Ok) << p.message;
+    EXPECT_EQ(p.bbox_min[0], 0.0);
+    EXPECT_EQ(std::signbit(p.bbox_min[0]), negative_first);
+    EXPECT_EQ(p.bbox_max[0], p.to_scaled(1.0));
+  }
+}
+
+// Two cubes that share one vertex id are two pieces (faces connect through edges only).
+TEST(MeshPrep, CubesSharingAVertexAreTwoPieces) {
+  Mesh m = unit_cube();
+  const uint32_t nv = 8;
+  for (int i = 1; i < 8; ++i)
+    for (int k = 0; k < 3; ++k) m.positions.push_back(-m.positions[3 * i + k]);  // vertex i -> 7 + i
+  const size_t ni = m.indices.size();
+  for (size_t i = 0; i < ni; i += 3) {  // mirrored through the origin: orientation reversed
+    for (int j : {0, 2, 1}) {
+      const uint32_t v = m.indices[i + j];
+      m.indices.push_back(v == 0 ? 0 : nv - 1 + v);
+    }
+  }
+  PreparedMesh p = prepare_mesh(m.view(), Options{});
+  EXPECT_EQ(p.error, Error::MultipleComponents);
+  EXPECT_NE(p.message.find("2 separate pieces"), std::string::npos) << p.message;
+}
+
+// The non-finite coordinate named is the first one, whatever its kind.
+TEST(MeshPrep, FirstNonFiniteCoordinateIsNamed) {
+  Mesh m = unit_cube();
+  m.positions[3 * 5 + 1] = NAN;
+  m.positions[3 * 2 + 2] = -INFINITY;
+  PreparedMesh p = prepare_mesh(m.view(), Options{});
+  EXPECT_EQ(p.error, Error::NonFiniteCoordinate);
+  EXPECT_NE(p.message.find("vertex 2 has a non-finite coordinate (-inf)"), std::string::npos) << p.message;
+}
+
+// Edge-adjacent face pairs: ordered by lower vertex id, then by the face using the edge upwards,
+// lower face first; one per edge of a closed mesh.
+TEST(MeshPrep, AdjacentPairsOfATetrahedron) {
+  Mesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  m.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  PreparedMesh p = prepare_mesh(m.view(), Options{});
+  ASSERT_EQ(p.error, Error::Ok) << p.message;
+  // Uses up from 0, in face order: 0->2 (face 0, back in face 2), 0->1 (face 1, back in 0),
+  // 0->3 (face 2, back in 1). From 1: 1->3 (face 1, back in 3), 1->2 (face 3, back in 0).
+  // From 2: 2->3 (face 3, back in 2).
+  const std::vector<std::array<uint32_t, 2>> expected = {{0, 2}, {0, 1}, {1, 2}, {1, 3}, {0, 3}, {2, 3}};
+  EXPECT_EQ(p.adjacent, expected);
+  EXPECT_EQ(p.num_faces(), 4u);
+}
+
+}  // namespace
