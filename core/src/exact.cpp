@@ -8,38 +8,8 @@
 
 namespace kergen {
 namespace exact {
+using namespace eft;
 namespace {
-
-inline void fast_two_sum(double a, double b, double& x, double& y) {
-  x = a + b;
-  double bv = x - a;
-  y = b - bv;
-}
-inline void two_sum(double a, double b, double& x, double& y) {
-  x = a + b;
-  double bv = x - a;
-  double av = x - bv;
-  double br = b - bv;
-  double ar = a - av;
-  y = ar + br;
-}
-inline void split(double a, double& hi, double& lo) {
-  constexpr double kSplitter = 134217729.0;  // 2^27 + 1
-  double c = kSplitter * a;
-  double abig = c - a;
-  hi = c - abig;
-  lo = a - hi;
-}
-inline void two_product(double a, double b, double& x, double& y) {
-  x = a * b;
-  double ahi, alo, bhi, blo;
-  split(a, ahi, alo);
-  split(b, bhi, blo);
-  double err1 = x - ahi * bhi;
-  double err2 = err1 - alo * bhi;
-  double err3 = err2 - ahi * blo;
-  y = alo * blo - err3;
-}
 
 // h = e + f (zero-eliminating), Shewchuk's fast_expansion_sum_zeroelim; h has room for
 // elen + flen components and may not alias e or f. Returns the length of h.
@@ -100,34 +70,11 @@ size_t scale_expansion(const double* e, size_t elen, double b, double* h) {
 
 }  // namespace
 
-// Double-double arithmetic (Dekker; Hida, Li & Bailey). Each operation's own rounding error is
-// below 8 u^2 times the magnitude of its operands (u = 2^-53), which also covers cancellation;
-// the input bounds are propagated on top.
+// Double-double division (the other operations are inline in exact.h).
 namespace {
 constexpr double kU2 = kEps * kEps;
-inline ApproxDD normalize(double s, double t, double err, double magnitude) {
-  double hi, lo;
-  two_sum(s, t, hi, lo);
-  return {hi, lo, (err + 8 * kU2 * magnitude) * kBoundScale + kUnderflowFloor};
-}
 }  // namespace
 
-ApproxDD operator+(const ApproxDD& a, const ApproxDD& b) {
-  double s, t;
-  two_sum(a.hi, b.hi, s, t);
-  t += a.lo + b.lo;
-  return normalize(s, t, a.e + b.e, std::fabs(a.hi) + std::fabs(b.hi));
-}
-ApproxDD operator-(const ApproxDD& a) { return {-a.hi, -a.lo, a.e}; }
-ApproxDD operator-(const ApproxDD& a, const ApproxDD& b) { return a + (-b); }
-ApproxDD operator*(const ApproxDD& a, const ApproxDD& b) {
-  double p, q;
-  two_product(a.hi, b.hi, p, q);
-  q += a.hi * b.lo + a.lo * b.hi;
-  double ma = std::fabs(a.hi) + std::fabs(a.lo), mb = std::fabs(b.hi) + std::fabs(b.lo);
-  double prop = ma * b.e + mb * a.e + a.e * b.e + std::fabs(a.lo * b.lo);
-  return normalize(p, q, prop, ma * mb);
-}
 ApproxDD operator/(const ApproxDD& a, const ApproxDD& b) {
   // q1 = a / b in double, then one correction step: q = q1 + (a - q1 b) / b.
   double q1 = a.hi / b.hi;
