@@ -1,22 +1,33 @@
 // Embind bindings for the npm package `kergen-wasm`.
 //
 // This file only registers functions and converts values between JS and the C++ API in
-// core/include/kergen/kergen.h; all geometry lives in the core. Conventions:
-//   - Arrays in: JS typed arrays (or plain arrays) are copied into std::vectors
-//     (convertJSArrayToNumberVector). The JS wrapper (index.js) checks shapes and types first.
-//   - Arrays out: copied into fresh JS typed arrays (a bare typed_memory_view would alias the wasm
-//     heap and die when it grows), so JS never holds C++ objects and never calls delete().
-//   - User errors cross the boundary as a status string (`error`, the core's error_name) plus a
-//     message; no C++ exception is thrown for bad input. An unexpected C++ exception (e.g.
-//     std::bad_alloc) is caught here and reported the same way with code "INTERNAL_ERROR".
-//   - The step callback is a JS function called once per kergen::StepEvent; if it returns the
-//     value `false`, tracing stops (the wrapper guarantees it never throws into C++).
+// core/include/kergen/kergen.h; all geometry lives in the core. Every embind value (`val`) that
+// crosses the boundary costs a JS<->wasm round trip (an object or a property set is several), which
+// on small meshes cost as much as the computation, so data crosses as flat heap blocks instead:
+//   - In: index.js mallocs one request block, copies the typed arrays into it (one memcpy-like
+//     `set` each) and passes its address; the MeshView points into it (no copy here). Layout:
+//     f64[kOptionSlots] options (NaN = not given), f64 positions, u32 indices, u32 face sizes.
+//   - Out: one malloc'd result block (pack() below) that index.js copies into fresh JS typed
+//     arrays and objects and frees, so JS never holds C++ objects and never calls delete().
+//   - User errors cross as an error flag plus the core's error_name and message; no C++ exception
+//     is thrown for bad input. An unexpected C++ exception is caught here and reported the same way
+//     (OUT_OF_MEMORY for std::bad_alloc, otherwise INTERNAL_ERROR). A null result address means
+//     the result block itself could not be allocated (out of memory).
+//   - The step callback is a JS function called once per kergen::StepEvent with the address of a
+//     StepOut on the stack (valid during the call); if it returns `false`, tracing stops (the
+//     wrapper guarantees it never throws into C++).
+// index.js (writeRequest, readStep, readResult) reads and writes the same layouts: keep them in sync.
 #include <emscripten/bind.h>
 #include <emscripten/heap.h>
 #include <emscripten/val.h>
 #include <malloc.h>
 
+#include <array>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
@@ -28,21 +39,62 @@ using emscripten::val;
 
 namespace {
 
-val to_f64(const std::vector<double>& v) {
-  return val::global("Float64Array").new_(emscripten::typed_memory_view(v.size(), v.data()));
-}
+// Request block options, f64 slots.
+enum Option : uint32_t {
+  kOptFromX,
+  kOptFromY,
+  kOptFromZ,
+  kOptMaxSteps,
+  kOptAllowOpen,
+  kOptDeepestPoint,
+  kOptMaxFaces,
+  kOptMaxVertices,
+  kOptionSlots
+};
 
-val to_u32(const std::vector<uint32_t>& v) {
-  return val::global("Uint32Array").new_(emscripten::typed_memory_view(v.size(), v.data()));
-}
+// Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[kNumWarnings]],
+// f64 vertices, u32 edges, face indices, face sizes, triangles, then the text: NUL-terminated
+// UTF-8 strings: name (kernel status, "" for findPoint, or the error code), message ("" unless
+// error), then kind and message of each warning.
+enum Head : uint32_t {
+  kOk,
+  kComplete,
+  kHasKernelPoint,
+  kHasDeepestPoint,
+  kStarShaped,
+  kNumWarnings,
+  kTextBytes,
+  kNumVertexValues,
+  kNumEdgeValues,
+  kNumFaceIndices,
+  kNumFaces,
+  kNumTriangleValues,
+  kHeadWords
+};
+static_assert(kHeadWords % 2 == 0, "the f64 section after the head must stay 8-byte aligned");
+// kStats: the 13 Stats fields in declaration order (index.js names them).
+enum Scalar : uint32_t {
+  kVolume,
+  kArea,
+  kShapeVolume,
+  kVolumeRatio,
+  kKernelPoint,
+  kDeepestPoint = kKernelPoint + 3,
+  kInscribedRadius = kDeepestPoint + 3,
+  kStats,
+  kScalars = kStats + 13
+};
 
-val to_xyz(const std::array<double, 3>& p) {
-  val a = val::array();
-  a.set(0, p[0]);
-  a.set(1, p[1]);
-  a.set(2, p[2]);
-  return a;
-}
+// One step event as index.js reads it; kind 0 vertex, 1 edge, 2 face.
+struct StepOut {
+  uint32_t kind, id, a, b, loop, loop_size;
+  double position[3];
+};
+static_assert(offsetof(StepOut, loop_size) == 20 && offsetof(StepOut, position) == 24, "layout read by index.js");
+static_assert(static_cast<int>(kergen::StepEvent::Kind::Vertex) == 0 &&
+                  static_cast<int>(kergen::StepEvent::Kind::Edge) == 1 &&
+                  static_cast<int>(kergen::StepEvent::Kind::Face) == 2,
+              "StepOut kinds");
 
 const char* warning_kind_name(kergen::Warning::Kind k) {
   switch (k) {
@@ -54,177 +106,194 @@ const char* warning_kind_name(kergen::Warning::Kind k) {
   return "UNKNOWN";
 }
 
-val to_warnings(const std::vector<kergen::Warning>& ws) {
-  val out = val::array();
-  for (size_t i = 0; i < ws.size(); ++i) {
-    val w = val::object();
-    w.set("kind", std::string(warning_kind_name(ws[i].kind)));
-    w.set("count", static_cast<double>(ws[i].count));
-    w.set("message", ws[i].message);
-    out.set(i, w);
-  }
-  return out;
-}
-
-val error_result(const char* code, const std::string& message) {
-  val r = val::object();
-  r.set("error", std::string(code));
-  r.set("message", message);
-  return r;
-}
-
-// Owns the converted input; view() points into it.
-struct Input {
-  std::vector<double> positions;
-  std::vector<uint32_t> indices;
-  std::vector<uint32_t> face_sizes;
-
-  kergen::MeshView view() const {
-    kergen::MeshView m;
-    m.positions = positions.data();
-    m.num_vertices = positions.size() / 3;
-    m.indices = indices.data();
-    m.num_indices = indices.size();
-    if (!face_sizes.empty()) {
-      m.face_sizes = face_sizes.data();
-      m.num_faces = face_sizes.size();
-    }
-    return m;
-  }
+// What goes into a result block; arrays stay owned by the caller until pack() has copied them.
+struct Out {
+  uint32_t head[kHeadWords] = {};
+  double scalars[kScalars] = {};
+  const char* name = "";
+  std::string message;
+  const std::vector<kergen::Warning>* warnings = nullptr;
+  const kergen::Kernel* kernel = nullptr;  // vertices, edges, faces, triangles
 };
 
-Input read_input(const val& positions, const val& indices, const val& face_sizes) {
-  Input in;
-  in.positions = emscripten::convertJSArrayToNumberVector<double>(positions);
-  in.indices = emscripten::convertJSArrayToNumberVector<uint32_t>(indices);
-  if (!face_sizes.isUndefined() && !face_sizes.isNull()) {
-    in.face_sizes = emscripten::convertJSArrayToNumberVector<uint32_t>(face_sizes);
+template <typename T>
+char* put(char* at, const T* p, size_t n) {
+  if (n) std::memcpy(at, p, n * sizeof(T));
+  return at + n * sizeof(T);
+}
+
+// The result block (see Head); 0 when it cannot be allocated.
+uintptr_t pack(Out& o) {
+  static const std::vector<kergen::Warning> kNone;
+  static const std::vector<double> kNoValues;
+  static const std::vector<uint32_t> kNoIndices;
+  const std::vector<kergen::Warning>& ws = o.warnings ? *o.warnings : kNone;
+  const kergen::Kernel* k = o.kernel;
+  const std::vector<double>& vertices = k ? k->vertices : kNoValues;
+  const std::vector<uint32_t>& edges = k ? k->edges : kNoIndices;
+  const std::vector<uint32_t>& face_indices = k ? k->face_indices : kNoIndices;
+  const std::vector<uint32_t>& face_sizes = k ? k->face_sizes : kNoIndices;
+  const std::vector<uint32_t>& triangles = k ? k->triangles : kNoIndices;
+
+  std::string text = o.name;
+  text += '\0';
+  text += o.message;
+  text += '\0';
+  std::vector<double> counts(ws.size());
+  for (size_t i = 0; i < ws.size(); ++i) {
+    text += warning_kind_name(ws[i].kind);
+    text += '\0';
+    text += ws[i].message;
+    text += '\0';
+    counts[i] = static_cast<double>(ws[i].count);
   }
-  return in;
+  o.head[kNumWarnings] = static_cast<uint32_t>(ws.size());
+  o.head[kTextBytes] = static_cast<uint32_t>(text.size());
+  o.head[kNumVertexValues] = static_cast<uint32_t>(vertices.size());
+  o.head[kNumEdgeValues] = static_cast<uint32_t>(edges.size());
+  o.head[kNumFaceIndices] = static_cast<uint32_t>(face_indices.size());
+  o.head[kNumFaces] = static_cast<uint32_t>(face_sizes.size());
+  o.head[kNumTriangleValues] = static_cast<uint32_t>(triangles.size());
+
+  const size_t bytes = sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
+                       4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size()) + text.size();
+  char* block = static_cast<char*>(std::malloc(bytes));
+  if (!block) return 0;
+  char* at = put(block, o.head, kHeadWords);
+  at = put(at, o.scalars, kScalars);
+  at = put(at, counts.data(), counts.size());
+  at = put(at, vertices.data(), vertices.size());
+  at = put(at, edges.data(), edges.size());
+  at = put(at, face_indices.data(), face_indices.size());
+  at = put(at, face_sizes.data(), face_sizes.size());
+  at = put(at, triangles.data(), triangles.size());
+  put(at, text.data(), text.size());
+  return reinterpret_cast<uintptr_t>(block);
 }
 
-bool has(const val& obj, const char* key) {
-  val v = obj[key];
-  return !v.isUndefined() && !v.isNull();
+uintptr_t error_block(const char* code, const std::string& message) {
+  Out o;
+  o.name = code;
+  o.message = message;
+  return pack(o);
 }
 
-// Options object from JS: { from?: [x,y,z], onStep?: function, maxSteps?: number,
-// allowOpen?: boolean, deepestPoint?: boolean, maxFaces?: number, maxVertices?: number }.
-kergen::Options read_options(const val& opts) {
+// The request block as a MeshView (it points into the block, which index.js frees after the call).
+kergen::MeshView read_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
+  const double* positions = reinterpret_cast<const double*>(request) + kOptionSlots;
+  const uint32_t* indices = reinterpret_cast<const uint32_t*>(positions + num_values);
+  kergen::MeshView m;
+  m.positions = positions;
+  m.num_vertices = num_values / 3;
+  m.indices = indices;
+  m.num_indices = num_indices;
+  if (num_face_sizes) {
+    m.face_sizes = indices + num_indices;
+    m.num_faces = num_face_sizes;
+  }
+  return m;
+}
+
+kergen::Options read_options(uintptr_t request) {
+  const double* slot = reinterpret_cast<const double*>(request);
   kergen::Options o;
-  if (opts.isUndefined() || opts.isNull()) return o;
-  if (has(opts, "from")) {
-    val f = opts["from"];
+  if (!std::isnan(slot[kOptFromX])) {
     o.has_from = true;
-    o.from = {f[0].as<double>(), f[1].as<double>(), f[2].as<double>()};
+    o.from = {slot[kOptFromX], slot[kOptFromY], slot[kOptFromZ]};
   }
-  if (has(opts, "maxSteps")) o.max_steps = static_cast<uint64_t>(opts["maxSteps"].as<double>());
-  if (has(opts, "allowOpen")) o.allow_open = opts["allowOpen"].as<bool>();
-  if (has(opts, "deepestPoint")) o.deepest_point = opts["deepestPoint"].as<bool>();
-  if (has(opts, "maxFaces")) o.max_faces = static_cast<size_t>(opts["maxFaces"].as<double>());
-  if (has(opts, "maxVertices")) o.max_vertices = static_cast<size_t>(opts["maxVertices"].as<double>());
-  if (has(opts, "onStep")) {
-    val cb = opts["onStep"];
-    o.on_step = [cb](const kergen::StepEvent& e) -> bool {
-      val ev = val::object();
-      switch (e.kind) {
-        case kergen::StepEvent::Kind::Vertex:
-          ev.set("type", std::string("vertex"));
-          ev.set("id", e.id);
-          ev.set("position", to_xyz(e.position));
-          break;
-        case kergen::StepEvent::Kind::Edge:
-          ev.set("type", std::string("edge"));
-          ev.set("id", e.id);
-          ev.set("a", e.a);
-          ev.set("b", e.b);
-          break;
-        case kergen::StepEvent::Kind::Face: {
-          ev.set("type", std::string("face"));
-          ev.set("id", e.id);
-          val loop = val::array();
-          for (uint32_t i = 0; i < e.loop_size; ++i) loop.set(i, e.loop[i]);
-          ev.set("loop", loop);
-          break;
-        }
-      }
-      return !cb(ev).isFalse();
-    };
-  }
+  if (!std::isnan(slot[kOptMaxSteps])) o.max_steps = static_cast<uint64_t>(slot[kOptMaxSteps]);
+  if (!std::isnan(slot[kOptAllowOpen])) o.allow_open = slot[kOptAllowOpen] != 0;
+  if (!std::isnan(slot[kOptDeepestPoint])) o.deepest_point = slot[kOptDeepestPoint] != 0;
+  if (!std::isnan(slot[kOptMaxFaces])) o.max_faces = static_cast<size_t>(slot[kOptMaxFaces]);
+  if (!std::isnan(slot[kOptMaxVertices])) o.max_vertices = static_cast<size_t>(slot[kOptMaxVertices]);
   return o;
 }
 
-val to_stats(const kergen::Stats& s) {
-  val o = val::object();
-  o.set("inputVertices", static_cast<double>(s.input_vertices));
-  o.set("inputFaces", static_cast<double>(s.input_faces));
-  o.set("droppedFaces", static_cast<double>(s.dropped_faces));
-  o.set("distinctPlanes", static_cast<double>(s.distinct_planes));
-  o.set("activePlanes", static_cast<double>(s.active_planes));
-  o.set("tracedLines", static_cast<double>(s.traced_lines));
-  o.set("exactFallbacks", static_cast<double>(s.exact_fallbacks));
-  o.set("msValidate", s.ms_validate);
-  o.set("msPlanes", s.ms_planes);
-  o.set("msLp", s.ms_lp);
-  o.set("msTrace", s.ms_trace);
-  o.set("msAssemble", s.ms_assemble);
-  o.set("msTotal", s.ms_total);
-  return o;
+void put_stats(const kergen::Stats& s, double* out) {
+  const double v[13] = {static_cast<double>(s.input_vertices),
+                        static_cast<double>(s.input_faces),
+                        static_cast<double>(s.dropped_faces),
+                        static_cast<double>(s.distinct_planes),
+                        static_cast<double>(s.active_planes),
+                        static_cast<double>(s.traced_lines),
+                        static_cast<double>(s.exact_fallbacks),
+                        s.ms_validate,
+                        s.ms_planes,
+                        s.ms_lp,
+                        s.ms_trace,
+                        s.ms_assemble,
+                        s.ms_total};
+  std::memcpy(out, v, sizeof v);
 }
 
-// compute(positions, indices, faceSizes|null, options|undefined) → plain object.
-// On error: { error: "OPEN_MESH", message }. On success: { status, complete, vertices, edges,
-// faceIndices, faceSizes, triangles, volume, ..., warnings, stats } (the wrapper splits faces).
-val compute(val positions, val indices, val face_sizes, val opts) {
-  try {
-    const Input in = read_input(positions, indices, face_sizes);
-    const kergen::Options options = read_options(opts);
-    const kergen::Kernel k = kergen::compute_kernel(in.view(), options);
-    if (k.error != kergen::Error::Ok) return error_result(kergen::error_name(k.error), k.message);
+void put_xyz(const std::array<double, 3>& p, double* out) {
+  out[0] = p[0];
+  out[1] = p[1];
+  out[2] = p[2];
+}
 
-    val r = val::object();
-    r.set("status", std::string(kergen::kernel_type_name(k.type)));
-    r.set("complete", k.complete);
-    r.set("vertices", to_f64(k.vertices));
-    r.set("edges", to_u32(k.edges));
-    r.set("faceIndices", to_u32(k.face_indices));
-    r.set("faceSizes", to_u32(k.face_sizes));
-    r.set("triangles", to_u32(k.triangles));
-    r.set("volume", k.volume);
-    r.set("area", k.area);
-    r.set("shapeVolume", k.shape_volume);
-    r.set("volumeRatio", k.volume_ratio);
-    r.set("kernelPoint", k.has_kernel_point ? to_xyz(k.kernel_point) : val::null());
-    r.set("deepestPoint", k.has_deepest_point ? to_xyz(k.deepest_point) : val::null());
-    r.set("inscribedRadius", k.inscribed_radius);
-    r.set("warnings", to_warnings(k.warnings));
-    r.set("stats", to_stats(k.stats));
-    return r;
+// compute(request, numPositionValues, numIndices, numFaceSizes, onStep|null) → result block address.
+uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes, val on_step) {
+  try {
+    kergen::Options options = read_options(request);
+    if (!on_step.isNull() && !on_step.isUndefined()) {
+      options.on_step = [&on_step](const kergen::StepEvent& e) -> bool {
+        StepOut s{static_cast<uint32_t>(e.kind),
+                  e.id,
+                  e.a,
+                  e.b,
+                  static_cast<uint32_t>(reinterpret_cast<uintptr_t>(e.loop)),
+                  e.loop_size,
+                  {e.position[0], e.position[1], e.position[2]}};
+        return !on_step(reinterpret_cast<uintptr_t>(&s)).isFalse();
+      };
+    }
+    const kergen::Kernel k =
+        kergen::compute_kernel(read_mesh(request, num_values, num_indices, num_face_sizes), options);
+    if (k.error != kergen::Error::Ok) return error_block(kergen::error_name(k.error), k.message);
+
+    Out o;
+    o.head[kOk] = 1;
+    o.head[kComplete] = k.complete;
+    o.head[kHasKernelPoint] = k.has_kernel_point;
+    o.head[kHasDeepestPoint] = k.has_deepest_point;
+    o.scalars[kVolume] = k.volume;
+    o.scalars[kArea] = k.area;
+    o.scalars[kShapeVolume] = k.shape_volume;
+    o.scalars[kVolumeRatio] = k.volume_ratio;
+    put_xyz(k.kernel_point, o.scalars + kKernelPoint);
+    put_xyz(k.deepest_point, o.scalars + kDeepestPoint);
+    o.scalars[kInscribedRadius] = k.inscribed_radius;
+    put_stats(k.stats, o.scalars + kStats);
+    o.name = kergen::kernel_type_name(k.type);
+    o.warnings = &k.warnings;
+    o.kernel = &k;
+    return pack(o);
   } catch (const std::bad_alloc&) {
-    return error_result("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
+    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
   } catch (const std::exception& e) {
-    return error_result("INTERNAL_ERROR", std::string("internal error: ") + e.what());
+    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
   }
 }
 
-// findPoint(positions, indices, faceSizes|null, options|undefined) → { starShaped, point, warnings }
-// or { error, message }.
-val find_point(val positions, val indices, val face_sizes, val opts) {
+// findPoint(request, numPositionValues, numIndices, numFaceSizes) → result block address
+// (kStarShaped, the point in the kernel point slots, warnings).
+uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   try {
-    const Input in = read_input(positions, indices, face_sizes);
-    kergen::Options options = read_options(opts);
-    options.on_step = nullptr;
-    const kergen::KernelPoint p = kergen::find_kernel_point(in.view(), options);
-    if (p.error != kergen::Error::Ok) return error_result(kergen::error_name(p.error), p.message);
-    val r = val::object();
-    r.set("starShaped", p.star_shaped);
-    r.set("point", p.star_shaped ? to_xyz(p.point) : val::null());
-    r.set("warnings", to_warnings(p.warnings));
-    return r;
+    const kergen::KernelPoint p =
+        kergen::find_kernel_point(read_mesh(request, num_values, num_indices, num_face_sizes), read_options(request));
+    if (p.error != kergen::Error::Ok) return error_block(kergen::error_name(p.error), p.message);
+    Out o;
+    o.head[kOk] = 1;
+    o.head[kStarShaped] = p.star_shaped;
+    o.head[kHasKernelPoint] = p.star_shaped;
+    put_xyz(p.point, o.scalars + kKernelPoint);
+    o.warnings = &p.warnings;
+    return pack(o);
   } catch (const std::bad_alloc&) {
-    return error_result("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
+    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
   } catch (const std::exception& e) {
-    return error_result("INTERNAL_ERROR", std::string("internal error: ") + e.what());
+    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
   }
 }
 

@@ -209,6 +209,157 @@ function callWasm(fn, body) {
   }
 }
 
+// ---- heap blocks shared with wasm/bindings.cpp (layouts documented there; keep them in sync) --
+// Data crosses as one request block and one result block instead of embind values: each embind
+// value costs JS<->wasm round trips, which on small meshes cost as much as the computation.
+
+const OPTION_SLOTS = 8; // f64: from x, y, z, maxSteps, allowOpen, deepestPoint, maxFaces, maxVertices
+// Result block head (u32), as `enum Head` in bindings.cpp.
+const H_OK = 0;
+const H_COMPLETE = 1;
+const H_HAS_KERNEL_POINT = 2;
+const H_HAS_DEEPEST_POINT = 3;
+const H_STAR_SHAPED = 4;
+const H_NUM_WARNINGS = 5;
+const H_TEXT_BYTES = 6;
+const H_NUM_VERTEX_VALUES = 7; // then edge values, face indices, faces, triangle values
+const HEAD_WORDS = 12;
+const SCALARS = 24; // f64 after the head, as `enum Scalar`
+const S_STATS = 11; // first of the 13 Stats fields, in their declaration order
+const OUT_OF_MEMORY = 'out of memory (the wasm heap is limited to 4 GB)';
+const textDecoder = new TextDecoder();
+
+// An option slot: NaN = not given (the core's default applies), booleans as 1 / 0.
+const slot = (v) => (v === undefined ? NaN : Number(v));
+
+// Copies the mesh and the checked options into one malloc'd block; returns its address (the
+// caller frees it).
+function writeRequest(m, positions, indices, faceSizes, opts) {
+  const numFaceSizes = faceSizes ? faceSizes.length : 0;
+  const bytes = 8 * (OPTION_SLOTS + positions.length) + 4 * (indices.length + numFaceSizes);
+  // malloc takes a 32-bit size; anything larger cannot fit into the heap anyway.
+  const ptr = bytes < 2 ** 32 ? m._malloc(bytes) : 0;
+  if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
+  // Views are read after malloc: growing the heap replaces them.
+  const f64 = m.HEAPF64;
+  const at = ptr / 8;
+  const from = opts.from;
+  f64[at] = from ? from[0] : NaN;
+  f64[at + 1] = from ? from[1] : NaN;
+  f64[at + 2] = from ? from[2] : NaN;
+  f64[at + 3] = slot(opts.maxSteps);
+  f64[at + 4] = slot(opts.allowOpen);
+  f64[at + 5] = slot(opts.deepestPoint);
+  f64[at + 6] = slot(opts.maxFaces);
+  f64[at + 7] = slot(opts.maxVertices);
+  f64.set(positions, at + OPTION_SLOTS);
+  const u32 = m.HEAPU32;
+  const indexAt = (at + OPTION_SLOTS + positions.length) * 2;
+  u32.set(indices, indexAt);
+  if (numFaceSizes) u32.set(faceSizes, indexAt + indices.length);
+  return ptr;
+}
+
+// A step event from the StepOut at `address` (valid during the callback).
+function readStep(m, address) {
+  const u32 = m.HEAPU32;
+  const w = address / 4;
+  const kind = u32[w];
+  const id = u32[w + 1];
+  if (kind === 0) {
+    const f64 = m.HEAPF64;
+    const d = (address + 24) / 8;
+    return { type: 'vertex', id, position: [f64[d], f64[d + 1], f64[d + 2]] };
+  }
+  if (kind === 1) return { type: 'edge', id, a: u32[w + 2], b: u32[w + 3] };
+  const first = u32[w + 4] / 4;
+  const loop = [];
+  for (let i = 0, n = u32[w + 5]; i < n; i++) loop.push(u32[first + i]);
+  return { type: 'face', id, loop };
+}
+
+// The NUL-terminated strings from byte `start` to `end`. ASCII (the core's names and messages) is
+// decoded here: a TextDecoder call costs more than the short status string it would decode.
+function readStrings(u8, start, end) {
+  const out = [];
+  let s = '';
+  for (let i = start; i < end; i++) {
+    const c = u8[i];
+    if (c === 0) {
+      out.push(s);
+      s = '';
+    } else if (c < 0x80) {
+      s += String.fromCharCode(c);
+    } else {
+      return textDecoder.decode(u8.subarray(start, end)).split('\0');
+    }
+  }
+  return out;
+}
+
+// Copies a result block out of the heap into plain JS values and frees it. Returns
+// { error, message } or the fields of a result (findPoint's point is in kernelPoint).
+function readResult(m, ptr) {
+  if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
+  try {
+    const u32 = m.HEAPU32;
+    const f64 = m.HEAPF64;
+    const h = ptr / 4;
+    const numWarnings = u32[h + H_NUM_WARNINGS];
+    const s = (ptr + 4 * HEAD_WORDS) / 8; // scalars
+    const counts = s + SCALARS; // warning counts
+    const v = counts + numWarnings;
+    const vertices = f64.slice(v, v + u32[h + H_NUM_VERTEX_VALUES]);
+    let w = (v + vertices.length) * 2; // the u32 arrays
+    const edges = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 1]));
+    const faceIndices = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 2]));
+    const faceSizes = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 3]));
+    const triangles = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 4]));
+    const text = readStrings(m.HEAPU8, w * 4, w * 4 + u32[h + H_TEXT_BYTES]);
+    if (u32[h + H_OK] === 0) return { error: text[0], message: text[1] };
+    const warnings = new Array(numWarnings);
+    for (let i = 0; i < numWarnings; i++) {
+      warnings[i] = { kind: text[2 + 2 * i], count: f64[counts + i], message: text[3 + 2 * i] };
+    }
+    const st = s + S_STATS;
+    return {
+      status: text[0],
+      complete: u32[h + H_COMPLETE] !== 0,
+      starShaped: u32[h + H_STAR_SHAPED] !== 0,
+      vertices,
+      edges,
+      faceIndices,
+      faceSizes,
+      triangles,
+      volume: f64[s],
+      area: f64[s + 1],
+      shapeVolume: f64[s + 2],
+      volumeRatio: f64[s + 3],
+      kernelPoint: u32[h + H_HAS_KERNEL_POINT] ? [f64[s + 4], f64[s + 5], f64[s + 6]] : null,
+      deepestPoint: u32[h + H_HAS_DEEPEST_POINT] ? [f64[s + 7], f64[s + 8], f64[s + 9]] : null,
+      inscribedRadius: f64[s + 10],
+      warnings,
+      stats: {
+        inputVertices: f64[st],
+        inputFaces: f64[st + 1],
+        droppedFaces: f64[st + 2],
+        distinctPlanes: f64[st + 3],
+        activePlanes: f64[st + 4],
+        tracedLines: f64[st + 5],
+        exactFallbacks: f64[st + 6],
+        msValidate: f64[st + 7],
+        msPlanes: f64[st + 8],
+        msLp: f64[st + 9],
+        msTrace: f64[st + 10],
+        msAssemble: f64[st + 11],
+        msTotal: f64[st + 12],
+      },
+    };
+  } finally {
+    m._free(ptr);
+  }
+}
+
 function shapeResult(raw) {
   const faceIndices = raw.faceIndices;
   const faceSizes = raw.faceSizes;
@@ -255,12 +406,14 @@ export function computeKernelSync(positions, indices, options = {}) {
   checkMesh(fn, positions, indices, faceSizes);
   let userError = null;
   let threw = false;
+  let onStep = null;
   if (options && typeof options.onStep === 'function') {
-    const onStep = options.onStep;
-    opts.onStep = (event) => {
+    const userOnStep = options.onStep;
+    onStep = (address) => {
       if (threw) return false;
+      const event = readStep(m, address);
       try {
-        return onStep(event) !== false;
+        return userOnStep(event) !== false;
       } catch (err) {
         threw = true;
         userError = err;
@@ -268,7 +421,12 @@ export function computeKernelSync(positions, indices, options = {}) {
       }
     };
   }
-  const raw = callWasm(fn, () => m.compute(positions, indices, faceSizes, opts));
+  const raw = callWasm(fn, () => {
+    const request = writeRequest(m, positions, indices, faceSizes, opts);
+    const block = m.compute(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0, onStep);
+    m._free(request);
+    return readResult(m, block);
+  });
   if (threw) throw userError;
   throwIfError(raw);
   return shapeResult(raw);
@@ -288,12 +446,16 @@ export function findKernelPointSync(positions, indices, options = {}) {
   const fn = 'findKernelPoint';
   const m = requireModule(fn);
   const opts = checkOptions(fn, options);
-  delete opts.onStep;
   const faceSizes = options && options.faceSizes != null ? options.faceSizes : null;
   checkMesh(fn, positions, indices, faceSizes);
-  const raw = callWasm(fn, () => m.findPoint(positions, indices, faceSizes, opts));
+  const raw = callWasm(fn, () => {
+    const request = writeRequest(m, positions, indices, faceSizes, opts);
+    const block = m.findPoint(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0);
+    m._free(request);
+    return readResult(m, block);
+  });
   throwIfError(raw);
-  return { starShaped: raw.starShaped, point: raw.point, warnings: raw.warnings };
+  return { starShaped: raw.starShaped, point: raw.kernelPoint, warnings: raw.warnings };
 }
 
 /** Async variant of findKernelPointSync (loads the module on first use). */

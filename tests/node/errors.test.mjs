@@ -110,6 +110,15 @@ test('empty input → EMPTY_INPUT', async () => {
   await expectCode('EMPTY_INPUT', () => K.findKernelPoint([], []));
 });
 
+test('1e-60 next to 1 → COORDINATE_RANGE, the message arrives whole (it is not plain ASCII)', async () => {
+  const m = box();
+  m.positions[0] = 1e-60;
+  for (const call of [K.computeKernel, K.findKernelPoint]) {
+    const err = await expectCode('COORDINATE_RANGE', () => call(m.positions, m.indices));
+    assert.match(err.message, /^coordinates span about 75 decimal orders of magnitude .* about 66 — snap tiny coordinates to 0 or rescale$/);
+  }
+});
+
 test('a face with two vertices → FACE_TOO_SMALL; a flat closed mesh → DEGENERATE_INPUT', async () => {
   const m = box([0, 0, 0], [1, 1, 1], { quads: true });
   const sizes = Uint32Array.from(m.faceSizes);
