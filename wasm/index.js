@@ -142,9 +142,23 @@ function checkIndexArray(fn, name, arr) {
   }
 }
 
+// A typed array whose buffer was transferred (to a worker, say) reads as empty but cannot be
+// copied: caught here, before anything reaches the module. Only empty views are probed.
+function checkNotDetached(fn, name, arr) {
+  if (!ArrayBuffer.isView(arr) || arr.byteLength !== 0) return;
+  try {
+    new Uint8Array(arr.buffer);
+  } catch {
+    throw invalid(fn, `${name} is a detached typed array (its buffer was transferred); pass a fresh array, or { copy: true } to the worker call that transferred it`);
+  }
+}
+
 function checkMesh(fn, positions, indices, faceSizes) {
   checkPositions(fn, positions);
+  checkNotDetached(fn, 'positions', positions);
   checkIndexArray(fn, 'indices', indices);
+  checkNotDetached(fn, 'indices', indices);
+  if (faceSizes != null) checkNotDetached(fn, 'faceSizes', faceSizes);
   if (faceSizes != null) {
     checkIndexArray(fn, 'faceSizes', faceSizes);
     let sum = 0;

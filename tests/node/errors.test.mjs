@@ -152,6 +152,24 @@ test('malformed JS arguments → INVALID_ARGUMENT', async () => {
   for (const c of cases) await expectCode('INVALID_ARGUMENT', c);
 });
 
+test('a detached typed array → INVALID_ARGUMENT, and the module stays usable', async () => {
+  const m = box();
+  const detached = (a) => {
+    const c = a.slice();
+    structuredClone(c.buffer, { transfer: [c.buffer] });
+    assert.equal(c.length, 0);
+    return c;
+  };
+  const e1 = await expectCode('INVALID_ARGUMENT', () => K.computeKernel(detached(m.positions), m.indices));
+  assert.match(e1.message, /positions is a detached/);
+  const e2 = await expectCode('INVALID_ARGUMENT', () => K.findKernelPoint(m.positions, detached(m.indices)));
+  assert.match(e2.message, /indices is a detached/);
+  // A fresh empty array is not mistaken for a detached one: it reaches the core's own check.
+  await expectCode('EMPTY_INPUT', () => K.computeKernel(new Float64Array(0), new Uint32Array(0)));
+  const r = K.computeKernelSync(m.positions, m.indices);  // still loaded: no reload was needed
+  assert.ok(r.volume > 0);
+});
+
 test('an exception thrown by onStep stops the trace and reaches the caller unchanged', async () => {
   const m = box();
   const mine = new Error('stop from user code');
