@@ -313,6 +313,12 @@ function readStrings(u8, start, end) {
 
 // Copies a result block out of the heap into plain JS values and frees it. Returns
 // { error, message } or the fields of a result (findPoint's point is in kernelPoint).
+// The result block's stats: kergen::Stats fields in declaration order (bindings.cpp writes them).
+const STAT_NAMES = [
+  'inputVertices', 'inputFaces', 'droppedFaces', 'distinctPlanes', 'activePlanes', 'tracedLines', 'exactFallbacks',
+  'msValidate', 'msPlanes', 'msLp', 'msTrace', 'msAssemble', 'msTotal',
+];
+
 function readResult(m, ptr) {
   if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
   try {
@@ -353,21 +359,7 @@ function readResult(m, ptr) {
       deepestPoint: u32[h + H_HAS_DEEPEST_POINT] ? [f64[s + 7], f64[s + 8], f64[s + 9]] : null,
       inscribedRadius: f64[s + 10],
       warnings,
-      stats: {
-        inputVertices: f64[st],
-        inputFaces: f64[st + 1],
-        droppedFaces: f64[st + 2],
-        distinctPlanes: f64[st + 3],
-        activePlanes: f64[st + 4],
-        tracedLines: f64[st + 5],
-        exactFallbacks: f64[st + 6],
-        msValidate: f64[st + 7],
-        msPlanes: f64[st + 8],
-        msLp: f64[st + 9],
-        msTrace: f64[st + 10],
-        msAssemble: f64[st + 11],
-        msTotal: f64[st + 12],
-      },
+      stats: Object.fromEntries(STAT_NAMES.map((name, i) => [name, f64[st + i]])),
     };
   } finally {
     m._free(ptr);
