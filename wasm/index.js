@@ -311,14 +311,14 @@ function readStrings(u8, start, end) {
   return out;
 }
 
-// Copies a result block out of the heap into plain JS values and frees it. Returns
-// { error, message } or the fields of a result (findPoint's point is in kernelPoint).
 // The result block's stats: kergen::Stats fields in declaration order (bindings.cpp writes them).
 const STAT_NAMES = [
   'inputVertices', 'inputFaces', 'droppedFaces', 'distinctPlanes', 'activePlanes', 'tracedLines', 'exactFallbacks',
   'msValidate', 'msPlanes', 'msLp', 'msTrace', 'msAssemble', 'msTotal',
 ];
 
+// Copies a result block out of the heap into plain JS values and frees it. Returns
+// { error, message } or the fields of a result (findPoint's point is in kernelPoint).
 function readResult(m, ptr) {
   if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
   try {
