@@ -71,10 +71,6 @@ size_t scale_expansion(const double* e, size_t elen, double b, double* h) {
 }  // namespace
 
 // Double-double division (the other operations are inline in exact.h).
-namespace {
-constexpr double kU2 = kEps * kEps;
-}  // namespace
-
 ApproxDD operator/(const ApproxDD& a, const ApproxDD& b) {
   // q1 = a / b in double, then one correction step: q = q1 + (a - q1 b) / b.
   double q1 = a.hi / b.hi;

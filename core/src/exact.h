@@ -18,6 +18,7 @@ namespace kergen {
 namespace exact {
 
 constexpr double kEps = 1.1102230246251565e-16;  // 2^-53, unit roundoff
+constexpr double kU2 = kEps * kEps;  // 2^-106: double-double rounding scale
 // Inflation applied to every bound so the bound's own rounding never makes it too small; the
 // absolute floor covers underflow in products of tiny values.
 constexpr double kBoundScale = 1.0 + 8 * kEps;
@@ -167,7 +168,7 @@ namespace dd_detail {
 inline ApproxDD normalize(double s, double t, double err, double magnitude) {
   double hi, lo;
   eft::two_sum(s, t, hi, lo);
-  return {hi, lo, (err + 8 * (kEps * kEps) * magnitude) * kBoundScale + kUnderflowFloor};
+  return {hi, lo, (err + 8 * kU2 * magnitude) * kBoundScale + kUnderflowFloor};
 }
 }  // namespace dd_detail
 inline ApproxDD operator+(const ApproxDD& a, const ApproxDD& b) {

@@ -99,7 +99,16 @@ struct Scaled {
 }  // namespace
 
 uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c) {
-  return add_from_points(a, b, c, plane_from_points<Approx>(point(a), point(b), point(c)));
+  const PlaneCoef<Approx> p = plane_from_points<Approx>(point(a), point(b), point(c));
+  rep_.push_back({a, b, c});
+  nx_.push_back(p.n[0].v); enx_.push_back(p.n[0].e);
+  ny_.push_back(p.n[1].v); eny_.push_back(p.n[1].e);
+  nz_.push_back(p.n[2].v); enz_.push_back(p.n[2].e);
+  d_.push_back(p.d.v); ed_.push_back(p.d.e);
+  opposite_.push_back(kNoPlane);
+  exact_.emplace_back();
+  dd_.emplace_back();
+  return uint32_t(size() - 1);
 }
 
 uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
@@ -639,18 +648,6 @@ void PlaneSet::reserve(size_t n) {
   opposite_.reserve(n);
   exact_.reserve(n);
   dd_.reserve(n);
-}
-
-uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c, const PlaneCoef<Approx>& p) {
-  rep_.push_back({a, b, c});
-  nx_.push_back(p.n[0].v); enx_.push_back(p.n[0].e);
-  ny_.push_back(p.n[1].v); eny_.push_back(p.n[1].e);
-  nz_.push_back(p.n[2].v); enz_.push_back(p.n[2].e);
-  d_.push_back(p.d.v); ed_.push_back(p.d.e);
-  opposite_.push_back(kNoPlane);
-  exact_.emplace_back();
-  dd_.emplace_back();
-  return uint32_t(size() - 1);
 }
 
 }  // namespace kergen

@@ -97,9 +97,6 @@ class PlaneSet {
  public:
   // Capacity for n planes in all (a mesh's planes are then added without regrowth).
   void reserve(size_t n);
-  // add_from_points with the coefficients already computed: p must be
-  // approx_plane(point(a), point(b), point(c)).
-  uint32_t add_from_points(uint32_t a, uint32_t b, uint32_t c, const PlaneCoef<Approx>& p);
 };
 
 template <>
