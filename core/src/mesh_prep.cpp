@@ -234,20 +234,6 @@ std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, co
   return {0, 0};  // not reached: called only when a shared position exists
 }
 
-// The static filter of collinear() (planes.cpp) alone: true when some component of the cross
-// product (b - a) x (c - a) of the rounded differences is certainly non-zero, each within
-// 5 eps (|u_i v_j| + |u_j v_i|) of the exact one; false when the exact test has to decide.
-inline bool certainly_not_collinear(const double* a, const double* b, const double* c) {
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  bool certain = false;
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const double x = u[i] * v[j], y = u[j] * v[i];
-    certain |= std::fabs(x - y) > 5 * exact::kEps * (std::fabs(x) + std::fabs(y)) + exact::kUnderflowFloor;
-  }
-  return certain;
-}
-
 bool lex_less(const double* a, const double* b) {
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }

@@ -609,14 +609,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* p,
 }
 
 bool collinear(const double* a, const double* b, const double* c, int shift) {
-  // Static filter: each cross-product component of the rounded differences is within
-  // 5 eps (|u_i v_j| + |u_j v_i|) of the exact one.
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  for (int k = 0; k < 3; ++k) {
-    int i = (k + 1) % 3, j = (k + 2) % 3;
-    double x = u[i] * v[j], y = u[j] * v[i];
-    if (std::fabs(x - y) > 5 * exact::kEps * (std::fabs(x) + std::fabs(y)) + exact::kUnderflowFloor) return false;
-  }
+  if (certainly_not_collinear(a, b, c)) return false;
   auto pa = plane_from_points<Approx>(a, b, c);
   if (pa.n[0].certain() || pa.n[1].certain() || pa.n[2].certain()) return false;
   auto pe = exact_plane(a, b, c, shift);

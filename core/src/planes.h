@@ -201,6 +201,19 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v);
 // sign of orient(a,b,c,p) = ((b-a) x (c-a)) . (p-a) for input points; exact stages use the points
 // times 2^shift (same sign, no underflow).
 int orient3d(const double* a, const double* b, const double* c, const double* p, int shift = 0);
+// collinear()'s static filter alone (inline for the per-face loops): true when some component of
+// the cross product (b - a) x (c - a) of the rounded differences is certainly non-zero, each
+// within 5 eps (|u_i v_j| + |u_j v_i|) of the exact one; false when the exact test has to decide.
+inline bool certainly_not_collinear(const double* a, const double* b, const double* c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  bool certain = false;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double x = u[i] * v[j], y = u[j] * v[i];
+    certain |= std::fabs(x - y) > 5 * exact::kEps * (std::fabs(x) + std::fabs(y)) + exact::kUnderflowFloor;
+  }
+  return certain;
+}
 // Whether the input triangle (a,b,c) has exactly collinear vertices.
 bool collinear(const double* a, const double* b, const double* c, int shift = 0);
 // sign of dir . (n_h x n_s) where dir = n_p x n_q (edge orientation in facet h).
