@@ -2,10 +2,31 @@
 // (shared by culling's violation test and the incremental cuts).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 namespace kergen {
+
+// Cube map of directions: cell = face * k^2 + i * k + j, face = 2 * axis + (component < 0), with
+// k cells per face side. Climb starts are kept per cell: the extreme vertex in direction n is
+// usually a few steps from the one of a nearby direction.
+constexpr size_t kNoCell = size_t(-1);
+inline size_t cube_cell(size_t cells_per_side, double x, double y, double z) {
+  const double v[3] = {x, y, z};
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(v[k]) > std::fabs(v[axis])) axis = k;
+  const double m = std::fabs(v[axis]);
+  if (!(m > 0) || !std::isfinite(m)) return kNoCell;
+  auto bin = [&](double w) {
+    double t = (w / m + 1) * 0.5 * double(cells_per_side);
+    return std::min(cells_per_side - 1, size_t(std::max(0.0, t)));
+  };
+  const size_t face = 2 * size_t(axis) + (v[axis] < 0);
+  return (face * cells_per_side + bin(v[(axis + 1) % 3])) * cells_per_side + bin(v[(axis + 2) % 3]);
+}
 
 struct ClimbScratch {
   std::vector<uint32_t> mark, bfs;

@@ -23,23 +23,6 @@ uint64_t mix(uint64_t& s) {
   return z ^ (z >> 31);
 }
 
-// Cube map of directions: cell = face * k^2 + i * k + j, face = 2 * axis + (component < 0), with
-// k cells per face side (k = 2..24, growing with the number of planes it serves).
-constexpr size_t kNoCell = size_t(-1);
-size_t cube_cell(size_t cells_per_side, double x, double y, double z) {
-  const double v[3] = {x, y, z};
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::fabs(v[k]) > std::fabs(v[axis])) axis = k;
-  const double m = std::fabs(v[axis]);
-  if (!(m > 0) || !std::isfinite(m)) return kNoCell;
-  auto bin = [&](double w) {
-    double t = (w / m + 1) * 0.5 * double(cells_per_side);
-    return std::min(cells_per_side - 1, size_t(std::max(0.0, t)));
-  };
-  const size_t face = 2 * size_t(axis) + (v[axis] < 0);
-  return (face * cells_per_side + bin(v[(axis + 1) % 3])) * cells_per_side + bin(v[(axis + 2) % 3]);
-}
 // Direction of the point (i + fi, j + fj) / k of cell (face, i, j); fi = fj = 0.5 is the centre,
 // 0 or 1 the corners.
 void cube_cell_direction(size_t cells_per_side, size_t cell, double fi, double fj, double dir[3]) {

@@ -44,8 +44,10 @@ class Cutter {
     traced_lines_ = prev.traced_lines;
   }
 
-  // Cuts by plane h; false when the result is not handled (see cutting.h).
-  bool cut(uint32_t h, uint32_t hint) {
+  // Cuts by plane h, climbing from the best of three hints (dead ones stand for the cut point
+  // that replaced them); `near` gets a vertex on or nearest to h afterwards, a start for planes
+  // of similar normal. False when the result is not handled (see cutting.h).
+  bool cut(uint32_t h, uint32_t hint, uint32_t hint2, uint32_t hint3, uint32_t& near) {
     const double a = ps_.nx()[h], b = ps_.ny()[h], c = ps_.nz()[h], d = ps_.d()[h];
     // Same bounds as culling's: coordinates below ~2, rounding far below `tie` and `margin`.
     const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
@@ -54,10 +56,16 @@ class Cutter {
     auto neighbors = [&](uint32_t u, const auto& fn) {
       for (uint32_t e : adj_[u]) fn(other(e, u));
     };
-    uint32_t cur = hint < alive_v_.size() ? hint : 0;
-    while (!alive_v_[cur]) cur = replaced_by_[cur];
+    uint32_t cur = alive(hint < alive_v_.size() ? hint : 0);
     double val = f(cur);
+    for (uint32_t other_hint : {hint2, hint3}) {
+      if (other_hint >= alive_v_.size()) continue;
+      const uint32_t other_start = alive(other_hint);
+      const double other_val = f(other_start);
+      if (other_val > val) { cur = other_start; val = other_val; }
+    }
     cur = climb_to_max(cur, val, f, neighbors, tie, vertices_.size(), climb_);
+    near = cur;
     if (val <= -margin) return true;  // strictly inside at every vertex: no change
 
     // Every vertex with f >= 0 is joined to the maximum by an ascending path, and `cur` too
@@ -83,6 +91,7 @@ class Cutter {
     }
     const bool ok = apply(h);
     for (uint32_t v : region_) state_[v] = kUnseen;
+    if (!cut_points_.empty()) near = cut_points_[0];
     return ok;
   }
 
@@ -105,6 +114,19 @@ class Cutter {
   }
 
  private:
+  // The live vertex standing for v: v itself, or the cut point that replaced it (recursively;
+  // the chain is shortened as it is walked).
+  uint32_t alive(uint32_t v) {
+    uint32_t r = v;
+    while (!alive_v_[r]) r = replaced_by_[r];
+    while (v != r && !alive_v_[v]) {
+      const uint32_t next = replaced_by_[v];
+      replaced_by_[v] = r;
+      v = next;
+    }
+    return r;
+  }
+
   uint32_t other(uint32_t e, uint32_t v) const { return edges_[e].a == v ? edges_[e].b : edges_[e].a; }
 
   bool apply(uint32_t h) {
@@ -113,6 +135,7 @@ class Cutter {
     for (uint32_t v : on_)
       for (uint32_t e : adj_[v])
         if (state_[other(e, v)] == kOn && edges_[e].a == v) insert_sorted(edges_[e].planes, h);
+    cut_points_.clear();
     if (out_.empty()) return true;
     if (out_.size() + on_.size() >= alive_count_) return false;  // nothing strictly inside: flat
     const uint32_t opposite = ps_.opposite(h);
@@ -235,8 +258,22 @@ bool cut_kernel_trace(const PlaneSet& ps, const TraceResult& prev, const std::ve
     std::swap(order[i - 1], order[size_t((seed >> 33) % i)]);
   }
   Cutter cutter(ps, prev);
-  for (uint32_t i : order)
-    if (!cutter.cut(added[i], i < hints.size() ? hints[i] : 0)) return false;
+  // The hints come from prev; once cuts have refined the polytope near a direction, the last
+  // vertex found for a plane of similar normal is usually closer. Two cube maps of the normals:
+  // a fine one (about two planes per cell) and a coarse one for cells not visited yet.
+  const size_t cells_per_side = std::min<size_t>(128, std::max<size_t>(1, size_t(std::sqrt(double(added.size()) / 12))));
+  const size_t coarse_per_side = std::max<size_t>(1, cells_per_side / 4);
+  std::vector<uint32_t> recent(6 * cells_per_side * cells_per_side, kNoPlane), recent_coarse(6 * coarse_per_side * coarse_per_side, kNoPlane);
+  for (uint32_t i : order) {
+    const uint32_t h = added[i];
+    const size_t cell = cube_cell(cells_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
+    const size_t coarse = cube_cell(coarse_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
+    uint32_t near = kNoPlane;
+    if (!cutter.cut(h, i < hints.size() ? hints[i] : 0, cell == kNoCell ? kNoPlane : recent[cell],
+                    coarse == kNoCell ? kNoPlane : recent_coarse[coarse], near)) return false;
+    if (cell != kNoCell) recent[cell] = near;
+    if (coarse != kNoCell) recent_coarse[coarse] = near;
+  }
   cutter.finish(out);
   return true;
 }

@@ -269,4 +269,55 @@ inline Mesh uv_sphere(int nu, int nv, double twist) {
   return m;
 }
 
+// Geodesic sphere: each face of an icosahedron cut into n^2 triangles, the points pushed onto
+// the unit sphere; 20 n^2 faces, 10 n^2 + 2 vertices. Strictly convex (no four points coplanar
+// in practice), so its kernel is the shape, face for face. `volume` is the mesh's own (the sum of
+// the tetrahedra from the origin).
+struct GeodesicSphere {
+  Mesh mesh;
+  double volume = 0;
+};
+inline GeodesicSphere geodesic_sphere(int n) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  const double ico[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                             {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  const int faces[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                            {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  GeodesicSphere g;
+  // A point is named by its integer weights on the icosahedron's corners, so points on shared
+  // edges are made once.
+  std::map<std::vector<std::pair<int, int>>, uint32_t> ids;
+  auto point = [&](const int* f, int i, int j) {
+    const int w[3] = {n - i - j, i, j};
+    std::vector<std::pair<int, int>> key;
+    double p[3] = {0, 0, 0};
+    for (int c = 0; c < 3; ++c) {
+      if (w[c]) key.push_back({f[c], w[c]});
+      for (int k = 0; k < 3; ++k) p[k] += w[c] * ico[f[c]][k];
+    }
+    std::sort(key.begin(), key.end());
+    auto it = ids.find(key);
+    if (it != ids.end()) return it->second;
+    const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    const uint32_t id = add_point(g.mesh, p[0] / len, p[1] / len, p[2] / len);
+    ids[key] = id;
+    return id;
+  };
+  for (const auto& f : faces)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        add_face(g.mesh, {point(f, i, j), point(f, i + 1, j), point(f, i, j + 1)});
+        if (i + j + 1 < n) add_face(g.mesh, {point(f, i + 1, j), point(f, i + 1, j + 1), point(f, i, j + 1)});
+      }
+  const auto& P = g.mesh.positions;
+  for (size_t k = 0; k < g.mesh.indices.size(); k += 3) {
+    const double* a = &P[3 * size_t(g.mesh.indices[k])];
+    const double* b = &P[3 * size_t(g.mesh.indices[k + 1])];
+    const double* c = &P[3 * size_t(g.mesh.indices[k + 2])];
+    g.volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+  }
+  return g;
+}
+
 }  // namespace kergen_test

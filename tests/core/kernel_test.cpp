@@ -200,6 +200,34 @@ TEST(Kernel, RandomConvexKernelIsTheShape) {
   }
 }
 
+// Above the culling threshold the kernel comes from a traced sample and incremental cuts; for
+// a convex shape every plane cuts, every input point becomes a kernel vertex.
+TEST(Kernel, LargeConvexKernelIsTheShape) {
+  for (int n : {9, 16}) {
+    kergen_test::GeodesicSphere g = kergen_test::geodesic_sphere(n);
+    const size_t faces = g.mesh.indices.size() / 3, points = g.mesh.positions.size() / 3;
+    for (uint64_t seed : {1ull, 2ull, 3ull}) {
+      Options o;
+      o.seed = seed;
+      Kernel k = run(g.mesh, o);
+      expect_valid_polyhedron(g.mesh, k);
+      EXPECT_TRUE(k.warnings.empty()) << n;
+      EXPECT_EQ(k.stats.distinct_planes, faces) << n;
+      EXPECT_EQ(k.num_faces(), faces) << n << " seed " << seed;
+      EXPECT_EQ(k.num_vertices(), points) << n << " seed " << seed;
+      EXPECT_NEAR(k.volume, g.volume, 1e-12 * g.volume) << n << " seed " << seed;
+      // The kernel's vertices are the input points (exactly: they are computed exactly, then
+      // rounded once).
+      std::vector<std::array<double, 3>> in, out;
+      for (size_t i = 0; i < points; ++i) in.push_back({g.mesh.positions[3 * i], g.mesh.positions[3 * i + 1], g.mesh.positions[3 * i + 2]});
+      for (size_t i = 0; i < k.num_vertices(); ++i) out.push_back({k.vertices[3 * i], k.vertices[3 * i + 1], k.vertices[3 * i + 2]});
+      std::sort(in.begin(), in.end());
+      std::sort(out.begin(), out.end());
+      EXPECT_EQ(in, out) << n << " seed " << seed;
+    }
+  }
+}
+
 TEST(Kernel, SPrismIsPolygon) {
   Kernel k = run(s_prism());
   ASSERT_TRUE(k.ok()) << k.message;
