@@ -26,8 +26,20 @@ void insert_sorted(std::vector<uint32_t>& v, uint32_t x) {
 
 class Cutter {
  public:
-  Cutter(const PlaneSet& ps, const TraceResult& prev) : ps_(ps), vertices_(prev.vertices), edges_(prev.edges) {
-    const size_t V = vertices_.size();
+  // `cuts` is the number of planes to come: a cut adds a few vertices and edges, so the arrays
+  // are sized once (growing them would move every vertex several times).
+  Cutter(const PlaneSet& ps, const TraceResult& prev, size_t cuts) : ps_(ps) {
+    const size_t V = prev.vertices.size(), room_v = V + 4 * cuts, room_e = prev.edges.size() + 6 * cuts;
+    vertices_.reserve(room_v);
+    vertices_ = prev.vertices;
+    edges_.reserve(room_e);
+    edges_ = prev.edges;
+    alive_v_.reserve(room_v);
+    adj_.reserve(room_v);
+    xyz_.reserve(3 * room_v);
+    replaced_by_.reserve(room_v);
+    state_.reserve(room_v);
+    alive_e_.reserve(room_e);
     alive_v_.assign(V, 1);
     alive_e_.assign(edges_.size(), 1);
     adj_.resize(V);
@@ -257,7 +269,7 @@ bool cut_kernel_trace(const PlaneSet& ps, const TraceResult& prev, const std::ve
     seed = seed * 6364136223846793005ull + 1442695040888963407ull;
     std::swap(order[i - 1], order[size_t((seed >> 33) % i)]);
   }
-  Cutter cutter(ps, prev);
+  Cutter cutter(ps, prev, added.size());
   // The hints come from prev; once cuts have refined the polytope near a direction, the last
   // vertex found for a plane of similar normal is usually closer. Two cube maps of the normals:
   // a fine one (about two planes per cell) and a coarse one for cells not visited yet.
