@@ -11,6 +11,10 @@
 //     --epick-max-faces N     skip the Epick baseline above N input faces (default: no limit)
 //     --baseline-budget-ms T  stop repeating a baseline once one run took longer than T (default 2000)
 //     --meshes DIR            shared mesh folder for the default list (default: the build's KERGEN_SHARED_MESHES)
+//     --family DIR            also run every mesh file of DIR and print one summary row for them
+//                             (ratio geomean, minimum, how many are slower than each baseline)
+//     --families              --family for each polyhedra set of the mesh folder (tet10, tet20,
+//                             tet30, voro: 1000 small meshes each)
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -55,6 +59,7 @@ struct Args {
   double baseline_budget_ms = 2000;
   std::string meshes = KERGEN_SHARED_MESHES;
   std::vector<std::string> files;
+  std::vector<std::string> families;  // folders summarized, not listed row by row
 };
 
 double now_ms() {
@@ -297,10 +302,73 @@ std::string json_baseline(const Baseline& b, double ours) {
   return os.str();
 }
 
+// One summary per folder of meshes: each baseline's ratio (baseline / ours) as a geometric mean,
+// its minimum and the number of meshes where we are slower (ratio < 1).
+struct RatioStats {
+  size_t count = 0, slower = 0;
+  double log_sum = 0, min = std::numeric_limits<double>::infinity();
+  std::string min_mesh;
+  void add(const Baseline& b, double ours, const std::string& mesh) {
+    if (!b.ran || ours <= 0) return;
+    const double r = b.ms / ours;
+    ++count;
+    log_sum += std::log(r);
+    slower += r < 1;
+    if (r < min) { min = r; min_mesh = mesh; }
+  }
+  double geomean() const { return count ? std::exp(log_sum / double(count)) : 0; }
+};
+struct FamilySummary {
+  std::string dir;
+  size_t meshes = 0, errors = 0;
+  std::vector<std::pair<std::string, size_t>> types;
+  std::vector<double> ours;
+  RatioStats epick, epeck;
+  void add(const Row& r) {
+    ++meshes;
+    if (!r.error.empty()) { ++errors; return; }
+    auto it = std::find_if(types.begin(), types.end(), [&](const auto& t) { return t.first == r.type; });
+    if (it == types.end()) types.emplace_back(r.type, 1);
+    else ++it->second;
+    ours.push_back(r.ours_ms);
+    epick.add(r.epick, r.ours_ms, r.mesh);
+    epeck.add(r.epeck, r.ours_ms, r.mesh);
+  }
+  std::string types_cell() const {
+    std::string s;
+    for (const auto& [t, n] : types) s += (s.empty() ? "" : ", ") + t + " " + std::to_string(n);
+    return s;
+  }
+  static std::string ratio_cells(const RatioStats& r) {
+    if (!r.count) return "- | - | -";
+    return fmt(r.geomean()) + "x | " + fmt(r.min) + "x (" + fs::path(r.min_mesh).filename().string() + ") | " +
+           std::to_string(r.slower) + " of " + std::to_string(r.count);
+  }
+  std::string table_row() const {
+    return "| " + dir + " | " + std::to_string(meshes) + " | " + std::to_string(errors) + " | " + types_cell() + " | " +
+           fmt(median(ours), 3) + " | " + ratio_cells(epick) + " | " + ratio_cells(epeck) + " |";
+  }
+  static std::string ratio_json(const RatioStats& r) {
+    std::ostringstream os;
+    os << "{\"meshes\":" << r.count << ",\"geomean\":" << r.geomean() << ",\"min\":" << (r.count ? r.min : 0)
+       << ",\"min_mesh\":\"" << json_escape(r.min_mesh) << "\",\"slower\":" << r.slower << "}";
+    return os.str();
+  }
+  std::string json(const std::string& compiler, const std::string& load, int runs) const {
+    std::ostringstream os;
+    os << "{\"family\":\"" << json_escape(dir) << "\",\"compiler\":\"" << json_escape(compiler) << "\",\"loadavg_at_start\":\""
+       << load << "\",\"runs\":" << runs << ",\"meshes\":" << meshes << ",\"errors\":" << errors
+       << ",\"ours_median_ms\":" << median(ours) << ",\"cgal_epick\":" << ratio_json(epick)
+       << ",\"cgal_epeck\":" << ratio_json(epeck) << "}";
+    return os.str();
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Args args;
+  bool families_default = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -319,10 +387,12 @@ int main(int argc, char** argv) {
     else if (a == "--epick-max-faces") args.epick_max_faces = std::strtoull(next().c_str(), nullptr, 10);
     else if (a == "--baseline-budget-ms") args.baseline_budget_ms = std::atof(next().c_str());
     else if (a == "--meshes") args.meshes = next();
+    else if (a == "--family") args.families.push_back(next());
+    else if (a == "--families") families_default = true;
     else if (a == "-h" || a == "--help") {
       std::printf("usage: kergen_bench [--runs N] [--json] [--quick] [--no-epeck] [--no-epick]\n"
                   "                    [--epeck-max-faces N] [--epick-max-faces N] [--baseline-budget-ms T]\n"
-                  "                    [--meshes DIR] [mesh files...]\n");
+                  "                    [--meshes DIR] [--family DIR]... [--families] [mesh files...]\n");
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
@@ -337,10 +407,14 @@ int main(int argc, char** argv) {
   }
   args.runs = quick_runs;
 
+  if (families_default)
+    for (const char* d : {"tet10", "tet20", "tet30", "voro"}) args.families.push_back((fs::path(args.meshes) / "polyhedra" / d).string());
   std::vector<std::pair<std::string, std::string>> list;
   if (!args.files.empty())
     for (const auto& f : args.files) list.emplace_back(f, f);
-  else {
+  else if (!args.families.empty() && !families_default) {
+    // only the families
+  } else {
     if (!fs::is_directory(args.meshes)) {
       std::fprintf(stderr, "mesh folder %s not found: pass --meshes DIR or mesh files\n", args.meshes.c_str());
       return 1;
@@ -365,6 +439,26 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "  done %s (%.1f ms)\n", label.c_str(), rows.back().ours_ms);
     }
   }
+  std::vector<FamilySummary> families;
+  for (const std::string& dir : args.families) {
+    std::vector<std::string> files;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      const std::string ext = entry.path().extension().string();
+      if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".stl")) files.push_back(entry.path().string());
+    }
+    if (ec || files.empty()) {
+      std::fprintf(stderr, "family %s: no mesh files found\n", dir.c_str());
+      return 1;
+    }
+    std::sort(files.begin(), files.end());
+    FamilySummary fam;
+    fam.dir = dir;
+    for (const std::string& f : files) fam.add(bench_mesh(f, f, args));
+    if (!args.json) std::fprintf(stderr, "  done family %s (%zu meshes)\n", dir.c_str(), fam.meshes);
+    families.push_back(std::move(fam));
+  }
+
   // Non-star meshes: compare with our full run on the star mesh of closest size.
   for (Row& r : rows) {
     if (!r.error.empty() || r.star) continue;
@@ -403,11 +497,14 @@ int main(int argc, char** argv) {
       os << "}";
       std::printf("%s\n", os.str().c_str());
     }
+    for (const FamilySummary& f : families) std::printf("%s\n", f.json(compiler, load_at_start, args.runs).c_str());
     return 0;
   }
 
-  std::printf("| mesh | faces | planes | kernel | V | E | F | ours | Epick | Epeck | Epick/ours | Epeck/ours | validate | planes | lp | trace | assemble | note |\n");
-  std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  if (!rows.empty()) {
+    std::printf("| mesh | faces | planes | kernel | V | E | F | ours | Epick | Epeck | Epick/ours | Epeck/ours | validate | planes | lp | trace | assemble | note |\n");
+    std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  }
   for (const Row& r : rows) {
     if (!r.error.empty()) {
       std::printf("| %s | %zu | | ERROR | | | | %s | | | | | | | | | | %s |\n", r.mesh.c_str(), r.faces,
@@ -427,6 +524,11 @@ int main(int argc, char** argv) {
                 baseline_cell(r.epick).c_str(), baseline_cell(r.epeck).c_str(), ratio_cell(r.epick, r.ours_ms).c_str(),
                 ratio_cell(r.epeck, r.ours_ms).c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(),
                 fmt(s.ms_lp).c_str(), fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), note.c_str());
+  }
+  if (!families.empty()) {
+    std::printf("%s| family | meshes | errors | kernel types | ours: median ms | Epick/ours: geomean | min | slower | Epeck/ours: geomean | min | slower |\n", rows.empty() ? "" : "\n");
+    std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const FamilySummary& f : families) std::printf("%s\n", f.table_row().c_str());
   }
   return 0;
 }
