@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace kergen {
 
@@ -48,30 +47,47 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   }
   out.type = flat_plane != kNoPlane ? KernelType::Polygon : KernelType::Polyhedron;
 
-  // Edges per plane.
-  std::unordered_map<uint32_t, std::vector<uint32_t>> by_plane;
+  // Edges per plane as compressed rows (counting sort: plane ids are dense; a row keeps increasing
+  // edge order), each with another plane s through the edge, not h or its opposite: found in this
+  // pass over the edges in order, since per facet their plane lists are scattered reads.
+  std::vector<uint32_t> row(ps.size() + 1, 0);
+  for (const TracedEdge& te : trace.edges)
+    for (uint32_t h : te.planes) ++row[h + 1];
+  for (size_t h = 0; h < ps.size(); ++h) row[h + 1] += row[h];
+  std::vector<uint32_t> by_plane(row.back()), other(row.back()), fill(row.begin(), row.end() - 1);
   for (uint32_t e = 0; e < E; ++e)
-    for (uint32_t h : trace.edges[e].planes) by_plane[h].push_back(e);
+    for (uint32_t h : trace.edges[e].planes) {
+      uint32_t s = kNoPlane;
+      for (uint32_t c : trace.edges[e].planes)
+        if (c != h && c != ps.opposite(h)) { s = c; break; }
+      other[fill[h]] = s;
+      by_plane[fill[h]++] = e;
+    }
   std::vector<uint32_t> facets;
+  size_t corners = 0;
   if (flat_plane != kNoPlane) {
     facets.push_back(flat_plane);
+    corners = row[flat_plane + 1] - row[flat_plane];
   } else {
-    for (const auto& [h, list] : by_plane)
-      if (list.size() >= 3) facets.push_back(h);
-    std::sort(facets.begin(), facets.end());
+    size_t n = 0;
+    for (uint32_t h = 0; h < ps.size(); ++h) n += row[h + 1] - row[h] >= 3;
+    facets.reserve(n);
+    for (uint32_t h = 0; h < ps.size(); ++h)
+      if (row[h + 1] - row[h] >= 3) { facets.push_back(h); corners += row[h + 1] - row[h]; }
   }
+  out.face_sizes.reserve(facets.size());
+  out.face_indices.reserve(corners);
+  out.triangles.reserve(3 * (corners - std::min(corners, 2 * facets.size())));
 
   bool announce = true, ok = true;
-  std::vector<uint32_t> next(V, kNoPlane);
+  std::vector<uint32_t> next(V, kNoPlane), touched, loop;
   for (uint32_t h : facets) {
-    const auto& list = by_plane[h];
-    std::vector<uint32_t> touched;
+    touched.clear();
+    loop.clear();
     bool valid = true;
-    for (uint32_t e : list) {
-      const TracedEdge& te = trace.edges[e];
-      uint32_t s = kNoPlane;
-      for (uint32_t c : te.planes)
-        if (c != h && c != ps.opposite(h)) { s = c; break; }
+    for (uint32_t i = row[h]; i < row[h + 1]; ++i) {
+      const TracedEdge& te = trace.edges[by_plane[i]];
+      const uint32_t s = other[i];
       if (s == kNoPlane) { valid = false; break; }
       int sg = te.sigma * sign_edge_in_facet(ps, te.p, te.q, h, s);
       uint32_t from = sg > 0 ? te.a : te.b, to = sg > 0 ? te.b : te.a;
@@ -79,7 +95,6 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       next[from] = to;
       touched.push_back(from);
     }
-    std::vector<uint32_t> loop;
     if (valid) {
       uint32_t start = touched[0], v = start;
       do {
