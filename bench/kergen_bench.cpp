@@ -453,7 +453,8 @@ int main(int argc, char** argv) {
     }
     std::sort(files.begin(), files.end());
     FamilySummary fam;
-    fam.dir = dir;
+    const fs::path rel = fs::path(dir).lexically_relative(args.meshes);
+    fam.dir = !rel.empty() && *rel.begin() != ".." ? rel.string() : dir;  // polyhedra/voro, not /abs/../polyhedra/voro
     for (const std::string& f : files) fam.add(bench_mesh(f, f, args));
     if (!args.json) std::fprintf(stderr, "  done family %s (%zu meshes)\n", dir.c_str(), fam.meshes);
     families.push_back(std::move(fam));
