@@ -47,33 +47,46 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   }
   out.type = flat_plane != kNoPlane ? KernelType::Polygon : KernelType::Polyhedron;
 
-  // Edges per plane as compressed rows (counting sort: plane ids are dense; a row keeps increasing
-  // edge order), each with another plane s through the edge, not h or its opposite: found in this
-  // pass over the edges in order, since per facet their plane lists are scattered reads.
-  std::vector<uint32_t> row(ps.size() + 1, 0);
-  for (const TracedEdge& te : trace.edges)
-    for (uint32_t h : te.planes) ++row[h + 1];
-  for (size_t h = 0; h < ps.size(); ++h) row[h + 1] += row[h];
-  std::vector<uint32_t> by_plane(row.back()), other(row.back()), fill(row.begin(), row.end() - 1);
-  for (uint32_t e = 0; e < E; ++e)
-    for (uint32_t h : trace.edges[e].planes) {
-      uint32_t s = kNoPlane;
-      for (uint32_t c : trace.edges[e].planes)
-        if (c != h && c != ps.opposite(h)) { s = c; break; }
-      other[fill[h]] = s;
-      by_plane[fill[h]++] = e;
-    }
-  std::vector<uint32_t> facets;
-  size_t corners = 0;
-  if (flat_plane != kNoPlane) {
-    facets.push_back(flat_plane);
-    corners = row[flat_plane + 1] - row[flat_plane];
+  // (plane, edge) pairs grouped by plane, edges increasing within a group, each with another
+  // plane s through the edge, not h or its opposite: found in this pass over the edges in order,
+  // since per facet their plane lists are scattered reads. The grouping is a counting sort over
+  // plane ids when the pairs are numerous enough to pay for one count per plane, a sort
+  // otherwise (a small kernel of a large mesh stays output-sized).
+  struct PlaneEdge {
+    uint32_t h, e, s;
+  };
+  auto pair_at = [&](uint32_t e, uint32_t h) {
+    uint32_t s = kNoPlane;
+    for (uint32_t c : trace.edges[e].planes)
+      if (c != h && c != ps.opposite(h)) { s = c; break; }
+    return PlaneEdge{h, e, s};
+  };
+  size_t num_pairs = 0;
+  for (const TracedEdge& te : trace.edges) num_pairs += te.planes.size();
+  std::vector<PlaneEdge> grouped;
+  if (8 * num_pairs >= ps.size()) {
+    std::vector<uint32_t> fill(ps.size() + 1, 0);
+    for (const TracedEdge& te : trace.edges)
+      for (uint32_t h : te.planes) ++fill[h + 1];
+    for (size_t h = 0; h < ps.size(); ++h) fill[h + 1] += fill[h];
+    grouped.resize(num_pairs);
+    for (uint32_t e = 0; e < E; ++e)
+      for (uint32_t h : trace.edges[e].planes) grouped[fill[h]++] = pair_at(e, h);
   } else {
-    size_t n = 0;
-    for (uint32_t h = 0; h < ps.size(); ++h) n += row[h + 1] - row[h] >= 3;
-    facets.reserve(n);
-    for (uint32_t h = 0; h < ps.size(); ++h)
-      if (row[h + 1] - row[h] >= 3) { facets.push_back(h); corners += row[h + 1] - row[h]; }
+    grouped.reserve(num_pairs);
+    for (uint32_t e = 0; e < E; ++e)
+      for (uint32_t h : trace.edges[e].planes) grouped.push_back(pair_at(e, h));
+    std::stable_sort(grouped.begin(), grouped.end(), [](const PlaneEdge& x, const PlaneEdge& y) { return x.h < y.h; });
+  }
+  // Facets: planes holding three or more edges (the flat plane alone for a polygon), increasing.
+  std::vector<std::pair<uint32_t, uint32_t>> facets;  // [begin, end) in grouped
+  size_t corners = 0;
+  for (uint32_t i = 0, j; i < grouped.size(); i = j) {
+    for (j = i; j < grouped.size() && grouped[j].h == grouped[i].h; ++j) {}
+    if (flat_plane != kNoPlane ? grouped[i].h == flat_plane : j - i >= 3) {
+      facets.push_back({i, j});
+      corners += j - i;
+    }
   }
   out.face_sizes.reserve(facets.size());
   out.face_indices.reserve(corners);
@@ -81,13 +94,14 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
 
   bool announce = true, ok = true;
   std::vector<uint32_t> next(V, kNoPlane), touched, loop;
-  for (uint32_t h : facets) {
+  for (const auto& [begin, end] : facets) {
+    const uint32_t h = grouped[begin].h;
     touched.clear();
     loop.clear();
     bool valid = true;
-    for (uint32_t i = row[h]; i < row[h + 1]; ++i) {
-      const TracedEdge& te = trace.edges[by_plane[i]];
-      const uint32_t s = other[i];
+    for (uint32_t i = begin; i < end; ++i) {
+      const TracedEdge& te = trace.edges[grouped[i].e];
+      const uint32_t s = grouped[i].s;
       if (s == kNoPlane) { valid = false; break; }
       int sg = te.sigma * sign_edge_in_facet(ps, te.p, te.q, h, s);
       uint32_t from = sg > 0 ? te.a : te.b, to = sg > 0 ? te.b : te.a;
