@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "climb.h"
 
@@ -56,10 +57,11 @@ class Cutter {
     traced_lines_ = prev.traced_lines;
   }
 
-  // Cuts by plane h, climbing from the best of three hints (dead ones stand for the cut point
-  // that replaced them); `near` gets a vertex on or nearest to h afterwards, a start for planes
-  // of similar normal. False when the result is not handled (see cutting.h).
-  bool cut(uint32_t h, uint32_t hint, uint32_t hint2, uint32_t hint3, uint32_t& near) {
+  // Cuts by plane h, climbing from the best of the hints (dead ones stand for the cut point that
+  // replaced them; invalid ones, kNoPlane, are skipped; vertex 0 when none is valid); `near`
+  // gets a vertex on or nearest to h afterwards, a start for planes of similar normal. False
+  // when the result is not handled (see cutting.h).
+  bool cut(uint32_t h, std::initializer_list<uint32_t> hints, uint32_t& near) {
     const double a = ps_.nx()[h], b = ps_.ny()[h], c = ps_.nz()[h], d = ps_.d()[h];
     // Same bounds as culling's: coordinates below ~2, rounding far below `tie` and `margin`.
     const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
@@ -68,14 +70,15 @@ class Cutter {
     auto neighbors = [&](uint32_t u, const auto& fn) {
       for (uint32_t e : adj_[u]) fn(other(e, u));
     };
-    uint32_t cur = alive(hint < alive_v_.size() ? hint : 0);
-    double val = f(cur);
-    for (uint32_t other_hint : {hint2, hint3}) {
-      if (other_hint >= alive_v_.size()) continue;
-      const uint32_t other_start = alive(other_hint);
-      const double other_val = f(other_start);
-      if (other_val > val) { cur = other_start; val = other_val; }
+    uint32_t cur = kNoPlane;
+    double val = 0;
+    for (uint32_t hint : hints) {
+      if (hint >= alive_v_.size()) continue;
+      const uint32_t start = alive(hint);
+      const double start_val = f(start);
+      if (cur == kNoPlane || start_val > val) { cur = start; val = start_val; }
     }
+    if (cur == kNoPlane) { cur = alive(0); val = f(cur); }
     cur = climb_to_max(cur, val, f, neighbors, tie, vertices_.size(), climb_);
     near = cur;
     if (val <= -margin) return true;  // strictly inside at every vertex: no change
@@ -281,8 +284,8 @@ bool cut_kernel_trace(const PlaneSet& ps, const TraceResult& prev, const std::ve
     const size_t cell = cube_cell(cells_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
     const size_t coarse = cube_cell(coarse_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
     uint32_t near = kNoPlane;
-    if (!cutter.cut(h, i < hints.size() ? hints[i] : 0, cell == kNoCell ? kNoPlane : recent[cell],
-                    coarse == kNoCell ? kNoPlane : recent_coarse[coarse], near)) return false;
+    if (!cutter.cut(h, {i < hints.size() ? hints[i] : 0, cell == kNoCell ? kNoPlane : recent[cell],
+                        coarse == kNoCell ? kNoPlane : recent_coarse[coarse]}, near)) return false;
     if (cell != kNoCell) recent[cell] = near;
     if (coarse != kNoCell) recent_coarse[coarse] = near;
   }
