@@ -12,6 +12,7 @@
 // cell, so rounding never hides a match.
 #include "plane_classes.h"
 
+#include "flat_set.h"
 #include "union_find.h"
 
 #include <cmath>
@@ -179,38 +180,9 @@ class CellTable {
   size_t mask_;
 };
 
-// Set of unordered pairs of face ids (open addressing; ~0 marks an empty slot, never a pair as
-// a face is never paired with itself).
-class PairSet {
- public:
-  explicit PairSet(size_t n) {
-    size_t cap = 16;
-    while (cap < 2 * n + 16) cap <<= 1;
-    slots_.assign(cap, kEmpty);
-    mask_ = cap - 1;
-  }
-  void insert(uint32_t a, uint32_t b) {
-    const uint64_t x = key(a, b);
-    for (size_t i = hash(x);; i = (i + 1) & mask_) {
-      if (slots_[i] == x) return;
-      if (slots_[i] == kEmpty) { slots_[i] = x; return; }
-    }
-  }
-  bool contains(uint32_t a, uint32_t b) const {
-    const uint64_t x = key(a, b);
-    for (size_t i = hash(x);; i = (i + 1) & mask_) {
-      if (slots_[i] == x) return true;
-      if (slots_[i] == kEmpty) return false;
-    }
-  }
-
- private:
-  static constexpr uint64_t kEmpty = ~uint64_t(0);
-  static uint64_t key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
-  size_t hash(uint64_t x) const { return size_t((x * 0x9E3779B97F4A7C15ull) >> 32) & mask_; }
-  std::vector<uint64_t> slots_;
-  size_t mask_;
-};
+// An unordered pair of face ids as one key of a U64Set (never ~0: a face is never paired with
+// itself).
+uint64_t pair_key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
 
 }  // namespace
 
@@ -252,8 +224,8 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     }
     uf.unite(a, b);
   }
-  PairSet distinct(apart.size());  // class representatives of different planes
-  for (const auto& pr : apart) distinct.insert(uf.find(pr[0]), uf.find(pr[1]));
+  U64Set distinct(apart.size());  // pairs of class representatives on different planes
+  for (const auto& pr : apart) distinct.insert(pair_key(uf.find(pr[0]), uf.find(pr[1])));
 
   // 2. Class representatives (the smallest face of each union) in face order, matched through
   //    the cell table; a new plane takes the representative's triangle.
@@ -280,7 +252,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
       for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) {
         const uint32_t of = plane_face[other - first_plane];
         const int orientation = key_match(k, key[of]);
-        if (orientation == 0 || (orientation > 0 && distinct.contains(f, of)) || !same_plane(m, m.rep[of], r)) continue;
+        if (orientation == 0 || (orientation > 0 && distinct.contains(pair_key(f, of))) || !same_plane(m, m.rep[of], r)) continue;
         if (orientation > 0) found = other;
         else opposite = other;  // at most one plane per orientation, so this one is unlinked
       }

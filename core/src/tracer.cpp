@@ -9,14 +9,14 @@
 //    set or a plane that cuts the segment earlier, which becomes the next candidate.
 #include "tracer.h"
 
+#include "flat_set.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iterator>
 #include <limits>
-#include <map>
 #include <queue>
-#include <unordered_set>
 
 namespace kergen {
 
@@ -102,7 +102,7 @@ struct Ray {
   uint32_t from;
   uint32_t p, q;
   int sigma;
-  std::vector<uint32_t> planes;  // planes containing the ray's line
+  uint32_t line_begin, line_size;  // planes containing the ray's line, in the tracer's line pool
   uint64_t key;
 };
 
@@ -116,6 +116,54 @@ uint64_t line_key(const PlaneSet& ps, const std::vector<uint32_t>& planes) {
     if (planes[i] != ps.opposite(a)) { b = planes[i]; break; }
   return (uint64_t(a) << 32) | b;
 }
+
+// Vertex id by tight plane set (a vertex's identity): open addressing on a hash of the set,
+// every hit confirmed against the stored set. One flat table instead of a tree of vector keys,
+// whose node and key copies were a large part of tracing a small kernel.
+class VertexIndex {
+ public:
+  uint32_t find(const std::vector<uint32_t>& tight, const std::vector<TracedVertex>& vertices) const {
+    if (slots_.empty()) return kNoPlane;
+    const uint64_t h = hash(tight);
+    for (size_t i = h & mask_;; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.id == kNoPlane) return kNoPlane;
+      if (s.hash == h && vertices[s.id].tight == tight) return s.id;
+    }
+  }
+  // The caller guarantees that no vertex with this tight set is indexed yet.
+  void insert(const std::vector<uint32_t>& tight, uint32_t id) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    place({hash(tight), id});
+    ++size_;
+  }
+
+ private:
+  struct Slot {
+    uint64_t hash;
+    uint32_t id;
+  };
+  static uint64_t hash(const std::vector<uint32_t>& tight) {
+    uint64_t h = 0x9E3779B97F4A7C15ull ^ tight.size();
+    for (uint32_t l : tight) h = (h ^ l) * 0xff51afd7ed558ccdull;
+    return h ^ (h >> 29);
+  }
+  void place(const Slot& x) {
+    size_t i = x.hash & mask_;
+    while (slots_[i].id != kNoPlane) i = (i + 1) & mask_;
+    slots_[i] = x;
+  }
+  void grow() {
+    std::vector<Slot> old;
+    old.swap(slots_);
+    slots_.assign(old.empty() ? 32 : 2 * old.size(), Slot{0, kNoPlane});
+    mask_ = slots_.size() - 1;
+    for (const Slot& x : old)
+      if (x.id != kNoPlane) place(x);
+  }
+  std::vector<Slot> slots_;
+  size_t mask_ = 0, size_ = 0;
+};
 
 // Structure-of-arrays copy of a list of planes (doubles and the error terms of the filter),
 // padded to a multiple of kLanes with planes that never hit a ray (n = 0) and are never near
@@ -188,7 +236,8 @@ class Tracer {
   Tracer(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceOptions& opt)
       : ps_(ps), active_(active), opt_(opt), mark_(ps.size(), 0) {
     arr_.build(ps, active);
-    vertices_on_.resize(active.size());
+    on_head_.assign(active.size(), kNoPlane);
+    on_tail_.assign(active.size(), kNoPlane);
     slot_.assign(ps.size(), kNoPlane);
     for (size_t i = 0; i < active.size(); ++i) slot_[active[i]] = uint32_t(i);
   }
@@ -230,11 +279,11 @@ class Tracer {
       std::sort(tight.begin(), tight.end());
       std::sort(tight_added[v].begin(), tight_added[v].end());
       new_id[v] = uint32_t(res_.vertices.size());
-      res_.vertices.push_back({tv.geom, tight});
-      vertex_ids_.emplace(std::move(tight), new_id[v]);
+      res_.vertices.push_back({tv.geom, std::move(tight)});
+      vertex_ids_.insert(res_.vertices.back().tight, new_id[v]);
       for (uint32_t l : res_.vertices.back().tight) {
         if (slot_[l] == kNoPlane) { res_.internal_error = true; return finish(); }  // caller broke the contract
-        vertices_on_[slot_[l]].push_back(new_id[v]);
+        link_vertex_on(slot_[l], new_id[v]);
       }
     }
     if (res_.vertices.empty()) { res_.internal_error = true; return finish(); }  // the LP vertex always survives
@@ -260,8 +309,8 @@ class Tracer {
   TraceResult trace_queued() {
     while (!queue_.empty()) {
       uint32_t idx = pop();
-      Ray ray = std::move(rays_[idx]);
-      if (traced_.count(ray.key)) continue;
+      const Ray ray = rays_[idx];
+      if (traced_.contains(ray.key)) continue;
       if (!trace(ray)) break;
     }
     return finish();
@@ -278,8 +327,8 @@ class Tracer {
 
   // The known vertex whose tight set holds planes a, b and c, or kNoPlane.
   uint32_t known_vertex_on(uint32_t a, uint32_t b, uint32_t c) const {
-    const std::vector<uint32_t>& la = vertices_on_[slot_[a]];
-    for (uint32_t v : la) {
+    for (uint32_t e = on_head_[slot_[a]]; e != kNoPlane; e = on_next_[e]) {
+      const uint32_t v = on_vertex_[e];
       const auto& G = res_.vertices[v].tight;
       if (std::binary_search(G.begin(), G.end(), b) && std::binary_search(G.begin(), G.end(), c)) return v;
     }
@@ -290,8 +339,8 @@ class Tracer {
   bool add_vertex(const VertexGeom& g, const std::vector<uint32_t>& tight) {
     uint32_t id = uint32_t(res_.vertices.size());
     res_.vertices.push_back({g, tight});
-    vertex_ids_.emplace(tight, id);
-    for (uint32_t l : tight) vertices_on_[slot_[l]].push_back(id);
+    vertex_ids_.insert(tight, id);
+    for (uint32_t l : tight) link_vertex_on(slot_[l], id);
     StepEvent e;
     e.kind = StepEvent::Kind::Vertex;
     e.id = id;
@@ -304,6 +353,16 @@ class Tracer {
     bool go = emit(e);
     queue_rays(id);
     return go;
+  }
+
+  // Appends v to the known vertices on the active plane in `slot` (insertion order kept).
+  void link_vertex_on(uint32_t slot, uint32_t v) {
+    const uint32_t e = uint32_t(on_vertex_.size());
+    on_vertex_.push_back(v);
+    on_next_.push_back(kNoPlane);
+    if (on_head_[slot] == kNoPlane) on_head_[slot] = e;
+    else on_next_[on_tail_[slot]] = e;
+    on_tail_[slot] = e;
   }
 
   void queue_rays(uint32_t v) {
@@ -325,19 +384,24 @@ class Tracer {
         }
         if (pos && neg) continue;
         if (!pos && !neg) continue;  // every tight plane contains the line: not a vertex (unreachable)
+        line_.clear();
+        for (size_t k = 0; k < G.size(); ++k)
+          if (k == i || k == j || s[k] == 0) line_.push_back(G[k]);
+        const uint64_t key = line_key(ps_, line_);
+        if (traced_.contains(key) || std::find(seen_.begin(), seen_.end(), key) != seen_.end()) continue;
+        seen_.push_back(key);
         Ray ray;
         ray.from = v; ray.p = p; ray.q = q;
         ray.sigma = pos ? -1 : 1;
-        for (size_t k = 0; k < G.size(); ++k)
-          if (k == i || k == j || s[k] == 0) ray.planes.push_back(G[k]);
-        ray.key = line_key(ps_, ray.planes);
-        if (traced_.count(ray.key) || std::find(seen_.begin(), seen_.end(), ray.key) != seen_.end()) continue;
-        seen_.push_back(ray.key);
-        push(std::move(ray));
+        ray.line_begin = uint32_t(line_pool_.size());
+        ray.line_size = uint32_t(line_.size());
+        line_pool_.insert(line_pool_.end(), line_.begin(), line_.end());
+        ray.key = key;
+        push(ray);
       }
   }
 
-  void push(Ray&& r) {
+  void push(const Ray& r) {
     uint32_t idx = uint32_t(rays_.size());
     double prio = 0;
     if (opt_.has_from) {
@@ -346,7 +410,7 @@ class Tracer {
     } else {
       prio = double(idx);  // breadth-first: discovery order
     }
-    rays_.push_back(std::move(r));
+    rays_.push_back(r);
     queue_.push({prio, idx});
   }
   uint32_t pop() {
@@ -430,19 +494,18 @@ class Tracer {
     ++res_.traced_lines;
     uint32_t r = scan(ray);
     if (r == kNoPlane) { res_.internal_error = true; return false; }  // unbounded ray
-    for (uint32_t l : ray.planes) mark_[l] = 1;
-    std::vector<uint32_t> tight;
+    // (The pool may grow while the ray is traced: spans into it are taken afresh.)
+    const uint32_t* line = line_pool_.data() + ray.line_begin;
+    for (uint32_t i = 0; i < ray.line_size; ++i) mark_[line[i]] = 1;
+    std::vector<uint32_t>& tight = tight_;
     VertexGeom w;
+    uint32_t known = kNoPlane;
     bool exact_done = false;
     for (;;) {
       // A known vertex on p, q and r is the candidate itself (three independent planes meet in
       // one point) and is already certified: no need to evaluate anything.
-      uint32_t known = known_vertex_on(ray.p, ray.q, r);
-      if (known != kNoPlane) {
-        w = res_.vertices[known].geom;
-        tight = res_.vertices[known].tight;
-        break;
-      }
+      known = known_vertex_on(ray.p, ray.q, r);
+      if (known != kNoPlane) break;
       w = make_vertex(ps_, ray.p, ray.q, r);
       uint32_t violator = certify(w, tight);
       if (violator == kNoPlane) break;
@@ -454,21 +517,19 @@ class Tracer {
       exact_done = true;
       if (r == kNoPlane) { res_.internal_error = true; break; }
     }
-    for (uint32_t l : ray.planes) mark_[l] = 0;
+    for (uint32_t i = 0; i < ray.line_size; ++i) mark_[line[i]] = 0;
     if (res_.internal_error) return false;
 
     bool go = true;
-    uint32_t to;
-    auto it = vertex_ids_.find(tight);
-    if (it == vertex_ids_.end()) {
+    uint32_t to = known != kNoPlane ? known : vertex_ids_.find(tight, res_.vertices);
+    if (to == kNoPlane) {
       to = uint32_t(res_.vertices.size());
       go = add_vertex(w, tight);
-    } else {
-      to = it->second;
     }
     traced_.insert(ray.key);
     TracedEdge e;
-    e.a = ray.from; e.b = to; e.p = ray.p; e.q = ray.q; e.sigma = ray.sigma; e.planes = ray.planes;
+    e.a = ray.from; e.b = to; e.p = ray.p; e.q = ray.q; e.sigma = ray.sigma;
+    e.planes.assign(line_pool_.begin() + ray.line_begin, line_pool_.begin() + ray.line_begin + ray.line_size);
     uint32_t eid = uint32_t(res_.edges.size());
     res_.edges.push_back(std::move(e));
     if (!go) return false;
@@ -486,12 +547,16 @@ class Tracer {
   std::vector<uint64_t> seen_;
   std::vector<int> rate_;
   std::vector<uint32_t> cand_;
-  std::vector<std::vector<uint32_t>> vertices_on_;  // per active plane: known vertices on it
+  std::vector<uint32_t> tight_, line_;  // scratch: a candidate's tight set, a ray's line planes
+  std::vector<uint32_t> line_pool_;     // the line planes of every queued ray, concatenated
+  // Known vertices on each active plane: linked lists by slot (head, tail) over entries
+  // (vertex, next), in insertion order.
+  std::vector<uint32_t> on_head_, on_tail_, on_vertex_, on_next_;
   std::vector<uint32_t> slot_;
   std::vector<std::array<double, 4>> saved_;
   TraceResult res_;
-  std::map<std::vector<uint32_t>, uint32_t> vertex_ids_;
-  std::unordered_set<uint64_t> traced_;
+  VertexIndex vertex_ids_;
+  U64Set traced_;  // line keys of traced edges
   std::vector<Ray> rays_;
   std::priority_queue<std::pair<double, uint32_t>, std::vector<std::pair<double, uint32_t>>, std::greater<>> queue_;
 };
