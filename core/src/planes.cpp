@@ -79,12 +79,16 @@ std::array<T, 3> cross_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q) {
 
 // Cramer's rule for the vertex of planes a, b, c: coordinate k = num_k / den.
 template <class T>
-void cramer(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, T num[3], T& den) {
-  den = det3_normals(a, b, c);
+void cramer_numerators(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, T num[3]) {
   T ma = -a.d, mb = -b.d, mc = -c.d;
   num[0] = det3(ma, a.n[1], a.n[2], mb, b.n[1], b.n[2], mc, c.n[1], c.n[2]);
   num[1] = det3(a.n[0], ma, a.n[2], b.n[0], mb, b.n[2], c.n[0], mc, c.n[2]);
   num[2] = det3(a.n[0], a.n[1], ma, b.n[0], b.n[1], mb, c.n[0], c.n[1], mc);
+}
+template <class T>
+void cramer(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, T num[3], T& den) {
+  den = det3_normals(a, b, c);
+  cramer_numerators(a, b, c, num);
 }
 
 }  // namespace
@@ -441,7 +445,11 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point) {
   VertexGeom v;
   v.basis[0] = a; v.basis[1] = b; v.basis[2] = c;
-  v.det_sign = sign_det3_normals(ps, a, b, c);
+  // Cramer's denominator is the normals' determinant: when its filter is certain it gives the
+  // exact sign too (sign_det3_normals would evaluate it again first).
+  const PlaneCoef<Approx> pa = ps.approx(a), pb = ps.approx(b), pc = ps.approx(c);
+  const Approx den = det3_normals(pa, pb, pc);
+  v.det_sign = den.certain() ? den.sign() : sign_det3_normals(ps, a, b, c);
   assert(v.det_sign != 0 && "make_vertex: planes with dependent normals");
 
   if (find_input_point) {
@@ -455,8 +463,8 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
     v.late_point = kPointNotSearched;
   }
 
-  Approx num[3], den;
-  cramer(ps.approx(a), ps.approx(b), ps.approx(c), num, den);
+  Approx num[3];
+  cramer_numerators(pa, pb, pc, num);
   bool good = den.certain();
   if (good) {
     for (int k = 0; k < 3; ++k) {
