@@ -15,6 +15,7 @@
 #include "flat_set.h"
 #include "union_find.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace kergen {
@@ -275,52 +276,48 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
 }
 
 void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
-  // Compressed rows (sorted, unique) in linear time, by transposing twice:
-  //  a. each plane's points with repeats: the face loops bucketed by plane;
-  //  b. each point's planes, filled plane by plane in increasing order — so every row comes out
-  //     sorted, and a repeated (point, plane) pair is the row's last entry;
-  //  c. each plane's points, filled point by point from b: sorted, unique.
+  // Compressed rows (sorted, unique) in linear time:
+  //  a. each point's planes with repeats (one per face loop through it), bucketed by point;
+  //  b. each row sorted and deduplicated in place (a point has a handful of faces) and compacted;
+  //  c. each plane's points by transposing b point by point: sorted and unique by construction.
   const size_t nf = m.num_faces();
   const size_t np = ps.size(), nv = m.points.size() / 3;
   auto prefix_sum = [](std::vector<uint32_t>& off) {
     for (size_t i = 1; i < off.size(); ++i) off[i] += off[i - 1];
   };
   // a.
-  std::vector<uint32_t> raw_off(np + 1, 0);
-  for (uint32_t f = 0; f < nf; ++f) raw_off[face_plane[f] + 1] += m.loop_offsets[f + 1] - m.loop_offsets[f];
-  prefix_sum(raw_off);
-  std::vector<uint32_t> raw(raw_off[np]);
-  {
-    std::vector<uint32_t> fill(raw_off.begin(), raw_off.end() - 1);
-    for (uint32_t f = 0; f < nf; ++f)
-      for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) raw[fill[face_plane[f]]++] = m.loops[i];
-  }
-  // b. Counts without repeats (last[v]: the last plane counted for v), then the fill.
-  std::vector<uint32_t> plane_off(np + 1, 0), point_off(nv + 1, 0);
-  {
-    std::vector<uint32_t> last(nv, kNoPlane);
-    for (uint32_t p = 0; p < np; ++p)
-      for (uint32_t i = raw_off[p]; i < raw_off[p + 1]; ++i) {
-        const uint32_t v = raw[i];
-        if (last[v] == p) continue;
-        last[v] = p;
-        point_off[v + 1]++;
-        plane_off[p + 1]++;
-      }
-  }
-  prefix_sum(plane_off);
+  std::vector<uint32_t> point_off(nv + 1, 0);
+  for (uint32_t i = 0; i < m.loop_offsets[nf]; ++i) point_off[m.loops[i] + 1]++;
   prefix_sum(point_off);
   std::vector<uint32_t> point_pls(point_off[nv]);
   {
     std::vector<uint32_t> fill(point_off.begin(), point_off.end() - 1);
-    for (uint32_t p = 0; p < np; ++p)
-      for (uint32_t i = raw_off[p]; i < raw_off[p + 1]; ++i) {
-        const uint32_t v = raw[i];
-        if (fill[v] > point_off[v] && point_pls[fill[v] - 1] == p) continue;
-        point_pls[fill[v]++] = p;
-      }
+    for (uint32_t f = 0; f < nf; ++f)
+      for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) point_pls[fill[m.loops[i]]++] = face_plane[f];
   }
+  // b. (Compacting writes never overtake the reads: out <= the row's read position.)
+  uint32_t out = 0;
+  for (size_t v = 0, begin = 0; v < nv; ++v) {
+    const size_t end = point_off[v + 1];
+    uint32_t* row = point_pls.data() + begin;
+    const size_t n = end - begin;
+    if (n <= 16) {
+      for (size_t i = 1; i < n; ++i)
+        for (size_t k = i; k > 0 && row[k] < row[k - 1]; --k) std::swap(row[k], row[k - 1]);
+    } else {
+      std::sort(row, row + n);  // a fan of many faces (a cone's apex)
+    }
+    point_off[v] = out;
+    for (size_t i = 0; i < n; ++i)
+      if (i == 0 || row[i] != row[i - 1]) point_pls[out++] = row[i];
+    begin = end;
+  }
+  point_off[nv] = out;
+  point_pls.resize(out);
   // c.
+  std::vector<uint32_t> plane_off(np + 1, 0);
+  for (uint32_t p : point_pls) plane_off[p + 1]++;
+  prefix_sum(plane_off);
   std::vector<uint32_t> plane_pts(plane_off[np]);
   {
     std::vector<uint32_t> fill(plane_off.begin(), plane_off.end() - 1);
