@@ -16,6 +16,7 @@
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <queue>
 
 namespace kergen {
@@ -370,15 +371,36 @@ class Tracer {
     seen_.clear();  // keys queued from this vertex (a handful: a linear search beats a hash set)
     std::vector<int>& s = rate_;
     s.assign(G.size(), 0);
-    for (size_t i = 0; i < G.size(); ++i)
-      for (size_t j = i + 1; j < G.size(); ++j) {
+    // The rate of plane G[k] along the line of G[i], G[j] is the sign of det3(n_k, n_i, n_j), an
+    // alternating function of the triple: each triple serves three lines, so its sign is kept
+    // (by sorted triple index; 2 = not known yet). At a degenerate vertex (nearly coplanar planes
+    // of a split polygon) many of these signs need the exact fallback.
+    const size_t n = G.size();
+    const bool keep = n <= kMaxKeptTight;
+    if (keep) triple_sign_.assign(n * (n - 1) * (n - 2) / 6, 2);
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = i + 1; j < n; ++j) {
         uint32_t p = G[i], q = G[j];
         if (ps_.opposite(p) == q) continue;
         bool pos = false, neg = false;
-        const LineDirection line(ps_, p, q);
-        for (size_t k = 0; k < G.size() && !(pos && neg); ++k) {
+        std::optional<LineDirection> line;  // built on the first sign not kept
+        for (size_t k = 0; k < n && !(pos && neg); ++k) {
           if (k == i || k == j) { s[k] = 0; continue; }
-          s[k] = line.rate_sign(ps_, G[k]);
+          // det3(n_k, n_i, n_j) is the sorted triple's determinant, negated when k lies between
+          // i and j (one transposition; k < i or k > j is a rotation).
+          const int parity = i < k && k < j ? -1 : 1;
+          int8_t* kept = nullptr;
+          if (keep) {
+            const size_t a = std::min(i, k), c = std::max(j, k), b = i + j + k - a - c;
+            kept = &triple_sign_[c * (c - 1) * (c - 2) / 6 + b * (b - 1) / 2 + a];
+          }
+          if (kept && *kept != 2) {
+            s[k] = parity * *kept;
+          } else {
+            if (!line) line.emplace(ps_, p, q);
+            s[k] = line->rate_sign(ps_, G[k]);
+            if (kept) *kept = int8_t(parity * s[k]);
+          }
           pos |= s[k] > 0;
           neg |= s[k] < 0;
         }
@@ -546,6 +568,8 @@ class Tracer {
   PlaneArrays arr_;
   std::vector<uint64_t> seen_;
   std::vector<int> rate_;
+  static constexpr size_t kMaxKeptTight = 64;  // triple signs are kept for up to this many tight planes
+  std::vector<int8_t> triple_sign_;
   std::vector<uint32_t> cand_;
   std::vector<uint32_t> tight_, line_;  // scratch: a candidate's tight set, a ray's line planes
   std::vector<uint32_t> line_pool_;     // the line planes of every queued ray, concatenated
