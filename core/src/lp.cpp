@@ -81,33 +81,92 @@ class SeidelLp {
     return 0;
   }
 
-  // Optimum on the line h∩g over cons[0..n).
+  // Optimum on the line h∩g over cons[0..n). Along D = sigma (n_h x n_g) plane m crosses the
+  // line at t_m = -f_m(P0) / (n_m . D) for a point P0 of it; the planes m with n_m . D > 0 bound
+  // t from above (the first one binds), the others from below. Whether m cuts before the current
+  // best a is side(m, vertex(h, g, a)) > 0; a filtered comparison of the crossings decides that
+  // without building the vertex, so one is built per change only where the filter cannot tell.
   bool solve1(uint32_t h, uint32_t g, const uint32_t* cons, size_t n, VertexGeom& out) {
     int sigma = objective_sign(h, g);
     assert(sigma != 0);
-    uint32_t ahead = kNoPlane, behind = kNoPlane;
-    VertexGeom va, vb;
-    parallel_.clear();
     const LineDirection line(ps_, h, g);
+    const CrossingFilter filter(ps_.approx(h), ps_.approx(g), line.u, sigma);
+    Best ahead, behind;
+    parallel_.clear();
     for (size_t i = 0; i < n; ++i) {
       uint32_t m = cons[i];
       if (m == h || m == g) continue;
-      int r = line.rate_sign(ps_, m) * sigma;
-      if (r > 0) {
-        if (ahead == kNoPlane || side(ps_, m, va) > 0) { ahead = m; va = make_vertex(ps_, h, g, m, false); }
-      } else if (r < 0) {
-        if (behind == kNoPlane || side(ps_, m, vb) > 0) { behind = m; vb = make_vertex(ps_, h, g, m, false); }
-      } else {
+      const PlaneCoef<Approx> pm = ps_.approx(m);
+      const Approx rate = filter.rate(pm);
+      int r = rate.sign();
+      if (r == 2) r = line.rate_sign(ps_, m) * sigma;  // exact; rate.v has that sign but no bound
+      if (r == 0) {
         parallel_.push_back(m);
+        continue;
       }
+      Best& best = r > 0 ? ahead : behind;
+      const Approx offset = filter.offset(pm);
+      bool take = best.plane == kNoPlane;
+      if (!take) {
+        // s (f_b(P0) a_m - f_m(P0) a_b) with s > 0: its sign orders the crossings t_m, t_b (the
+        // product of the two rates is positive on either side). m cuts first when it is < 0
+        // ahead, > 0 behind.
+        const int q = best.certain && rate.certain() ? (best.offset * rate - offset * best.rate).sign() : 2;
+        if (q != 2) take = r > 0 ? q < 0 : q > 0;
+        else take = side(ps_, m, best.vertex(ps_, h, g)) > 0;
+      }
+      if (take) best.set(m, rate, offset);
     }
-    if (ahead == kNoPlane) return false;  // unreachable: the bounding planes bound the objective
-    if (behind != kNoPlane && side(ps_, behind, va) > 0) return false;
+    if (ahead.plane == kNoPlane) return false;  // unreachable: the bounding planes bound the objective
+    const VertexGeom& va = ahead.vertex(ps_, h, g);
+    if (behind.plane != kNoPlane && side(ps_, behind.plane, va) > 0) return false;
     for (uint32_t m : parallel_)
       if (side(ps_, m, va) > 0) return false;
     out = va;
     return true;
   }
+
+  // P0 = (d_g n_h - d_h n_g) x c / s with c = n_h x n_g and s = c . c > 0 (h, g not parallel),
+  // kept homogeneous: offset(m) = s f_m(P0) = n_m . W + d_m s, rate(m) = n_m . D, D = sigma c.
+  struct CrossingFilter {
+    CrossingFilter(const PlaneCoef<Approx>& ph, const PlaneCoef<Approx>& pg, const Approx c[3], int sigma) {
+      Approx w[3];
+      for (int k = 0; k < 3; ++k) w[k] = pg.d * ph.n[k] - ph.d * pg.n[k];
+      W[0] = w[1] * c[2] - w[2] * c[1];
+      W[1] = w[2] * c[0] - w[0] * c[2];
+      W[2] = w[0] * c[1] - w[1] * c[0];
+      s = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+      for (int k = 0; k < 3; ++k) D[k] = sigma > 0 ? c[k] : -c[k];
+    }
+    Approx rate(const PlaneCoef<Approx>& pm) const { return pm.n[0] * D[0] + pm.n[1] * D[1] + pm.n[2] * D[2]; }
+    Approx offset(const PlaneCoef<Approx>& pm) const {
+      return pm.n[0] * W[0] + pm.n[1] * W[1] + pm.n[2] * W[2] + pm.d * s;
+    }
+    Approx W[3], s, D[3];
+  };
+
+  // The binding plane on one side of the line so far, its filter values, and its vertex once built.
+  struct Best {
+    uint32_t plane = kNoPlane;
+    Approx rate, offset;
+    bool certain = false;  // rate certain: the crossing comparison is usable
+    bool built = false;
+    VertexGeom v;
+    void set(uint32_t m, const Approx& r, const Approx& o) {
+      plane = m;
+      rate = r;
+      offset = o;
+      certain = r.certain();
+      built = false;
+    }
+    const VertexGeom& vertex(const PlaneSet& ps, uint32_t h, uint32_t g) {
+      if (!built) {
+        v = make_vertex(ps, h, g, plane, false);
+        built = true;
+      }
+      return v;
+    }
+  };
 
   // Optimum on plane h over cons[0..n) (cons starts with the three bounding planes).
   bool solve2(uint32_t h, const uint32_t* cons, size_t n, VertexGeom& out) {
