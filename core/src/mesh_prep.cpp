@@ -22,6 +22,7 @@ namespace {
 PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   m.error = e;
   m.message = msg;
+  m.rep = {};  // (its storage may hold the edge check's scratch)
   return std::move(m);
 }
 
@@ -72,6 +73,20 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   // is extreme in the projection, so the flips reach the outward-folded split (the upper convex
   // hull of the corners): near the polygon the triangles' half-spaces meet in the solid itself.
   // Each flip moves the surface strictly outward, so none is undone; the cap only guards the loop.
+  // The side tests are exact and costly on such nearly coplanar corners, and the sweeps meet
+  // each diagonal from both of its triangles and again on every later sweep: their results are
+  // kept. orient3d(x, y, p, q) = orient3d(y, x, q, p) (two swaps), which is how the other
+  // triangle sees the same diagonal.
+  std::vector<std::array<uint32_t, 4>> folded_in, not_folded_in;
+  auto folds_inward = [&](uint32_t x, uint32_t y, uint32_t p, uint32_t q) {
+    for (const auto& d : not_folded_in)
+      if ((d[0] == x && d[1] == y && d[2] == p && d[3] == q) || (d[0] == y && d[1] == x && d[2] == q && d[3] == p)) return false;
+    for (const auto& d : folded_in)
+      if ((d[0] == x && d[1] == y && d[2] == p && d[3] == q) || (d[0] == y && d[1] == x && d[2] == q && d[3] == p)) return true;
+    const bool inward = orient3d(P(x), P(y), P(p), P(q), exact_shift) > 0;
+    (inward ? folded_in : not_folded_in).push_back({x, y, p, q});
+    return inward;
+  };
   auto fold_outward = [&]() {
     if (k > 128) return;
     size_t flips = 0;
@@ -92,7 +107,7 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
           }
           if (j == out.size()) continue;
           const uint32_t q = out[j][(g + 2) % 3];
-          if (orient3d(P(x), P(y), P(p), P(q), exact_shift) <= 0) continue;
+          if (!folds_inward(x, y, p, q)) continue;
           const double tol = 1e-12 * (sq(x, q) + sq(q, p) + sq(p, x) + sq(q, y) + sq(y, p));
           if (!(cross(x, q, p) > tol && cross(q, y, p) > tol)) continue;
           out[i] = {x, q, p};
@@ -169,7 +184,10 @@ int lowest_bit_exponent(double x) {
 // Whether two used vertices have the same position (coordinates compared with ==, so -0 and
 // +0 are one position): a hash table of the used vertices, expected linear time. The table is
 // larger than the caches for big meshes, so slots are hashed a block ahead and prefetched.
-bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used) {
+// The same pass takes the bounding box of the used vertices, in id order (complete when the
+// answer is false).
+bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used,
+                         double lo3[3], double hi3[3]) {
   size_t bits = 1;
   while ((size_t(1) << bits) < 2 * num_used) ++bits;  // load factor <= 1/2
   const uint32_t kEmpty = 0xffffffffu;
@@ -177,10 +195,16 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
   uint32_t* table = table_store.data();
   const size_t mask = table_store.size() - 1;
   const double* P = pts.data();
+  for (int k = 0; k < 3; ++k) {
+    lo3[k] = INFINITY;
+    hi3[k] = -INFINITY;
+  }
   auto home = [&](uint32_t v) {
     const double* p = P + 3 * size_t(v);
     uint64_t h = 0;
     for (int k = 0; k < 3; ++k) {
+      lo3[k] = std::min(lo3[k], p[k]);
+      hi3[k] = std::max(hi3[k], p[k]);
       const double x = p[k] + 0.0;  // -0 + 0 = +0: equal coordinates hash alike
       uint64_t b;
       std::memcpy(&b, &x, sizeof b);
@@ -419,28 +443,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // Edge check (counting sort into the buckets, no hashing and no comparison sort). The uses of
   // the edges of one lower vertex are tallied per upper vertex, then each edge is judged once:
   // on a closed, consistently oriented 2-manifold every edge has one use each way, and its two
-  // faces are a pair. A use is stored as upper id << 32 | face.
+  // faces are a pair.
   for (size_t b = 0; b < 2 * nv; ++b) bucket[b + 1] += bucket[b];
   const uint32_t total_uses = bucket[2 * nv];
   bucket[2 * nv + 1] = total_uses;
-  // (Left uninitialized: every entry is written below.)
-  std::unique_ptr<uint64_t[]> half(new uint64_t[total_uses]);
-  {
-    // Filled backwards, each use at its bucket's end moved down by one: the buckets keep the
-    // uses in face order, and bucket[b + 1] ends at the start of bucket b (no separate cursor
-    // array). Then bucket b is [bucket[b + 1], bucket[b + 2]).
-    const uint32_t* cl = clean.data();
-    const uint32_t* off = clean_offsets.data();
-    uint32_t* cursor = bucket.data() + 1;
-    uint64_t* h = half.get();
-    for (size_t f = cf; f-- > 0;) {
-      const size_t b = off[f], e = off[f + 1];
-      for (size_t i = e; i-- > b;) {
-        const uint32_t u = cl[i], v = cl[i + 1 < e ? i + 1 : b];
-        h[--cursor[2 * size_t(std::min(u, v)) + (u < v)]] = uint64_t(std::max(u, v)) << 32 | f;
-      }
-    }
-  }
   // Faulty edges are counted; the one named is the smallest (lower id, upper id).
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
   uint64_t open_ex = UINT64_MAX, nonmanifold_ex = UINT64_MAX, inconsistent_ex = UINT64_MAX;
@@ -454,8 +460,53 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // Pairs of faces sharing an edge, by lower vertex id, then in the order of the faces using
   // the edge upwards; each pair lists its lower face first. At most one pair per two uses;
   // written through a pointer (push_back went through a stack copy, a store-forwarding stall).
-  std::vector<std::array<uint32_t, 2>> face_pairs(total_uses / 2);
+  std::vector<std::array<uint32_t, 2>> face_pairs((size_t(total_uses) + 1) / 2);
   {
+    // A use is stored as its upper vertex id and its face, in two arrays indexed alike. No
+    // fresh memory is taken for them (first touches of fresh pages are costly): the faces go
+    // into the pairs' storage, which holds one face per use, and the upper ids into the
+    // representatives' storage (written after the check) when it holds one id per use, which
+    // is when every face is a triangle. The pairs written while a lower vertex's uses are
+    // judged end before the uses not read yet (at most one pair per two uses, and each lower
+    // vertex's faces are all read, by the tally, before its first pair is written).
+    static_assert(sizeof(std::array<uint32_t, 3>) == 3 * sizeof(uint32_t), "packed representatives");
+    static_assert(sizeof(std::array<uint32_t, 2>) == 2 * sizeof(uint32_t), "packed pairs");
+    std::vector<uint32_t> upper_store;
+    uint32_t* upper;
+    if (total_uses == 3 * cf) {
+      m.rep.resize(cf);
+      upper = reinterpret_cast<uint32_t*>(m.rep.data());
+    } else {
+      upper_store.resize(total_uses);
+      upper = upper_store.data();
+    }
+    uint32_t* use_face = reinterpret_cast<uint32_t*>(face_pairs.data());
+    {
+      // Filled backwards, each use at its bucket's end moved down by one: the buckets keep the
+      // uses in face order, and bucket[b + 1] ends at the start of bucket b (no separate cursor
+      // array). Then bucket b is [bucket[b + 1], bucket[b + 2]).
+      const uint32_t* cl = clean.data();
+      const uint32_t* off = clean_offsets.data();
+      uint32_t* cursor = bucket.data() + 1;
+      auto put = [&](uint32_t u, uint32_t v, uint32_t f) {
+        const uint32_t slot = --cursor[2 * size_t(std::min(u, v)) + (u < v)];
+        upper[slot] = std::max(u, v);
+        use_face[slot] = f;
+      };
+      if (total_uses == 3 * cf) {
+        for (size_t f = cf; f-- > 0;) {
+          const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2];
+          put(c, a, uint32_t(f));
+          put(b, c, uint32_t(f));
+          put(a, b, uint32_t(f));
+        }
+      } else {
+        for (size_t f = cf; f-- > 0;) {
+          const size_t b = off[f], e = off[f + 1];
+          for (size_t i = e; i-- > b;) put(cl[i], cl[i + 1 < e ? i + 1 : b], uint32_t(f));
+        }
+      }
+    }
     struct Tally { uint32_t up = 0, down = 0, up_face = 0, down_face = 0; };
     std::vector<Tally> tally_store(nv);  // per upper vertex id; all zero between lower vertices
     Tally* tally = tally_store.data();
@@ -465,21 +516,18 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       return x;
     };
     std::array<uint32_t, 2>* pair_out = face_pairs.data();
-    const uint64_t* h = half.get();
     const uint32_t* start = bucket.data() + 1;
     for (size_t lo = 0; lo < nv; ++lo) {
-      const uint64_t* down_begin = h + start[2 * lo];
-      const uint64_t* up_begin = h + start[2 * lo + 1];
-      const uint64_t* end = h + start[2 * lo + 2];
-      for (const uint64_t* p = down_begin; p != up_begin; ++p) {
-        Tally& t = tally[*p >> 32];
+      const size_t down_begin = start[2 * lo], up_begin = start[2 * lo + 1], end = start[2 * lo + 2];
+      for (size_t j = down_begin; j != up_begin; ++j) {
+        Tally& t = tally[upper[j]];
         ++t.down;
-        t.down_face = uint32_t(*p);
+        t.down_face = use_face[j];
       }
-      for (const uint64_t* p = up_begin; p != end; ++p) {
-        Tally& t = tally[*p >> 32];
+      for (size_t j = up_begin; j != end; ++j) {
+        Tally& t = tally[upper[j]];
         ++t.up;
-        t.up_face = uint32_t(*p);
+        t.up_face = use_face[j];
       }
       // Judged at its first upward use, or first downward use if it has none; then cleared.
       auto judge = [&](uint32_t hi) {
@@ -504,12 +552,11 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         }
         t = Tally{};
       };
-      for (const uint64_t* p = up_begin; p != end; ++p) judge(uint32_t(*p >> 32));
-      for (const uint64_t* p = down_begin; p != up_begin; ++p) judge(uint32_t(*p >> 32));
+      for (size_t j = up_begin; j != end; ++j) judge(upper[j]);
+      for (size_t j = down_begin; j != up_begin; ++j) judge(upper[j]);
     }
     face_pairs.resize(size_t(pair_out - face_pairs.data()));
   }
-  half.reset();
   auto edge_name = [](uint64_t k) {
     return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";
   };
@@ -539,6 +586,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       return fail(m, Error::MultipleComponents, "the mesh has " + std::to_string(pieces) + " separate pieces; the kernel is defined for one closed surface");
     }
   }
+  double lo3[3], hi3[3];  // bounding box of the used vertices, taken with the check below
   {
     const size_t unused = nv - size_t(std::count(used.begin(), used.end(), 1));
     if (unused)
@@ -546,7 +594,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // Two distinct vertices of a closed surface at one position: the surface touches itself
     // there (it is not embedded), and the intersection of its face half-spaces is then not its
     // kernel — refused rather than answered wrongly.
-    if (has_shared_position(m.points, used, nv - unused)) {
+    if (has_shared_position(m.points, used, nv - unused, lo3, hi3)) {
       const auto pair = first_shared_position(m.points, used);
       return fail(m, Error::NonManifoldEdge,
                   "vertices " + std::to_string(pair[0]) + " and " + std::to_string(pair[1]) +
@@ -560,16 +608,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // values on that side are then >= 0 (<= 0 for a maximum), so the bound in loop order is the
   // first zero coordinate met in loop order: it is looked up there.
   {
-    double lo3[3] = {INFINITY, INFINITY, INFINITY}, hi3[3] = {-INFINITY, -INFINITY, -INFINITY};
     const double* pts = m.points.data();
-    const char* us = used.data();
-    for (size_t v = 0; v < nv; ++v) {
-      if (!us[v]) continue;
-      for (int k = 0; k < 3; ++k) {
-        lo3[k] = std::min(lo3[k], pts[3 * v + k]);
-        hi3[k] = std::max(hi3[k], pts[3 * v + k]);
-      }
-    }
     bool zero[3];
     int zeros = 0;
     for (int k = 0; k < 3; ++k) zeros += zero[k] = lo3[k] == 0 || hi3[k] == 0;
@@ -602,14 +641,42 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     for (int k = 0; k < 3; ++k) { a[k] = p0[k] - c[k]; bb[k] = p1[k] - c[k]; cc[k] = p2[k] - c[k]; }
     return a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) + a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
   };
+  // The usual leading run of the plane faces below is taken in the same pass (the points are
+  // read once): triangles that a float filter certifies as non-degenerate are kept whole with
+  // themselves as representatives, written in place (turned over below on a flip; the filter
+  // only shortcuts the exact test, so the order of the corners it sees does not matter).
   double vol6 = 0, vol6_abs = 0;
-  for (size_t f = 0; f < cf; ++f) {
-    size_t b = clean_offsets[f], e = clean_offsets[f + 1];
-    for (size_t i = b + 1; i + 1 < e; ++i) {
-      const double d = vol6_about_centre(clean[b], clean[i], clean[i + 1]);
+  m.rep.resize(cf);
+  size_t first_general = 0;  // where the leading run ends
+  {
+    std::array<uint32_t, 3>* rep_out = m.rep.data();
+    const uint32_t* cl = clean.data();
+    const uint32_t* off = clean_offsets.data();
+    const double* pts = m.points.data();
+    size_t f = 0;
+    for (; f < cf; ++f) {
+      const size_t b = off[f];
+      if (off[f + 1] - b != 3) break;
+      const uint32_t i0 = cl[b], i1 = cl[b + 1], i2 = cl[b + 2];
+      const double d = vol6_about_centre(i0, i1, i2);
       vol6 += d;
       vol6_abs += std::fabs(d);
+      if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) {
+        ++f;  // (its volume is counted)
+        break;
+      }
+      rep_out[f] = {i0, i1, i2};
+      ++first_general;
     }
+    for (; f < cf; ++f) {
+      const size_t b = off[f], e = off[f + 1];
+      for (size_t i = b + 1; i + 1 < e; ++i) {
+        const double d = vol6_about_centre(cl[b], cl[i], cl[i + 1]);
+        vol6 += d;
+        vol6_abs += std::fabs(d);
+      }
+    }
+    m.rep.resize(first_general);
   }
   // A closed surface enclosing nothing sums to zero up to rounding; anything at the rounding
   // level of the terms' magnitudes is treated as zero.
@@ -621,6 +688,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   if (flip) {
     m.warnings.push_back({Warning::Kind::OrientationFlipped, cf, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"});
     for (size_t f = 0; f < cf; ++f) std::reverse(clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
+    for (auto& t : m.rep) std::swap(t[0], t[2]);
   }
 
   // Plane-carrying faces: drop exact zero-area ones; planar polygons keep one representative
@@ -633,7 +701,6 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   size_t degenerate = 0, nonplanar = 0;
   bool renumbered = false;
   std::vector<uint32_t> face_of_clean;  // used once renumbered
-  m.rep.reserve(cf);
   auto renumber = [&](size_t f) {  // faces before f were kept whole
     if (renumbered) return;
     renumbered = true;
@@ -650,25 +717,6 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     m.rep.push_back(rep);
   };
-  // The usual leading run: triangles that a float filter certifies as non-degenerate are kept
-  // whole with themselves as representatives, written in place. The loop below takes over at
-  // the first face that is not such a triangle.
-  size_t first_general = 0;
-  {
-    m.rep.resize(cf);
-    std::array<uint32_t, 3>* rep_out = m.rep.data();
-    const uint32_t* cl = clean.data();
-    const uint32_t* off = clean_offsets.data();
-    const double* pts = m.points.data();
-    for (; first_general < cf; ++first_general) {
-      const size_t b = off[first_general];
-      if (off[first_general + 1] - b != 3) break;
-      const uint32_t i0 = cl[b], i1 = cl[b + 1], i2 = cl[b + 2];
-      if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) break;
-      rep_out[first_general] = {i0, i1, i2};
-    }
-    m.rep.resize(first_general);
-  }
   for (size_t f = first_general; f < cf; ++f) {
     const uint32_t* loop = &clean[clean_offsets[f]];
     size_t k = clean_offsets[f + 1] - clean_offsets[f];
@@ -682,8 +730,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     for (size_t i = 1; i < k; ++i) if (lex_less(P(loop[i]), P(loop[lo]))) lo = i;
     std::array<uint32_t, 3> rep = {loop[(lo + k - 1) % k], loop[lo], loop[(lo + 1) % k]};
     bool planar = !collinear(P(rep[0]), P(rep[1]), P(rep[2]), m.exact_shift);
+    // (the representative's own corners, at lo - 1, lo, lo + 1, are in its plane: not tested)
     for (size_t i = 0; i < k && planar; ++i)
-      if (orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i]), m.exact_shift) != 0) planar = false;
+      if ((i + k + 1 - lo) % k > 2 && orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i]), m.exact_shift) != 0) planar = false;
     if (planar) {
       keep_whole(f, rep);
       continue;

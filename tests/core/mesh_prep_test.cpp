@@ -1,6 +1,8 @@
 // prepare_mesh: details of the validation pass that the kernel results do not show directly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -77,6 +79,85 @@ TEST(MeshPrep, AdjacentPairsOfATetrahedron) {
   const std::vector<std::array<uint32_t, 2>> expected = {{0, 2}, {0, 1}, {1, 2}, {1, 3}, {0, 3}, {2, 3}};
   EXPECT_EQ(p.adjacent, expected);
   EXPECT_EQ(p.num_faces(), 4u);
+}
+
+// The cube with quadrilateral faces (counter-clockwise seen from outside), for the path that
+// handles faces other than triangles.
+Mesh quad_cube() {
+  Mesh m = unit_cube();
+  m.indices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
+  m.face_sizes = {4, 4, 4, 4, 4, 4};
+  return m;
+}
+
+// The pairs as specified, found by brute force: for each lower vertex, the uses running up
+// from it in face order (loop order within a face), each with the face using the edge back.
+std::vector<std::array<uint32_t, 2>> adjacent_pairs_by_definition(const PreparedMesh& p, size_t num_vertices) {
+  std::vector<std::array<uint32_t, 2>> pairs;
+  const size_t faces = p.loop_offsets.size() - 1;
+  auto for_each_use = [&](auto&& visit) {
+    for (uint32_t f = 0; f < faces; ++f) {
+      const uint32_t b = p.loop_offsets[f], e = p.loop_offsets[f + 1];
+      for (uint32_t i = b; i < e; ++i) visit(f, p.loops[i], p.loops[i + 1 < e ? i + 1 : b]);
+    }
+  };
+  for (uint32_t lo = 0; lo < num_vertices; ++lo)
+    for_each_use([&](uint32_t f, uint32_t u, uint32_t v) {
+      if (u != lo || v < lo) return;
+      for_each_use([&](uint32_t g, uint32_t x, uint32_t y) {
+        if (x == v && y == u) pairs.push_back({std::min(f, g), std::max(f, g)});
+      });
+    });
+  return pairs;
+}
+
+// The adjacent pairs follow their definition whether the faces are triangles, polygons or both
+// (the check keeps its scratch in different places for the two kinds).
+TEST(MeshPrep, AdjacentPairsOfTriangleQuadAndMixedCubes) {
+  Mesh mixed = quad_cube();
+  mixed.indices = {0, 2, 3, 0, 3, 1, 4, 5, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 1, 7, 5};
+  mixed.face_sizes = {3, 3, 4, 3, 3, 4, 4, 3, 3};
+  for (const Mesh& m : {unit_cube(), quad_cube(), mixed}) {
+    PreparedMesh p = prepare_mesh(m.view(), Options{});
+    ASSERT_EQ(p.error, Error::Ok) << p.message;
+    EXPECT_EQ(p.adjacent, adjacent_pairs_by_definition(p, 8));
+  }
+}
+
+// A mesh oriented clockwise is flipped; each triangle is then its own representative, with the
+// flipped orientation.
+TEST(MeshPrep, FlippedTrianglesAreTheirOwnRepresentatives) {
+  Mesh m = unit_cube();
+  for (size_t i = 0; i < m.indices.size(); i += 3) std::swap(m.indices[i], m.indices[i + 2]);
+  PreparedMesh p = prepare_mesh(m.view(), Options{});
+  ASSERT_EQ(p.error, Error::Ok) << p.message;
+  ASSERT_EQ(p.warnings.size(), 1u);
+  EXPECT_EQ(p.warnings[0].kind, Warning::Kind::OrientationFlipped);
+  ASSERT_EQ(p.num_faces(), 12u);
+  const Mesh cube = unit_cube();
+  for (size_t f = 0; f < 12; ++f) {
+    const std::array<uint32_t, 3> loop = {p.loops[3 * f], p.loops[3 * f + 1], p.loops[3 * f + 2]};
+    EXPECT_EQ(p.rep[f], loop);
+    // (reversing the input's reversal gives the original triangle back)
+    const std::array<uint32_t, 3> original = {cube.indices[3 * f], cube.indices[3 * f + 1], cube.indices[3 * f + 2]};
+    EXPECT_EQ(loop, original);
+  }
+}
+
+// Input refused after the edge check carries no plane faces.
+TEST(MeshPrep, RefusedMeshesHaveNoFaces) {
+  Mesh open_triangles = unit_cube();
+  open_triangles.indices.resize(open_triangles.indices.size() - 3);
+  Mesh open_quads = quad_cube();
+  open_quads.indices.resize(open_quads.indices.size() - 4);
+  open_quads.face_sizes.pop_back();
+  Mesh flat = unit_cube();
+  for (size_t v = 0; v < 8; ++v) flat.positions[3 * v + 2] = 0;
+  for (const Mesh& m : {open_triangles, open_quads, flat}) {
+    PreparedMesh p = prepare_mesh(m.view(), Options{});
+    EXPECT_NE(p.error, Error::Ok);
+    EXPECT_TRUE(p.rep.empty());
+  }
 }
 
 }  // namespace
