@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <memory>
 #include <numeric>
 #include <sstream>
+#include <utility>
 
 #include "planes.h"
 #include "union_find.h"
@@ -738,9 +738,18 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     for (size_t i = 1; i < k; ++i) if (lex_less(P(loop[i]), P(loop[lo]))) lo = i;
     std::array<uint32_t, 3> rep = {loop[(lo + k - 1) % k], loop[lo], loop[(lo + 1) % k]};
     bool planar = !collinear(P(rep[0]), P(rep[1]), P(rep[2]), m.exact_shift);
-    // (the representative's own corners, at lo - 1, lo, lo + 1, are in its plane: not tested)
+    // The representative's own corners (at lo - 1, lo, lo + 1) are in its plane, and so is a
+    // corner that shares a coordinate with all three (an axis-aligned plane): neither needs the
+    // exact test, which is slow exactly when the answer is zero.
+    bool same[3];
+    for (int c = 0; c < 3; ++c) same[c] = P(rep[0])[c] == P(rep[1])[c] && P(rep[1])[c] == P(rep[2])[c];
+    auto in_axis_plane = [&](const double* q) {
+      return (same[0] && q[0] == P(rep[0])[0]) || (same[1] && q[1] == P(rep[0])[1]) || (same[2] && q[2] == P(rep[0])[2]);
+    };
     for (size_t i = 0; i < k && planar; ++i)
-      if ((i + k + 1 - lo) % k > 2 && orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i]), m.exact_shift) != 0) planar = false;
+      if ((i + k + 1 - lo) % k > 2 && !in_axis_plane(P(loop[i])) &&
+          orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i]), m.exact_shift) != 0)
+        planar = false;
     if (planar) {
       keep_whole(f, rep);
       continue;

@@ -121,6 +121,8 @@ TEST(MeshPrep, AdjacentPairsOfTriangleQuadAndMixedCubes) {
     PreparedMesh p = prepare_mesh(m.view(), Options{});
     ASSERT_EQ(p.error, Error::Ok) << p.message;
     EXPECT_EQ(p.adjacent, adjacent_pairs_by_definition(p, 8));
+    EXPECT_TRUE(p.warnings.empty());  // (the quadrilaterals are planar: kept whole)
+    EXPECT_EQ(p.num_faces(), m.num_faces());
   }
 }
 
