@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstdint>
+#include <cstring>
 
 namespace kergen {
 namespace exact {
@@ -92,7 +94,182 @@ ApproxDD dd_difference(double a, double b) {
   return {x, y, 0};
 }
 
+#if defined(__SIZEOF_INT128__)
+// Integer stage of orient3d: the points' coordinates (or their differences) are usually integer
+// multiples of one power of two spanning at most ~60 bits, because nearby mesh coordinates share
+// a binary grid. Then the determinant is exact in fixed-width integers, several times cheaper
+// than expansions, and decides exact zeros (coplanar faces) as well as nonzero values.
+namespace {
+
+using Int128 = __int128;
+using UInt128 = unsigned __int128;
+
+// Writes x[i] = q[i] 2^L with L = highest - max_bits, where |x[i]| < 2^highest for all i < n,
+// when every q[i] is an integer (then |q[i]| < 2^max_bits); returns false otherwise (values on
+// a finer grid, non-finite values, or |x[i]| >= 2^max_bits, which does not occur for the
+// kernel's scaled points and differences, below 2).
+template <int n>
+bool to_common_grid(const double (&x)[n], int max_bits, int64_t (&q)[n]) {
+  // The largest magnitude by the bit patterns (ordered like the magnitudes they encode).
+  uint64_t max_magnitude = 0;
+  for (int i = 0; i < n; ++i) {
+    uint64_t bits;
+    std::memcpy(&bits, &x[i], sizeof bits);
+    max_magnitude = std::max(max_magnitude, bits & ~(uint64_t(1) << 63));
+  }
+  const int highest = int(max_magnitude >> 52) - 1022;  // |x[i]| < 2^highest
+  // unit = 2^(max_bits - highest) must be a normal double >= 1: then x[i] unit is exact (a
+  // power-of-two scaling up never rounds, and |x[i] unit| < 2^max_bits cannot overflow).
+  // Also excludes inf and NaN (highest 1025) and all-zero input (highest -1022, handled below).
+  const int unit_exponent = max_bits - highest;
+  if (unit_exponent < 0 || unit_exponent > 1023) {
+    if (max_magnitude != 0) return false;
+    for (int i = 0; i < n; ++i) q[i] = 0;
+    return true;
+  }
+  const uint64_t unit_bits = uint64_t(1023 + unit_exponent) << 52;
+  double unit;
+  std::memcpy(&unit, &unit_bits, sizeof unit);
+  // scaled - q[i] is the fractional part, exactly (q[i] is scaled truncated, itself a double);
+  // any nonzero one leaves bits other than the sign in the union of their bit patterns.
+  uint64_t fractions = 0;
+  for (int i = 0; i < n; ++i) {
+    const double scaled = x[i] * unit;
+    q[i] = int64_t(scaled);  // |scaled| < 2^max_bits <= 2^62 fits
+    const double fraction = scaled - double(q[i]);
+    uint64_t bits;
+    std::memcpy(&bits, &fraction, sizeof bits);
+    fractions |= bits;
+  }
+  return (fractions << 1) == 0;
+}
+
+// Full 128-bit products of 64-bit integers. WebAssembly has no 64x64->128 multiply: there
+// __int128 products become calls to a general 128x128 routine (__multi3), and four 32x32->64
+// products inline are cheaper. Signed operands by their two's complement: with
+// a = ua - 2^64 [a < 0] (ua = uint64_t(a)), a b = ua ub - 2^64 ([a < 0] ub + [b < 0] ua)
+// modulo 2^128, which is a b exactly when |a b| < 2^127 (the conversion of UInt128 to Int128
+// is modular in GCC and Clang).
+#if defined(__wasm__) || defined(KERGEN_PORTABLE_WIDE_PRODUCT)
+inline UInt128 wide_product(uint64_t a, uint64_t b) {
+  constexpr uint64_t kLow32 = 0xffffffffu;
+  const uint64_t a0 = a & kLow32, a1 = a >> 32, b0 = b & kLow32, b1 = b >> 32;
+  const uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+  const uint64_t middle = (p00 >> 32) + (p01 & kLow32) + (p10 & kLow32);  // < 3 2^32
+  const uint64_t low = (middle << 32) | (p00 & kLow32);
+  const uint64_t high = p11 + (p01 >> 32) + (p10 >> 32) + (middle >> 32);
+  return (UInt128(high) << 64) | low;
+}
+inline Int128 wide_product(int64_t a, int64_t b) {
+  const uint64_t ua = uint64_t(a), ub = uint64_t(b);
+  const uint64_t correction = (a < 0 ? ub : 0) + (b < 0 ? ua : 0);
+  return Int128(wide_product(ua, ub) - (UInt128(correction) << 64));
+}
+inline Int128 wide_product(int64_t a, uint64_t b) {  // |a b| < 2^127
+  return Int128(wide_product(uint64_t(a), b) - (UInt128(a < 0 ? b : 0) << 64));
+}
+#else
+inline Int128 wide_product(int64_t a, int64_t b) { return Int128(a) * b; }
+inline Int128 wide_product(int64_t a, uint64_t b) { return Int128(a) * Int128(b); }  // |a b| < 2^127
+#endif
+
+// Sign of det3(u, v, w) for integer rows with every |entry| < 2^62, exactly.
+// Bounds: each 2x2 minor is a difference of two products below 2^124, so below 2^125 in
+// magnitude (Int128 holds 2^127). Each term z * minor is below 2^187 and the sum below 2^189,
+// which is accumulated in 192 bits as high 2^64 + low: the minor m splits exactly into
+// m_high 2^64 + m_low with m_high = floor(m / 2^64) (|m_high| <= 2^61) and m_low in [0, 2^64);
+// z m_high is below 2^123, t = z m_low below 2^126, and t again splits into floor(t / 2^64)
+// (below 2^62) and t's low 64 bits, whose sum over three terms stays below 3 2^64 in UInt128.
+int det3_sign(const int64_t* u, const int64_t* v, const int64_t* w) {
+  auto minor = [](int64_t p1, int64_t q1, int64_t p2, int64_t q2) {  // p1 q1 - p2 q2
+    return wide_product(p1, q1) - wide_product(p2, q2);
+  };
+  // Expansion by the z column, as in stage B below.
+  const Int128 minors[3] = {minor(v[0], w[1], w[0], v[1]), minor(w[0], u[1], u[0], w[1]),
+                            minor(u[0], v[1], v[0], u[1])};
+  const int64_t z[3] = {u[2], v[2], w[2]};
+  Int128 high = 0;  // the determinant is high 2^64 + low
+  UInt128 low = 0;
+  for (int k = 0; k < 3; ++k) {
+    // >> on a negative Int128 is an arithmetic shift (floor) in GCC and Clang, as in C++20.
+    const int64_t m_high = int64_t(minors[k] >> 64);
+    const uint64_t m_low = uint64_t(minors[k]);
+    const Int128 t = wide_product(z[k], m_low);
+    high += wide_product(z[k], m_high) + (t >> 64);
+    low += uint64_t(t);
+  }
+  high += Int128(low >> 64);
+  if (high != 0) return high > 0 ? 1 : -1;
+  return uint64_t(low) != 0 ? 1 : 0;  // high == 0: the determinant is low's 64 bits, >= 0
+}
+
+}  // namespace
+#endif
+
+int orient3d_integer(const double* a, const double* b, const double* c, const double* p) {
+#if defined(__SIZEOF_INT128__)
+  // First the coordinates, when they share a grid of at most 61 bits (their differences then
+  // stay below 2^62): nearly all calls on meshes, as the kernel's coordinates are below 1 and
+  // not much finer than the input's. Else a grid of 62 bits, when the differences happen to stay
+  // below 2^62 (they are below 2^63, no overflow). Else the differences, when they are exact in
+  // double and share a grid of at most 62 bits (nearby points far from the origin).
+  const double x[12] = {a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], p[0], p[1], p[2]};
+  int64_t q[12], u[3], v[3], w[3];
+  auto differences = [&] {
+    for (int k = 0; k < 3; ++k) {
+      u[k] = q[3 + k] - q[k];
+      v[k] = q[6 + k] - q[k];
+      w[k] = q[9 + k] - q[k];
+    }
+  };
+  if (to_common_grid(x, 61, q)) {
+    differences();
+    return det3_sign(u, v, w);
+  }
+  if (to_common_grid(x, 62, q)) {
+    differences();
+    constexpr int64_t kLimit = int64_t(1) << 62;
+    bool small = true;
+    for (int k = 0; k < 3; ++k) {
+      small &= u[k] > -kLimit && u[k] < kLimit && v[k] > -kLimit && v[k] < kLimit;
+      small &= w[k] > -kLimit && w[k] < kLimit;
+    }
+    if (small) return det3_sign(u, v, w);
+  }
+  double d[9];
+  bool exact_differences = true;
+  for (int k = 0; k < 3; ++k) {
+    double tail_u, tail_v, tail_w;
+    two_sum(b[k], -a[k], d[k], tail_u);
+    two_sum(c[k], -a[k], d[3 + k], tail_v);
+    two_sum(p[k], -a[k], d[6 + k], tail_w);
+    exact_differences &= tail_u == 0 && tail_v == 0 && tail_w == 0;
+  }
+  int64_t e[9];
+  if (exact_differences && to_common_grid(d, 62, e)) return det3_sign(e, e + 3, e + 6);
+#else
+  (void)a, (void)b, (void)c, (void)p;
+#endif
+  return 2;
+}
+
+// Where the integer stage goes: natively first, as it costs less than half of stage B (x86-64
+// callgrind, princeton/325.off: ~375 instructions per call against ~810). In WebAssembly the
+// 128-bit products are emulated (four 64-bit multiplies each) and the integer stage costs more
+// than stage B on exact differences (V8 x86-64 code: ~1250 instructions against ~950 per call
+// on 325.off), so there it only replaces stages B and C for inexact differences (~1300-1700,
+// and often the caller's full expansion formula after them).
+#if defined(__wasm__) || defined(KERGEN_INTEGER_STAGE_AFTER_EXACT_DIFFERENCES)
+constexpr bool kIntegerStageFirst = false;
+#else
+constexpr bool kIntegerStageFirst = true;
+#endif
+
 int orient3d_adaptive(const double* a, const double* b, const double* c, const double* p) {
+  if (kIntegerStageFirst) {
+    const int integer_sign = orient3d_integer(a, b, c, p);
+    if (integer_sign != 2) return integer_sign;
+  }
   // Shewchuk's orient3dadapt (1997, section 4.3), stages B and C, with his variables: the rows
   // u = b - a, v = c - a, w = p - a are his (ad, bd, cd), so det3(u, v, w) is his determinant.
   double u[3], v[3], w[3], ut[3], vt[3], wt[3];
@@ -102,6 +279,10 @@ int orient3d_adaptive(const double* a, const double* b, const double* c, const d
     two_sum(c[k], -a[k], v[k], vt[k]);
     two_sum(p[k], -a[k], w[k], wt[k]);
     exact_differences &= ut[k] == 0 && vt[k] == 0 && wt[k] == 0;
+  }
+  if (!kIntegerStageFirst && !exact_differences) {
+    const int integer_sign = orient3d_integer(a, b, c, p);
+    if (integer_sign != 2) return integer_sign;
   }
   // Stage B: the determinant of the rounded differences, exactly, by the z column:
   // u_z (v_x w_y - w_x v_y) + v_z (w_x u_y - u_x w_y) + w_z (u_x v_y - v_x u_y), each minor an

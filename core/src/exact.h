@@ -141,10 +141,18 @@ inline Approx operator/(Approx a, Approx b) {
   return {x, e * kBoundScale * kBoundScale + kUnderflowFloor};
 }
 
-// Sign of det3(b - a, c - a, p - a) by Shewchuk's adaptive stages B and C: exact when every
-// coordinate difference is exact in double (nearby points), else certified by the two error
-// bounds; 2 when neither decides (exact zeros, mostly: use the full exact formula). Inputs are
-// the scaled points (no underflow in the products, see PreparedMesh::exact_shift).
+// Sign of det3(b - a, c - a, p - a) exactly in 64/128-bit integers, when the coordinates (or
+// else the differences, exact in double) are integer multiples of 2^-61 or 2^-62 times the
+// power of two just above the largest of them (the latter with differences of the integers
+// below 2^62), and below 2^62 in magnitude: nearly always on meshes. 2 when they are not (or
+// without __int128).
+int orient3d_integer(const double* a, const double* b, const double* c, const double* p);
+
+// Sign of det3(b - a, c - a, p - a): orient3d_integer (in WebAssembly only for inexact
+// differences, see exact.cpp), else Shewchuk's adaptive stages B and C:
+// exact when every coordinate difference is exact in double (nearby points), else certified by
+// the two error bounds; 2 when neither decides (use the full exact formula). Inputs are the
+// scaled points (no underflow in the products, see PreparedMesh::exact_shift).
 int orient3d_adaptive(const double* a, const double* b, const double* c, const double* p);
 
 // Double-double with a rigorous error bound: |(hi + lo) - exact| <= e. A second filter stage
