@@ -99,7 +99,7 @@ class SeidelLp {
       const PlaneCoef<Approx> pm = ps_.approx(m);
       const Approx rate = filter.rate(pm);
       int r = rate.sign();
-      if (r == 2) r = line.rate_sign(ps_, m) * sigma;  // exact; rate.v has that sign but no bound
+      if (r == 2) r = line.rate_sign(ps_, m) * sigma;  // undecided by the filter: the exact sign
       if (r == 0) {
         parallel_.push_back(m);
         continue;
