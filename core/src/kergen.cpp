@@ -206,7 +206,11 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     out.type = KernelType::Unbounded;
   } else {
     out.has_kernel_point = true;
-    for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(s.lp.vertex.x[k].v, unscale_exp);
+    // Rounded to nearest like the output vertices (so it is one of them, bit for bit), not the
+    // filter's value, whose last bits depend on which of the planes through it the LP ended on.
+    double hi[3], lo[3];
+    precise_coordinates(*s.planes, s.lp.vertex, hi, lo);
+    for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(hi[k], unscale_exp);
 
     auto t = Clock::now();
     uint64_t steps = 0;
@@ -294,7 +298,9 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
   }
   if (s.lp.outcome == LpResult::Outcome::Optimal) {
     r.star_shaped = true;
-    for (int k = 0; k < 3; ++k) r.point[k] = s.mesh.to_input(s.lp.vertex.x[k].v);
+    double hi[3], lo[3];
+    precise_coordinates(*s.planes, s.lp.vertex, hi, lo);  // rounded to nearest, as compute_kernel's
+    for (int k = 0; k < 3; ++k) r.point[k] = s.mesh.to_input(hi[k]);
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     r.star_shaped = true;  // non-empty but unbounded (open input)
   }
