@@ -267,10 +267,9 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
       std::vector<uint32_t> cons(bounds, bounds + 3);
       std::vector<uint32_t> order = subset;
       shuffle(order, s);
-      // The planes facing the objective most directly go first (they usually hold the optimum,
-      // after which the rest violate nothing); the random order of the rest keeps the expected
-      // linear time.
-      // (The top few by one scan; the others keep their shuffled order.)
+      // The planes facing the objective most directly go first, found in one scan (they usually
+      // hold the optimum, after which the rest violate nothing); the others keep their shuffled
+      // order, and with it the expected linear time.
       std::vector<std::pair<double, size_t>> top;  // (facing, position in order), best first
       for (size_t i = 0; i < order.size(); ++i) {
         const std::pair<double, size_t> x{facing(order[i]), i};
