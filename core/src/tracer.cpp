@@ -376,7 +376,7 @@ class Tracer {
     // (by sorted triple index; 2 = not known yet). At a degenerate vertex (nearly coplanar planes
     // of a split polygon) many of these signs need the exact fallback.
     const size_t n = G.size();
-    const bool keep = n <= kMaxKeptTight;
+    const bool keep = n >= 3 && n <= kMaxKeptTight;  // (a vertex has at least three)
     if (keep) triple_sign_.assign(n * (n - 1) * (n - 2) / 6, 2);
     for (size_t i = 0; i < n; ++i)
       for (size_t j = i + 1; j < n; ++j) {
