@@ -99,7 +99,7 @@ class SeidelLp {
       const PlaneCoef<Approx> pm = ps_.approx(m);
       const Approx rate = filter.rate(pm);
       int r = rate.sign();
-      if (r == 2) r = line.rate_sign(ps_, m) * sigma;  // undecided by the filter: the exact sign
+      if (r == 2) r = sign_det3_normals(ps_, m, h, g) * sigma;  // rate_sign's exact fallback (its filter is the one above)
       if (r == 0) {
         parallel_.push_back(m);
         continue;
