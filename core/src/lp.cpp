@@ -7,6 +7,8 @@
 // bounded; their corner is the optimum of the empty constraint set.
 #include "lp.h"
 
+#include "lp_hint.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -240,7 +242,6 @@ void violated_planes(const PlaneSet& ps, const std::vector<uint32_t>& planes, co
 }
 
 constexpr size_t kSamplingThreshold = 2000;
-constexpr size_t kFacingFirst = 8;  // planes moved to the front of each LP run
 
 }  // namespace
 
@@ -255,33 +256,18 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
   LpResult r;
   {
     SeidelLp lp(ps, direction, bounds);
-    // cos of the angle between a plane's outward normal and the objective (doubles: a heuristic)
-    const double dlen = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
-    auto facing = [&](uint32_t p) {
-      const double n[3] = {ps.nx()[p], ps.ny()[p], ps.nz()[p]};
-      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * dlen;
-      const double c = (n[0] * direction[0] + n[1] * direction[1] + n[2] * direction[2]) / len;
-      return c == c ? c : -2.0;  // NaN (zero normal, not expected) last
-    };
     auto run = [&](const std::vector<uint32_t>& subset, uint64_t s) {
       std::vector<uint32_t> cons(bounds, bounds + 3);
       std::vector<uint32_t> order = subset;
       shuffle(order, s);
-      // The planes facing the objective most directly go first, found in one scan (they usually
-      // hold the optimum, after which the rest violate nothing); the others keep their shuffled
-      // order, and with it the expected linear time.
-      std::vector<std::pair<double, size_t>> top;  // (facing, position in order), best first
-      for (size_t i = 0; i < order.size(); ++i) {
-        const std::pair<double, size_t> x{facing(order[i]), i};
-        if (!top.empty() && top.size() == kFacingFirst && x.first <= top.back().first) continue;
-        auto at = std::upper_bound(top.begin(), top.end(), x, [](const auto& a, const auto& b) { return a.first > b.first; });
-        top.insert(at, x);
-        if (top.size() > kFacingFirst) top.pop_back();
-      }
       std::vector<char> moved(order.size(), 0);
-      for (const auto& t : top) {
-        cons.push_back(order[t.second]);
-        moved[t.second] = 1;
+      // A double-precision run's basis (or conflict) goes first: the exact run then builds the
+      // optimum about once instead of once per violation. The rest keep their shuffled order,
+      // and with it the expected linear time whatever the guess.
+      const LpHint hint = float_lp_hint(ps, order.data(), order.size(), direction, bound);
+      for (int k = 0; k < hint.count; ++k) {
+        cons.push_back(order[hint.position[k]]);
+        moved[hint.position[k]] = 1;
       }
       for (size_t i = 0; i < order.size(); ++i)
         if (!moved[i]) cons.push_back(order[i]);
