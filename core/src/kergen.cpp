@@ -109,6 +109,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   std::vector<uint32_t> face_plane;
   build_planes(s.mesh, *s.planes, face_plane);
   stats.distinct_planes = s.planes->size();
+  s.active.reserve(s.planes->size() + 6);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
   for (int k = 0; k < 3; ++k) s.center[k] = 0.5 * (s.mesh.bbox_min[k] + s.mesh.bbox_max[k]);
   // A box twice the size of the data (scaled coordinates are below 1): it bounds what an open
@@ -224,6 +225,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       for (int k = 0; k < 3; ++k) topt.from[k] = s.mesh.to_scaled(options.from[k]);
     }
     std::vector<uint32_t> mesh_planes;
+    mesh_planes.reserve(s.planes->size());
     for (uint32_t i = 0; i < s.planes->size(); ++i)
       if (!s.is_box[i]) mesh_planes.push_back(i);
     CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);

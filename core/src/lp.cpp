@@ -257,7 +257,9 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
   {
     SeidelLp lp(ps, direction, bounds);
     auto run = [&](const std::vector<uint32_t>& subset, uint64_t s) {
-      std::vector<uint32_t> cons(bounds, bounds + 3);
+      std::vector<uint32_t> cons;
+      cons.reserve(subset.size() + 3);
+      cons.assign(bounds, bounds + 3);
       std::vector<uint32_t> order = subset;
       shuffle(order, s);
       std::vector<char> moved(order.size(), 0);

@@ -28,7 +28,11 @@ double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * 
 
 class FloatSeidel {
  public:
-  FloatSeidel(const double dir[3], double bound) {
+  FloatSeidel(const double dir[3], double bound, size_t n) {
+    pl_.reserve(n + 3);
+    ax_.reserve(n + 3);
+    ay_.reserve(n + 3);
+    b_.reserve(n + 3);
     for (int k = 0; k < 3; ++k) s_[k] = dir[k] < 0 ? -1.0 : 1.0;
     const double len = std::sqrt(dot3(dir, dir));
     for (int k = 0; k < 3; ++k) c_[k] = len > 0 ? dir[k] / len : s_[k];
@@ -153,7 +157,7 @@ class FloatSeidel {
 
 LpHint float_lp_hint(const PlaneSet& ps, const uint32_t* planes, size_t n, const double direction[3], double bound) {
   LpHint hint;
-  FloatSeidel lp(direction, bound);
+  FloatSeidel lp(direction, bound, n);
   for (size_t i = 0; i < n; ++i) {
     const uint32_t p = planes[i];
     const double nv[3] = {ps.nx()[p], ps.ny()[p], ps.nz()[p]};

@@ -80,6 +80,7 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   }
   // Facets: planes holding three or more edges (the flat plane alone for a polygon), increasing.
   std::vector<std::pair<uint32_t, uint32_t>> facets;  // [begin, end) in grouped
+  facets.reserve(grouped.size() / 3 + 1);  // (each has three edges or more)
   size_t corners = 0;
   for (uint32_t i = 0, j; i < grouped.size(); i = j) {
     for (j = i; j < grouped.size() && grouped[j].h == grouped[i].h; ++j) {}
@@ -94,6 +95,8 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
 
   bool announce = true, ok = true;
   std::vector<uint32_t> next(V, kNoPlane), touched, loop;
+  touched.reserve(V);
+  loop.reserve(V);
   for (const auto& [begin, end] : facets) {
     const uint32_t h = grouped[begin].h;
     touched.clear();

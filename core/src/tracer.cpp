@@ -241,10 +241,25 @@ class Tracer {
     on_tail_.assign(active.size(), kNoPlane);
     slot_.assign(ps.size(), kNoPlane);
     for (size_t i = 0; i < active.size(); ++i) slot_[active[i]] = uint32_t(i);
+    // Room for a small kernel up front (every call starts with empty vectors, and growing them
+    // step by step was a tenth of the allocations on small meshes); large ones grow as needed.
+    constexpr size_t kVertices = 32;
+    res_.vertices.reserve(kVertices);
+    res_.edges.reserve(3 * kVertices / 2);
+    on_vertex_.reserve(3 * kVertices);
+    on_next_.reserve(3 * kVertices);
+    rays_.reserve(3 * kVertices);
+    line_pool_.reserve(6 * kVertices);
+    tight_.reserve(16);
+    line_.reserve(16);
+    cand_.reserve(16);
+    std::vector<std::pair<double, uint32_t>> queued;
+    queued.reserve(3 * kVertices);
+    queue_ = decltype(queue_)(std::greater<>(), std::move(queued));
   }
 
   TraceResult run(const VertexGeom& start) {
-    std::vector<uint32_t> tight;
+    std::vector<uint32_t>& tight = tight_;
     if (certify(start, tight) != kNoPlane) {
       res_.internal_error = true;
       return std::move(res_);
