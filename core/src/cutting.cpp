@@ -20,7 +20,7 @@ namespace {
 
 enum : int8_t { kUnseen = 0, kInside = 1, kOn = 2, kOutside = 3 };
 
-void insert_sorted(std::vector<uint32_t>& v, uint32_t x) {
+void insert_sorted(PlaneIds& v, uint32_t x) {
   auto it = std::lower_bound(v.begin(), v.end(), x);
   if (it == v.end() || *it != x) v.insert(it, x);
 }
@@ -249,7 +249,7 @@ class Cutter {
   std::vector<TracedVertex> vertices_;
   std::vector<TracedEdge> edges_;
   std::vector<char> alive_v_, alive_e_;
-  std::vector<std::vector<uint32_t>> adj_;  // edge ids per vertex
+  std::vector<SmallVector<uint32_t, 4>> adj_;  // edge ids per vertex (three at a simple vertex)
   std::vector<double> xyz_;
   std::vector<uint32_t> replaced_by_;       // a cut point of the cut that removed the vertex
   std::vector<int8_t> state_;

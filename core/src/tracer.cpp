@@ -107,7 +107,8 @@ struct Ray {
   uint64_t key;
 };
 
-uint64_t line_key(const PlaneSet& ps, const std::vector<uint32_t>& planes) {
+template <class Ids>
+uint64_t line_key(const PlaneSet& ps, const Ids& planes) {
   // Two non-parallel planes determine the line; among planes through one line the only
   // parallel pairs are opposite planes. Canonical choice: the smallest id and the smallest
   // id that is neither it nor its opposite.
@@ -123,7 +124,8 @@ uint64_t line_key(const PlaneSet& ps, const std::vector<uint32_t>& planes) {
 // whose node and key copies were a large part of tracing a small kernel.
 class VertexIndex {
  public:
-  uint32_t find(const std::vector<uint32_t>& tight, const std::vector<TracedVertex>& vertices) const {
+  template <class Ids>
+  uint32_t find(const Ids& tight, const std::vector<TracedVertex>& vertices) const {
     if (slots_.empty()) return kNoPlane;
     const uint64_t h = hash(tight);
     for (size_t i = h & mask_;; i = (i + 1) & mask_) {
@@ -133,7 +135,8 @@ class VertexIndex {
     }
   }
   // The caller guarantees that no vertex with this tight set is indexed yet.
-  void insert(const std::vector<uint32_t>& tight, uint32_t id) {
+  template <class Ids>
+  void insert(const Ids& tight, uint32_t id) {
     if (2 * (size_ + 1) > slots_.size()) grow();
     place({hash(tight), id});
     ++size_;
@@ -144,7 +147,8 @@ class VertexIndex {
     uint64_t hash;
     uint32_t id;
   };
-  static uint64_t hash(const std::vector<uint32_t>& tight) {
+  template <class Ids>
+  static uint64_t hash(const Ids& tight) {
     uint64_t h = 0x9E3779B97F4A7C15ull ^ tight.size();
     for (uint32_t l : tight) h = (h ^ l) * 0xff51afd7ed558ccdull;
     return h ^ (h >> 29);
@@ -290,8 +294,8 @@ class Tracer {
         if (sgn == 0) tight_added[v].push_back(added[i]);
       }
       if (!survives) continue;
-      std::vector<uint32_t> tight = tv.tight;
-      tight.insert(tight.end(), tight_added[v].begin(), tight_added[v].end());
+      PlaneIds tight = tv.tight;
+      for (uint32_t l : tight_added[v]) tight.push_back(l);
       std::sort(tight.begin(), tight.end());
       std::sort(tight_added[v].begin(), tight_added[v].end());
       new_id[v] = uint32_t(res_.vertices.size());
@@ -382,7 +386,7 @@ class Tracer {
   }
 
   void queue_rays(uint32_t v) {
-    const std::vector<uint32_t>& G = res_.vertices[v].tight;
+    const PlaneIds& G = res_.vertices[v].tight;
     seen_.clear();  // keys queued from this vertex (a handful: a linear search beats a hash set)
     std::vector<int>& s = rate_;
     s.assign(G.size(), 0);

@@ -9,19 +9,23 @@
 
 #include "kergen/kergen.h"
 #include "planes.h"
+#include "small_vector.h"
 
 namespace kergen {
 
+// Planes through a vertex or along an edge: three or two, a few more at degenerate corners.
+using PlaneIds = SmallVector<uint32_t, 6>;
+
 struct TracedVertex {
   VertexGeom geom;
-  std::vector<uint32_t> tight;  // every plane through the vertex, sorted (its identity)
+  PlaneIds tight;  // every plane through the vertex, sorted (its identity)
 };
 
 struct TracedEdge {
   uint32_t a = 0, b = 0;       // traced from a to b
   uint32_t p = 0, q = 0;       // the direction is sigma * (n_p x n_q)
   int sigma = 1;
-  std::vector<uint32_t> planes;  // every plane containing the edge, sorted
+  PlaneIds planes;  // every plane containing the edge, sorted
 };
 
 struct TraceResult {

@@ -27,10 +27,11 @@ struct Canonical {
 
 Canonical canonical(const TraceResult& t) {
   Canonical c;
-  for (const auto& v : t.vertices) c.vertices.insert(v.tight);
+  auto ids = [](const PlaneIds& p) { return Tight(p.begin(), p.end()); };
+  for (const auto& v : t.vertices) c.vertices.insert(ids(v.tight));
   for (const auto& e : t.edges) {
-    const Tight &a = t.vertices[e.a].tight, &b = t.vertices[e.b].tight;
-    c.edges.insert({std::min(a, b), std::max(a, b), e.planes});
+    const Tight a = ids(t.vertices[e.a].tight), b = ids(t.vertices[e.b].tight);
+    c.edges.insert({std::min(a, b), std::max(a, b), ids(e.planes)});
   }
   return c;
 }
