@@ -8,6 +8,7 @@
 #include "lp.h"
 
 #include "lp_hint.h"
+#include "vertex_filter.h"
 
 #include <algorithm>
 #include <cassert>
@@ -225,19 +226,11 @@ namespace {
 void violated_planes(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<char>& skip,
                      const VertexGeom& v, std::vector<uint32_t>& out) {
   out.clear();
-  double xm = 0, dx = 0;
-  for (int k = 0; k < 3; ++k) { xm = std::max(xm, std::fabs(v.x[k].v)); dx = std::max(dx, v.x[k].e); }
-  const double c1 = (xm + 2 * dx) * exact::kBoundScale, c2 = (dx + 4 * exact::kEps * xm) * exact::kBoundScale;
-  const double x = v.x[0].v, y = v.x[1].v, z = v.x[2].v;
+  const VertexFilter filter(v);
   for (uint32_t l : planes) {
     if (skip[l]) continue;
-    auto c = ps.approx(l);
-    double f = c.n[0].v * x + c.n[1].v * y + c.n[2].v * z + c.d.v;
-    double b = (c.n[0].e + c.n[1].e + c.n[2].e) * c1 +
-               (std::fabs(c.n[0].v) + std::fabs(c.n[1].v) + std::fabs(c.n[2].v)) * c2 + c.d.e +
-               4 * exact::kEps * std::fabs(c.d.v) + exact::kUnderflowFloor;
-    if (f < -b * exact::kBoundScale) continue;
-    if (f > b * exact::kBoundScale || side(ps, l, v) > 0) out.push_back(l);
+    const int s = filter.sign(ps.approx(l));
+    if (s > 0 || (s == 0 && side(ps, l, v) > 0)) out.push_back(l);
   }
 }
 
