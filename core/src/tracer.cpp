@@ -9,9 +9,8 @@
 //    set or a plane that cuts the segment earlier, which becomes the next candidate.
 #include "tracer.h"
 
-#include "vertex_filter.h"
-
 #include "flat_set.h"
+#include "vertex_filter.h"
 
 #include <algorithm>
 #include <cmath>
