@@ -194,6 +194,10 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   // Loads a few iterations ahead are prefetched: the loops below are bound by cache misses on
   // keys and table slots of faces spread over the mesh.
   constexpr size_t kAhead = 8;
+  // The plane arrays outlive everything below: reserved first (at most one plane per face, +16
+  // for the few planes callers add afterwards, such as a bounding box), they sit below this
+  // function's temporaries in the heap, whose space later phases then reuse.
+  ps.reserve(first_plane + nf + 16);
   // (The planes' coefficients are not kept: recomputing them for the class representatives costs
   // less than writing and reading them back for every face.)
   std::vector<Key> key;
@@ -229,23 +233,37 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   for (const auto& pr : apart) distinct.insert(pair_key(uf.find(pr[0]), uf.find(pr[1])));
 
   // 2. Class representatives (the smallest face of each union) in face order, matched through
-  //    the cell table; a new plane takes the representative's triangle.
-  std::vector<uint32_t> roots;
-  for (uint32_t f = 0; f < nf; ++f)
-    if (uf.find(f) == f) roots.push_back(f);
-  std::vector<uint64_t> root_hash(roots.size());
-  for (size_t i = 0; i < roots.size(); ++i) root_hash[i] = primary_hash(key[roots[i]]);
-  std::vector<uint32_t> class_plane(nf, kNoPlane);
+  //    the cell table; a new plane takes the representative's triangle. face_plane holds each
+  //    representative's plane as soon as it is matched, so every other face (larger than its
+  //    representative) takes it in the same pass.
+  face_plane.resize(nf);
   std::vector<uint32_t> plane_face;  // plane - first_plane -> face whose triangle defines it
   std::vector<uint32_t> next;        // chain links, by plane - first_plane
-  plane_face.reserve(roots.size());
-  next.reserve(roots.size());
-  // (+16: room for the few planes callers add afterwards, such as a bounding box.)
-  ps.reserve(first_plane + roots.size() + 16);
-  CellTable table(roots.size());
-  for (size_t i = 0; i < roots.size(); ++i) {
-    if (i + kAhead < roots.size()) table.prefetch(root_hash[i + kAhead]);
-    const uint32_t f = roots[i];
+  std::vector<std::array<uint32_t, 2>> opposites;
+  size_t num_roots = 0;
+  for (uint32_t f = 0; f < nf; ++f) num_roots += uf.parent[f] == f;
+  plane_face.reserve(num_roots);
+  next.reserve(num_roots);
+  CellTable table(num_roots);
+  // The table slots of the next kAhead representatives are prefetched; their hashes wait in a
+  // ring until used.
+  uint64_t ahead_hash[kAhead];
+  uint32_t scan = 0;  // first face not yet looked at for prefetching
+  auto prefetch_next = [&](size_t slot) {
+    while (scan < nf && uf.parent[scan] != scan) ++scan;
+    if (scan == nf) return;
+    ahead_hash[slot] = primary_hash(key[scan++]);
+    table.prefetch(ahead_hash[slot]);
+  };
+  for (size_t i = 0; i < kAhead; ++i) prefetch_next(i);
+  size_t root_index = 0;
+  for (uint32_t f = 0; f < nf; ++f) {
+    if (uf.parent[f] != f) {
+      face_plane[f] = face_plane[uf.find(f)];
+      continue;
+    }
+    const uint64_t hash = ahead_hash[root_index % kAhead];
+    prefetch_next(root_index++ % kAhead);
     const auto& r = m.rep[f];
     const Key& k = key[f];
     uint32_t found = kNoPlane, opposite = kNoPlane;
@@ -259,17 +277,17 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
       }
     });
     if (found != kNoPlane) {
-      class_plane[f] = found;
+      face_plane[f] = found;
       continue;
     }
-    const uint32_t id = ps.add_from_points(r[0], r[1], r[2]);
-    class_plane[f] = id;
+    const uint32_t id = first_plane + uint32_t(plane_face.size());
+    face_plane[f] = id;
     plane_face.push_back(f);
-    next.push_back(table.push(root_hash[i], id));
-    if (opposite != kNoPlane) ps.set_opposite(opposite, id);
+    next.push_back(table.push(hash, id));
+    if (opposite != kNoPlane) opposites.push_back({opposite, id});
   }
-  face_plane.resize(nf);
-  for (uint32_t f = 0; f < nf; ++f) face_plane[f] = class_plane[uf.find(f)];
+  ps.add_from_triangles(m.rep.data(), plane_face.data(), plane_face.size(), 16);
+  for (const auto& o : opposites) ps.set_opposite(o[0], o[1]);
 
   // 3. Incidence.
   set_face_incidence(m, ps, face_plane);
@@ -282,16 +300,16 @@ void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<u
   //  c. each plane's points by transposing b point by point: sorted and unique by construction.
   const size_t nf = m.num_faces();
   const size_t np = ps.size(), nv = m.points.size() / 3;
-  auto prefix_sum = [](std::vector<uint32_t>& off) {
+  auto prefix_sum = [](RawVector<uint32_t>& off) {
     for (size_t i = 1; i < off.size(); ++i) off[i] += off[i - 1];
   };
   // a.
-  std::vector<uint32_t> point_off(nv + 1, 0);
+  RawVector<uint32_t> point_off(nv + 1, 0);
   for (uint32_t i = 0; i < m.loop_offsets[nf]; ++i) point_off[m.loops[i] + 1]++;
   prefix_sum(point_off);
-  std::vector<uint32_t> point_pls(point_off[nv]);
+  RawVector<uint32_t> point_pls(point_off[nv]);
   {
-    std::vector<uint32_t> fill(point_off.begin(), point_off.end() - 1);
+    RawVector<uint32_t> fill(point_off.begin(), point_off.end() - 1);
     for (uint32_t f = 0; f < nf; ++f)
       for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) point_pls[fill[m.loops[i]]++] = face_plane[f];
   }
@@ -315,12 +333,12 @@ void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<u
   point_off[nv] = out;
   point_pls.resize(out);
   // c.
-  std::vector<uint32_t> plane_off(np + 1, 0);
+  RawVector<uint32_t> plane_off(np + 1, 0);
   for (uint32_t p : point_pls) plane_off[p + 1]++;
   prefix_sum(plane_off);
-  std::vector<uint32_t> plane_pts(plane_off[np]);
+  RawVector<uint32_t> plane_pts(plane_off[np]);
   {
-    std::vector<uint32_t> fill(plane_off.begin(), plane_off.end() - 1);
+    RawVector<uint32_t> fill(plane_off.begin(), plane_off.end() - 1);
     for (uint32_t v = 0; v < nv; ++v)
       for (uint32_t i = point_off[v]; i < point_off[v + 1]; ++i) plane_pts[fill[point_pls[i]]++] = v;
   }

@@ -103,16 +103,27 @@ struct Scaled {
 }  // namespace
 
 uint32_t PlaneSet::add_from_points(uint32_t a, uint32_t b, uint32_t c) {
-  const PlaneCoef<Approx> p = plane_from_points<Approx>(point(a), point(b), point(c));
-  rep_.push_back({a, b, c});
-  nx_.push_back(p.n[0].v); enx_.push_back(p.n[0].e);
-  ny_.push_back(p.n[1].v); eny_.push_back(p.n[1].e);
-  nz_.push_back(p.n[2].v); enz_.push_back(p.n[2].e);
-  d_.push_back(p.d.v); ed_.push_back(p.d.e);
-  opposite_.push_back(kNoPlane);
-  exact_.emplace_back();
-  dd_.emplace_back();
+  const std::array<uint32_t, 3> t = {a, b, c};
+  const uint32_t which = 0;
+  add_from_triangles(&t, &which, 1, 0);
   return uint32_t(size() - 1);
+}
+
+void PlaneSet::add_from_triangles(const std::array<uint32_t, 3>* tri, const uint32_t* which, size_t n, size_t spare) {
+  const size_t first = size();
+  if (first + n + spare > rep_.capacity()) reserve(std::max(first + n + spare, 2 * rep_.capacity()));
+  resize(first + n);
+  for (size_t k = 0; k < n; ++k) {
+    const std::array<uint32_t, 3>& t = tri[which[k]];
+    const PlaneCoef<Approx> p = plane_from_points<Approx>(point(t[0]), point(t[1]), point(t[2]));
+    const size_t i = first + k;
+    rep_[i] = t;
+    nx_[i] = p.n[0].v; enx_[i] = p.n[0].e;
+    ny_[i] = p.n[1].v; eny_[i] = p.n[1].e;
+    nz_[i] = p.n[2].v; enz_[i] = p.n[2].e;
+    d_[i] = p.d.v; ed_[i] = p.d.e;
+    opposite_[i] = kNoPlane;
+  }
 }
 
 uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
@@ -122,22 +133,22 @@ uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
   nz_.push_back(nz); enz_.push_back(0);
   d_.push_back(d); ed_.push_back(0);
   opposite_.push_back(kNoPlane);
-  exact_.emplace_back();
-  dd_.emplace_back();
   return uint32_t(size() - 1);
 }
 
 void PlaneSet::pop_last() {
+  const uint32_t i = uint32_t(size() - 1);
   rep_.pop_back();
   nx_.pop_back(); ny_.pop_back(); nz_.pop_back(); d_.pop_back();
   enx_.pop_back(); eny_.pop_back(); enz_.pop_back(); ed_.pop_back();
   opposite_.pop_back();
-  exact_.pop_back();
-  dd_.pop_back();
+  exact_.erase(i);
+  dd_.erase(i);
 }
 
 const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
-  if (!exact_[i]) {
+  if (const PlaneCoef<Expansion>* cached = exact_.find(i)) return *cached;
+  {
     auto p = std::make_unique<PlaneCoef<Expansion>>();
     if (explicit_plane(i)) {
       // n . x + d = 0 in coordinates times 2^shift: n . x' + 2^shift d = 0.
@@ -149,13 +160,12 @@ const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
       for (auto& c : p->n) c.compress();
       p->d.compress();
     }
-    exact_[i] = std::move(p);
+    return exact_.insert(i, std::move(p));
   }
-  return *exact_[i];
 }
 
-void PlaneSet::set_incidence(std::vector<uint32_t> plane_offsets, std::vector<uint32_t> plane_points,
-                             std::vector<uint32_t> point_offsets, std::vector<uint32_t> point_planes) {
+void PlaneSet::set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32_t> plane_points,
+                             RawVector<uint32_t> point_offsets, RawVector<uint32_t> point_planes) {
   plane_offsets_ = std::move(plane_offsets);
   plane_points_ = std::move(plane_points);
   point_offsets_ = std::move(point_offsets);
@@ -184,16 +194,16 @@ PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double*
 
 
 const PlaneCoef<exact::ApproxDD>& PlaneSet::dd(uint32_t i) const {
-  if (!dd_[i]) {
+  if (const PlaneCoef<exact::ApproxDD>* cached = dd_.find(i)) return *cached;
+  {
     auto p = std::make_unique<PlaneCoef<exact::ApproxDD>>();
     if (explicit_plane(i)) {
       *p = {{nx_[i], ny_[i], nz_[i]}, d_[i]};  // exact doubles
     } else {
       *p = plane_from_points<exact::ApproxDD>(point(rep_[i][0]), point(rep_[i][1]), point(rep_[i][2]));
     }
-    dd_[i] = std::move(p);
+    return dd_.insert(i, std::move(p));
   }
-  return *dd_[i];
 }
 
 namespace {
@@ -647,8 +657,12 @@ void PlaneSet::reserve(size_t n) {
   rep_.reserve(n);
   for (auto* v : {&nx_, &ny_, &nz_, &d_, &enx_, &eny_, &enz_, &ed_}) v->reserve(n);
   opposite_.reserve(n);
-  exact_.reserve(n);
-  dd_.reserve(n);
+}
+
+void PlaneSet::resize(size_t n) {
+  rep_.resize(n);
+  for (auto* v : {&nx_, &ny_, &nz_, &d_, &enx_, &eny_, &enz_, &ed_}) v->resize(n);
+  opposite_.resize(n);
 }
 
 }  // namespace kergen

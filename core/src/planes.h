@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "exact.h"
@@ -31,6 +32,97 @@ constexpr uint32_t kNoPlane = 0xffffffffu;
 constexpr int32_t kNoPoint = -1;
 constexpr int32_t kPointNotSearched = -2;
 
+// A vector whose resize leaves new elements uninitialised (for arrays written in full right
+// after: value-initialising them would be one more pass over fresh memory).
+template <class T>
+struct NoInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = NoInitAllocator<U>;
+  };
+  NoInitAllocator() = default;
+  template <class U>
+  NoInitAllocator(const NoInitAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using RawVector = std::vector<T, NoInitAllocator<T>>;
+
+// Objects computed on demand for a few of many planes, by plane id (open addressing, linear
+// probing, backward-shift erase). References stay valid until their entry is erased.
+template <class T>
+class SparseCache {
+ public:
+  T* find(uint32_t id) const {
+    if (size_ == 0) return nullptr;
+    for (size_t i = home(id);; i = (i + 1) & mask_) {
+      if (keys_[i] == id) return vals_[i].get();
+      if (keys_[i] == kEmpty) return nullptr;
+    }
+  }
+  T& insert(uint32_t id, std::unique_ptr<T> v) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    size_t i = home(id);
+    while (keys_[i] != kEmpty) i = (i + 1) & mask_;
+    keys_[i] = id;
+    vals_[i] = std::move(v);
+    ++size_;
+    return *vals_[i];
+  }
+  void erase(uint32_t id) {
+    if (size_ == 0) return;
+    size_t j = home(id);
+    while (keys_[j] != id) {
+      if (keys_[j] == kEmpty) return;
+      j = (j + 1) & mask_;
+    }
+    --size_;
+    for (;;) {
+      keys_[j] = kEmpty;
+      vals_[j].reset();
+      size_t k = j;
+      for (;;) {
+        k = (k + 1) & mask_;
+        if (keys_[k] == kEmpty) return;
+        const size_t h = home(keys_[k]);
+        // An entry may move back to j unless its home lies cyclically in (j, k].
+        if (j < k ? (h <= j || h > k) : (h <= j && h > k)) break;
+      }
+      keys_[j] = keys_[k];
+      vals_[j] = std::move(vals_[k]);
+      j = k;
+    }
+  }
+
+ private:
+  static constexpr uint32_t kEmpty = 0xffffffffu;
+  size_t home(uint32_t id) const { return size_t((uint64_t(id) * 0x9E3779B97F4A7C15ull) >> 32) & mask_; }
+  void grow() {
+    std::vector<uint32_t> keys(keys_.empty() ? 16 : 2 * keys_.size(), kEmpty);
+    std::vector<std::unique_ptr<T>> vals(keys.size());
+    keys.swap(keys_);
+    vals.swap(vals_);
+    mask_ = keys_.size() - 1;
+    for (size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == kEmpty) continue;
+      size_t j = home(keys[i]);
+      while (keys_[j] != kEmpty) j = (j + 1) & mask_;
+      keys_[j] = keys[i];
+      vals_[j] = std::move(vals[i]);
+    }
+  }
+  std::vector<uint32_t> keys_;
+  std::vector<std::unique_ptr<T>> vals_;
+  size_t size_ = 0, mask_ = 0;
+};
+
 class PlaneSet {
  public:
   // Input points (already scaled), referenced by index.
@@ -39,6 +131,9 @@ class PlaneSet {
   int exact_shift() const { return exact_shift_; }
 
   uint32_t add_from_points(uint32_t a, uint32_t b, uint32_t c);
+  // Adds the planes of triangles tri[which[0]], ..., tri[which[n - 1]] (ids size(), size() + 1,
+  // ...), with room for `spare` more planes afterwards: one resize and one pass per batch.
+  void add_from_triangles(const std::array<uint32_t, 3>* tri, const uint32_t* which, size_t n, size_t spare);
   uint32_t add_explicit(double nx, double ny, double nz, double d);
   void pop_last();  // removes the most recently added plane
 
@@ -60,8 +155,8 @@ class PlaneSet {
     const uint32_t* end() const { return e; }
     size_t size() const { return size_t(e - b); }
   };
-  void set_incidence(std::vector<uint32_t> plane_offsets, std::vector<uint32_t> plane_points,
-                     std::vector<uint32_t> point_offsets, std::vector<uint32_t> point_planes);
+  void set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32_t> plane_points,
+                     RawVector<uint32_t> point_offsets, RawVector<uint32_t> point_planes);
   Span points_on(uint32_t plane) const;
   bool point_on_plane(uint32_t point, uint32_t plane) const;
 
@@ -84,19 +179,21 @@ class PlaneSet {
 
   mutable size_t exact_fallbacks = 0;
 
- private:
-  const std::vector<double>* points_;
-  int exact_shift_ = 0;
-  std::vector<std::array<uint32_t, 3>> rep_;
-  std::vector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
-  std::vector<uint32_t> opposite_;
-  std::vector<uint32_t> plane_offsets_, plane_points_, point_offsets_, point_planes_;
-  mutable std::vector<std::unique_ptr<PlaneCoef<Expansion>>> exact_;
-  mutable std::vector<std::unique_ptr<PlaneCoef<exact::ApproxDD>>> dd_;
-
- public:
   // Capacity for n planes in all (a mesh's planes are then added without regrowth).
   void reserve(size_t n);
+
+ private:
+  void resize(size_t n);  // new entries uninitialised
+
+  const std::vector<double>* points_;
+  int exact_shift_ = 0;
+  RawVector<std::array<uint32_t, 3>> rep_;
+  RawVector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
+  RawVector<uint32_t> opposite_;
+  RawVector<uint32_t> plane_offsets_, plane_points_, point_offsets_, point_planes_;
+  // Only a few planes ever need them: a map, not a pointer per plane.
+  mutable SparseCache<PlaneCoef<Expansion>> exact_;
+  mutable SparseCache<PlaneCoef<exact::ApproxDD>> dd_;
 };
 
 template <>
