@@ -137,11 +137,22 @@ void for_each_cell(const Key& key, Visit visit) {
   }
 }
 
-// Hash of the key's own cell (where its plane is stored).
-uint64_t primary_hash(const Key& key) {
+// The key's own cell (where its plane is stored): its hash, and whether for_each_cell would
+// visit more cells than this one (a border within kBorder; rare).
+struct OwnCell {
+  uint64_t hash = 0;
+  bool near_border = false;
+};
+OwnCell own_cell(const Key& key) {
   int64_t c[4];
-  for (int i = 0; i < 4; ++i) c[i] = floor_int(key.k[i] / kCell);
-  return cell_hash(c);
+  bool near = false;
+  for (int i = 0; i < 4; ++i) {
+    const double x = key.k[i] / kCell;  // as in for_each_cell
+    c[i] = floor_int(x);
+    const double frac = x - double(c[i]);
+    near |= frac <= kBorder / kCell || frac >= 1 - kBorder / kCell;
+  }
+  return {cell_hash(c), near};
 }
 
 // Open-addressing table: cell hash -> first plane of a chain (chains continue in `next`). Slots
@@ -247,13 +258,13 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   CellTable table(num_roots);
   // The table slots of the next kAhead representatives are prefetched; their hashes wait in a
   // ring until used.
-  uint64_t ahead_hash[kAhead];
+  OwnCell ahead[kAhead];
   uint32_t scan = 0;  // first face not yet looked at for prefetching
   auto prefetch_next = [&](size_t slot) {
     while (scan < nf && uf.parent[scan] != scan) ++scan;
     if (scan == nf) return;
-    ahead_hash[slot] = primary_hash(key[scan++]);
-    table.prefetch(ahead_hash[slot]);
+    ahead[slot] = own_cell(key[scan++]);
+    table.prefetch(ahead[slot].hash);
   };
   for (size_t i = 0; i < kAhead; ++i) prefetch_next(i);
   size_t root_index = 0;
@@ -262,12 +273,12 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
       face_plane[f] = face_plane[uf.find(f)];
       continue;
     }
-    const uint64_t hash = ahead_hash[root_index % kAhead];
+    const OwnCell cell = ahead[root_index % kAhead];
     prefetch_next(root_index++ % kAhead);
     const auto& r = m.rep[f];
     const Key& k = key[f];
     uint32_t found = kNoPlane, opposite = kNoPlane;
-    for_each_cell(k, [&](uint64_t h) {
+    auto visit = [&](uint64_t h) {
       for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) {
         const uint32_t of = plane_face[other - first_plane];
         const int orientation = key_match(k, key[of]);
@@ -275,7 +286,9 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
         if (orientation > 0) found = other;
         else opposite = other;  // at most one plane per orientation, so this one is unlinked
       }
-    });
+    };
+    if (cell.near_border) for_each_cell(k, visit);
+    else visit(cell.hash);
     if (found != kNoPlane) {
       face_plane[f] = found;
       continue;
@@ -283,7 +296,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     const uint32_t id = first_plane + uint32_t(plane_face.size());
     face_plane[f] = id;
     plane_face.push_back(f);
-    next.push_back(table.push(hash, id));
+    next.push_back(table.push(cell.hash, id));
     if (opposite != kNoPlane) opposites.push_back({opposite, id});
   }
   ps.add_from_triangles(m.rep.data(), plane_face.data(), plane_face.size(), 16);
@@ -298,22 +311,25 @@ void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<u
   //  a. each point's planes with repeats (one per face loop through it), bucketed by point;
   //  b. each row sorted and deduplicated in place (a point has a handful of faces) and compacted;
   //  c. each plane's points by transposing b point by point: sorted and unique by construction.
+  // Buckets are filled through their offsets: row r's count goes to off[r + 2], the prefix sum
+  // makes off[r + 1] row r's start, filling advances it to row r's end = row r + 1's start, so
+  // off[0..n] are then the final offsets.
   const size_t nf = m.num_faces();
   const size_t np = ps.size(), nv = m.points.size() / 3;
   auto prefix_sum = [](RawVector<uint32_t>& off) {
     for (size_t i = 1; i < off.size(); ++i) off[i] += off[i - 1];
   };
   // a.
-  RawVector<uint32_t> point_off(nv + 1, 0);
-  for (uint32_t i = 0; i < m.loop_offsets[nf]; ++i) point_off[m.loops[i] + 1]++;
+  RawVector<uint32_t> point_off(nv + 2, 0);
+  for (uint32_t i = 0; i < m.loop_offsets[nf]; ++i) point_off[m.loops[i] + 2]++;
   prefix_sum(point_off);
-  RawVector<uint32_t> point_pls(point_off[nv]);
-  {
-    RawVector<uint32_t> fill(point_off.begin(), point_off.end() - 1);
-    for (uint32_t f = 0; f < nf; ++f)
-      for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) point_pls[fill[m.loops[i]]++] = face_plane[f];
-  }
-  // b. (Compacting writes never overtake the reads: out <= the row's read position.)
+  RawVector<uint32_t> point_pls(point_off[nv + 1]);
+  for (uint32_t f = 0; f < nf; ++f)
+    for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) point_pls[point_off[m.loops[i] + 1]++] = face_plane[f];
+  point_off.pop_back();
+  // b. (Compacting writes never overtake the reads: out <= the row's read position.) Each
+  // plane's point count goes to plane_off[plane + 2] for c.
+  RawVector<uint32_t> plane_off(np + 2, 0);
   uint32_t out = 0;
   for (size_t v = 0, begin = 0; v < nv; ++v) {
     const size_t end = point_off[v + 1];
@@ -327,21 +343,20 @@ void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<u
     }
     point_off[v] = out;
     for (size_t i = 0; i < n; ++i)
-      if (i == 0 || row[i] != row[i - 1]) point_pls[out++] = row[i];
+      if (i == 0 || row[i] != row[i - 1]) {
+        point_pls[out++] = row[i];
+        plane_off[row[i] + 2]++;
+      }
     begin = end;
   }
   point_off[nv] = out;
   point_pls.resize(out);
   // c.
-  RawVector<uint32_t> plane_off(np + 1, 0);
-  for (uint32_t p : point_pls) plane_off[p + 1]++;
   prefix_sum(plane_off);
-  RawVector<uint32_t> plane_pts(plane_off[np]);
-  {
-    RawVector<uint32_t> fill(plane_off.begin(), plane_off.end() - 1);
-    for (uint32_t v = 0; v < nv; ++v)
-      for (uint32_t i = point_off[v]; i < point_off[v + 1]; ++i) plane_pts[fill[point_pls[i]]++] = v;
-  }
+  RawVector<uint32_t> plane_pts(plane_off[np + 1]);
+  for (uint32_t v = 0; v < nv; ++v)
+    for (uint32_t i = point_off[v]; i < point_off[v + 1]; ++i) plane_pts[plane_off[point_pls[i] + 1]++] = v;
+  plane_off.pop_back();
   ps.set_incidence(std::move(plane_off), std::move(plane_pts), std::move(point_off), std::move(point_pls));
 }
 
