@@ -209,13 +209,16 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   // for the few planes callers add afterwards, such as a bounding box), they sit below this
   // function's temporaries in the heap, whose space later phases then reuse.
   ps.reserve(first_plane + nf + 16);
-  // (The planes' coefficients are not kept: recomputing them for the class representatives costs
-  // less than writing and reading them back for every face.)
+  // Every face's filtered plane goes to the plane arrays as a candidate (the representatives'
+  // are kept in place at the end instead of being computed again).
+  ps.stage(nf);
   std::vector<Key> key;
   key.reserve(nf);
   for (uint32_t f = 0; f < nf; ++f) {
     const auto& t = m.rep[f];
-    key.push_back(face_key(m, t, approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]))));
+    const PlaneCoef<Approx> c = approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
+    ps.put(f, c);
+    key.push_back(face_key(m, t, c));
   }
 
   // 1. Edge-adjacent coplanar faces with the same orientation (the usual way faces share a
@@ -299,7 +302,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     next.push_back(table.push(cell.hash, id));
     if (opposite != kNoPlane) opposites.push_back({opposite, id});
   }
-  ps.add_from_triangles(m.rep.data(), plane_face.data(), plane_face.size(), 16);
+  ps.keep_staged(m.rep.data(), plane_face.data(), plane_face.size());
   for (const auto& o : opposites) ps.set_opposite(o[0], o[1]);
 
   // 3. Incidence.

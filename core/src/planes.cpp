@@ -126,6 +126,29 @@ void PlaneSet::add_from_triangles(const std::array<uint32_t, 3>* tri, const uint
   }
 }
 
+void PlaneSet::stage(size_t n) {
+  const size_t first = size();
+  if (first + n > nx_.capacity()) reserve(first + n);
+  for (auto* v : {&nx_, &ny_, &nz_, &d_, &enx_, &eny_, &enz_, &ed_}) v->resize(first + n);
+}
+
+void PlaneSet::keep_staged(const std::array<uint32_t, 3>* tri, const uint32_t* which, size_t n) {
+  const size_t first = size();
+  rep_.resize(first + n);
+  opposite_.resize(first + n);
+  // In place: which[k] >= k, increasing, so a candidate is read before its slot is written.
+  for (size_t k = 0; k < n; ++k) {
+    const size_t i = first + k, j = first + which[k];
+    rep_[i] = tri[which[k]];
+    nx_[i] = nx_[j]; enx_[i] = enx_[j];
+    ny_[i] = ny_[j]; eny_[i] = eny_[j];
+    nz_[i] = nz_[j]; enz_[i] = enz_[j];
+    d_[i] = d_[j]; ed_[i] = ed_[j];
+    opposite_[i] = kNoPlane;
+  }
+  for (auto* v : {&nx_, &ny_, &nz_, &d_, &enx_, &eny_, &enz_, &ed_}) v->resize(first + n);
+}
+
 uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
   rep_.push_back({kNoPlane, kNoPlane, kNoPlane});
   nx_.push_back(nx); enx_.push_back(0);

@@ -134,10 +134,24 @@ class PlaneSet {
   // Adds the planes of triangles tri[which[0]], ..., tri[which[n - 1]] (ids size(), size() + 1,
   // ...), with room for `spare` more planes afterwards: one resize and one pass per batch.
   void add_from_triangles(const std::array<uint32_t, 3>* tri, const uint32_t* which, size_t n, size_t spare);
+  // The same in two steps, for callers that compute the planes of all triangles anyway:
+  // stage(n) makes room for n candidate planes after the current ones, put(j, c) stores
+  // candidate j's filtered plane (as plane_from_points computes it), and
+  // keep_staged(tri, which, n) keeps candidates which[0] < which[1] < ... as planes size(),
+  // size() + 1, ... of triangles tri[which[k]].
+  void stage(size_t n);
+  void put(size_t j, const PlaneCoef<Approx>& c) {
+    const size_t i = size() + j;
+    nx_[i] = c.n[0].v; enx_[i] = c.n[0].e;
+    ny_[i] = c.n[1].v; eny_[i] = c.n[1].e;
+    nz_[i] = c.n[2].v; enz_[i] = c.n[2].e;
+    d_[i] = c.d.v; ed_[i] = c.d.e;
+  }
+  void keep_staged(const std::array<uint32_t, 3>* tri, const uint32_t* which, size_t n);
   uint32_t add_explicit(double nx, double ny, double nz, double d);
   void pop_last();  // removes the most recently added plane
 
-  size_t size() const { return nx_.size(); }
+  size_t size() const { return rep_.size(); }
   bool explicit_plane(uint32_t i) const { return rep_[i][0] == kNoPlane; }
   const std::array<uint32_t, 3>& rep(uint32_t i) const { return rep_[i]; }
 
