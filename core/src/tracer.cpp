@@ -609,7 +609,7 @@ class Tracer {
   std::vector<std::array<double, 4>> saved_;
   TraceResult res_;
   VertexIndex vertex_ids_;
-  U64Set traced_;  // line keys of traced edges
+  U64Set traced_{48};  // line keys of traced edges (room for a small kernel's, as reserved above)
   std::vector<Ray> rays_;
   std::priority_queue<std::pair<double, uint32_t>, std::vector<std::pair<double, uint32_t>>, std::greater<>> queue_;
 };
