@@ -1,11 +1,15 @@
 // Seidel LP: the optimum in random directions equals the best vertex of the traced kernel,
-// and infeasibility matches an empty kernel.
+// and infeasibility matches an empty kernel. The double-precision guess that orders its
+// constraints (lp_hint): on well-conditioned input its planes are the exact optimum's (each
+// passes through the vertex the exact LP returns), and its conflicts are real conflicts (the
+// exact LP on those planes alone is infeasible); its misses cost time, never answers.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "fixtures.h"
 #include "lp.h"
+#include "lp_hint.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
 
@@ -62,6 +66,86 @@ TEST(Lp, InfeasibleWhenNotStarShaped) {
   double c[3] = {1, 1, 1};
   for (uint64_t seed = 0; seed < 10; ++seed)
     EXPECT_EQ(solve_lp(*p.ps, p.all, c, 8, seed).outcome, LpResult::Outcome::Infeasible);
+}
+
+TEST(LpHint, PlanesOfTheGuessPassThroughTheExactOptimum) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> N(0, 1);
+  int guesses = 0;
+  for (uint32_t seed = 0; seed < 12; ++seed) {
+    Planes p(kergen_test::random_convex(seed, 40).mesh);
+    for (int i = 0; i < 20; ++i) {
+      const double c[3] = {N(rng), N(rng), N(rng)};
+      const LpResult exact = solve_lp(*p.ps, p.all, c, 8, uint64_t(i));
+      ASSERT_EQ(exact.outcome, LpResult::Outcome::Optimal);
+      const LpHint hint = float_lp_hint(*p.ps, p.all.data(), p.all.size(), c, 8);
+      EXPECT_FALSE(hint.infeasible);
+      // A generic direction on a random polytope: a simple vertex, three planes.
+      ASSERT_EQ(hint.count, 3) << "seed " << seed << " direction " << i;
+      for (int k = 0; k < hint.count; ++k) {
+        ASSERT_LT(hint.position[k], p.all.size());
+        EXPECT_EQ(side(*p.ps, p.all[hint.position[k]], exact.vertex), 0) << "seed " << seed << " direction " << i;
+      }
+      ++guesses;
+    }
+  }
+  EXPECT_EQ(guesses, 240);
+}
+
+TEST(LpHint, ConflictIsInfeasibleOnItsOwn) {
+  for (const Mesh& m : {kergen_test::u_prism(), kergen_test::torus()}) {
+    Planes p(m);
+    const double c[3] = {1, 1, 1};
+    ASSERT_EQ(solve_lp(*p.ps, p.all, c, 8, 3).outcome, LpResult::Outcome::Infeasible);
+    const LpHint hint = float_lp_hint(*p.ps, p.all.data(), p.all.size(), c, 8);
+    ASSERT_TRUE(hint.infeasible);
+    ASSERT_GE(hint.count, 2);
+    ASSERT_LE(hint.count, 4);
+    std::vector<uint32_t> conflict;
+    for (int k = 0; k < hint.count; ++k) conflict.push_back(p.all[hint.position[k]]);
+    EXPECT_EQ(solve_lp(*p.ps, conflict, c, 8, 1).outcome, LpResult::Outcome::Infeasible);
+  }
+}
+
+TEST(LpHint, UnusablePlanesGiveNoGuess) {
+  std::vector<double> no_points;
+  PlaneSet ps(&no_points);
+  std::vector<uint32_t> ids = {ps.add_explicit(1, 0, 0, -1), ps.add_explicit(0, 0, 0, 1), ps.add_explicit(0, 1, 0, -1)};
+  const double c[3] = {1, 1, 1};
+  LpHint hint = float_lp_hint(ps, ids.data(), ids.size(), c, 8);
+  EXPECT_EQ(hint.count, 0);
+  EXPECT_FALSE(hint.infeasible);
+  ids = {ps.add_explicit(1, 0, 0, std::nan("")), ps.add_explicit(HUGE_VAL, 0, 0, 0)};
+  hint = float_lp_hint(ps, ids.data(), ids.size(), c, 8);
+  EXPECT_EQ(hint.count, 0);
+}
+
+TEST(LpHint, ParallelAndRepeatedPlanes) {
+  // x <= 1 three times, y <= 1, z <= 1, and x >= 2 parallel to them: infeasible, and the guess
+  // names a pair of parallel planes that conflict.
+  std::vector<double> no_points;
+  PlaneSet ps(&no_points);
+  std::vector<uint32_t> ids;
+  for (int k = 0; k < 3; ++k) ids.push_back(ps.add_explicit(1, 0, 0, -1));
+  ids.push_back(ps.add_explicit(0, 1, 0, -1));
+  ids.push_back(ps.add_explicit(0, 0, 1, -1));
+  const double c[3] = {1, 0.5, 0.25};
+  LpHint hint = float_lp_hint(ps, ids.data(), ids.size(), c, 8);
+  ASSERT_FALSE(hint.infeasible);
+  ASSERT_EQ(hint.count, 3);
+  // The optimum (1, 1, 1): one of the three copies of x <= 1, y <= 1 and z <= 1.
+  int x_planes = 0;
+  for (int k = 0; k < 3; ++k) x_planes += hint.position[k] < 3;
+  EXPECT_EQ(x_planes, 1);
+  ids.push_back(ps.add_explicit(-1, 0, 0, 2));
+  hint = float_lp_hint(ps, ids.data(), ids.size(), c, 8);
+  ASSERT_TRUE(hint.infeasible);
+  bool has_far_side = false;
+  for (int k = 0; k < hint.count; ++k) has_far_side |= hint.position[k] == 5;
+  EXPECT_TRUE(has_far_side);
+  std::vector<uint32_t> conflict;
+  for (int k = 0; k < hint.count; ++k) conflict.push_back(ids[hint.position[k]]);
+  EXPECT_EQ(solve_lp(ps, conflict, c, 8, 1).outcome, LpResult::Outcome::Infeasible);
 }
 
 }  // namespace
