@@ -12,6 +12,7 @@
 #include <sstream>
 #include <utility>
 
+#include "hints.h"
 #include "planes.h"
 #include "union_find.h"
 
@@ -223,9 +224,7 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
       if (!us[v0]) continue;
       ids[n] = uint32_t(v0);
       slots[n] = home(uint32_t(v0));
-#if defined(__GNUC__) || defined(__clang__)
-      __builtin_prefetch(table + slots[n]);
-#endif
+      prefetch(table + slots[n]);
       ++n;
     }
     for (size_t j = 0; j < n; ++j) {
@@ -535,7 +534,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         t.up_face = use_face[j];
       }
       // Judged at its first upward use, or first downward use if it has none; then cleared.
-      auto judge = [&](uint32_t hi) {
+      auto judge = [&](uint32_t hi) KERGEN_INLINE {
         Tally& t = tally[hi];
         if (t.up == 1 && t.down == 1) {
           const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
@@ -643,7 +642,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     ext = std::max(ext, m.bbox_max[k] - m.bbox_min[k]);
   }
   // Six times the signed volume of the tetrahedron (c, p0, p1, p2).
-  auto vol6_about_centre = [&](uint32_t i0, uint32_t i1, uint32_t i2) {
+  auto vol6_about_centre = [&](uint32_t i0, uint32_t i1, uint32_t i2) KERGEN_INLINE {
     const double *p0 = &m.points[3 * size_t(i0)], *p1 = &m.points[3 * size_t(i1)], *p2 = &m.points[3 * size_t(i2)];
     double a[3], bb[3], cc[3];
     for (int k = 0; k < 3; ++k) { a[k] = p0[k] - c[k]; bb[k] = p1[k] - c[k]; cc[k] = p2[k] - c[k]; }

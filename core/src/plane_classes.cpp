@@ -13,6 +13,7 @@
 #include "plane_classes.h"
 
 #include "flat_set.h"
+#include "hints.h"
 #include "union_find.h"
 
 #include <algorithm>
@@ -166,7 +167,7 @@ class CellTable {
     slots_.assign(cap, Slot{0, kNoPlane});
     mask_ = cap - 1;
   }
-  void prefetch(uint64_t h) const { __builtin_prefetch(&slots_[h & mask_]); }
+  void prefetch(uint64_t h) const { kergen::prefetch(&slots_[h & mask_]); }
   uint32_t head(uint64_t h) const {
     const uint32_t tag = uint32_t(h >> 32);
     for (size_t i = h & mask_;; i = (i + 1) & mask_) {
@@ -230,8 +231,8 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   const auto& adj = m.adjacent;
   for (size_t i = 0; i < adj.size(); ++i) {
     if (i + kAhead < adj.size()) {
-      __builtin_prefetch(&key[adj[i + kAhead][0]]);
-      __builtin_prefetch(&key[adj[i + kAhead][1]]);
+      prefetch(&key[adj[i + kAhead][0]]);
+      prefetch(&key[adj[i + kAhead][1]]);
     }
     const auto& pr = adj[i];
     if (key_match(key[pr[0]], key[pr[1]]) <= 0) continue;
@@ -263,7 +264,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   // ring until used.
   OwnCell ahead[kAhead];
   uint32_t scan = 0;  // first face not yet looked at for prefetching
-  auto prefetch_next = [&](size_t slot) {
+  auto prefetch_next = [&](size_t slot) KERGEN_INLINE {
     while (scan < nf && uf.parent[scan] != scan) ++scan;
     if (scan == nf) return;
     ahead[slot] = own_cell(key[scan++]);
@@ -281,7 +282,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     const auto& r = m.rep[f];
     const Key& k = key[f];
     uint32_t found = kNoPlane, opposite = kNoPlane;
-    auto visit = [&](uint64_t h) {
+    auto visit = [&](uint64_t h) KERGEN_INLINE {
       for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) {
         const uint32_t of = plane_face[other - first_plane];
         const int orientation = key_match(k, key[of]);
