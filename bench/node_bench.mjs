@@ -1,22 +1,33 @@
 // node_bench.mjs: the wasm package's computeKernelSync timed in Node, optionally next to the
 // native build (kergen_bench --json) on the same meshes. One Markdown row (or JSON object) per mesh.
 //
-//   node bench/node_bench.mjs [--runs N] [--json] [--quick] [--native build/bench/kergen_bench]
+//   node bench/node_bench.mjs [--runs N] [--json] [--quick] [--liftoff] [--native build/bench/kergen_bench]
 //                             [--meshes DIR] [mesh.off ...]
 //
 // Needs dist/kergen.{mjs,wasm} (npm run build:wasm). Timed: computeKernelSync(positions, indices,
 // {faceSizes}) including the copies in and out of the wasm heap; not timed: reading the OFF file
-// and the warm-up calls per mesh (up to 20 or 300 ms: they let V8 tier the wasm code up).
+// and the warm-up calls per mesh (up to 20 or 300 ms).
+//
+// Which code V8 runs: by default it starts every wasm function on its baseline compiler (Liftoff)
+// and swaps in optimized code once the function has run enough, which on a tiny mesh takes on the
+// order of a thousand calls (tet20/0 ran ~2x slower for its first ~1000 calls, spiral2 similar).
+// The timings here are of the optimized code, the steady state of a long-lived page: V8 is told
+// to compile with its optimizing tier from the start (--no-liftoff, set below before the module
+// is compiled). --liftoff keeps V8's default tiering (then small meshes in a short run measure
+// partly baseline code).
 import fs from 'node:fs';
 import path from 'node:path';
+import v8 from 'node:v8';
 import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { performance } from 'node:perf_hooks';
 
+if (!process.argv.includes('--liftoff')) v8.setFlagsFromString('--no-liftoff');
+
 const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 
 function parseArgs(argv) {
-  const a = { runs: 5, json: false, quick: false, native: '', meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'), files: [] };
+  const a = { runs: 5, json: false, quick: false, liftoff: false, native: '', meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'), files: [] };
   let runsGiven = false;
   for (let i = 0; i < argv.length; ++i) {
     const s = argv[i];
@@ -26,11 +37,12 @@ function parseArgs(argv) {
     };
     if (s === '--runs') { a.runs = Math.max(1, parseInt(next(), 10) || 1); runsGiven = true; }
     else if (s === '--json') a.json = true;
+    else if (s === '--liftoff') a.liftoff = true;
     else if (s === '--quick') a.quick = true;
     else if (s === '--native') a.native = next();
     else if (s === '--meshes') a.meshes = next();
     else if (s === '-h' || s === '--help') {
-      console.log('usage: node bench/node_bench.mjs [--runs N] [--json] [--quick] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]');
+      console.log('usage: node bench/node_bench.mjs [--runs N] [--json] [--quick] [--liftoff] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]');
       process.exit(0);
     } else if (s.startsWith('-')) throw new Error(`unknown option ${s}`);
     else a.files.push(s);
@@ -106,7 +118,7 @@ async function main() {
 
   const wasmStat = fs.statSync(wasmPath);
   if (!a.json) {
-    console.log(`# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.runs} run(s) | ms, parse excluded`);
+    console.log(`# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.runs} run(s) | V8 ${a.liftoff ? 'default tiering (Liftoff first)' : 'optimizing tier only (--no-liftoff)'} | ms, parse excluded`);
     console.log('| mesh | faces | kernel | V | E | F | wasm | native | wasm/native | validate | planes | lp | trace | assemble |');
     console.log('|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|');
   }
@@ -148,7 +160,7 @@ async function main() {
     }
     const natMs = nat && !nat.error ? nat.ours_ms : NaN;
     if (a.json) {
-      const o = { mesh: label, node: process.version, runs: a.runs, faces: mesh.faces, wasm_ms: ms };
+      const o = { mesh: label, node: process.version, v8_tiering: a.liftoff ? "default" : "no-liftoff", runs: a.runs, faces: mesh.faces, wasm_ms: ms };
       if (error) o.error = `${error.code ?? ''} ${error.message}`;
       else Object.assign(o, { type: result.status, V: result.vertices.length / 3, E: result.edges.length / 2, F: result.faceSizes.length, volume: result.volume, stats: result.stats });
       if (Number.isFinite(natMs)) Object.assign(o, { native_ms: natMs, wasm_over_native: ms / natMs });
