@@ -131,6 +131,10 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   // corner vertices starts the climb near its answer.
   const size_t side_pts = cells_per_side + 1;
   start_of_corner.resize(6 * side_pts * side_pts);
+  // The support function h(u) = max over K_S of u . x at each corner direction (the climb's
+  // maximum; a greedy climb on a convex polytope stops only at the maximum, up to rounding far
+  // below the margins used with it).
+  std::vector<double> corner_support(start_of_corner.size());
   {
     uint32_t at = 0;
     for (size_t c = 0; c < start_of_corner.size(); ++c) {
@@ -138,6 +142,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       double dir[3];
       cube_cell_direction(cells_per_side, (face * cells_per_side) * cells_per_side, double(i), double(j), dir);
       at = start_of_corner[c] = extreme(dir, at);
+      corner_support[c] = dir[0] * xyz[3 * at] + dir[1] * xyz[3 * at + 1] + dir[2] * xyz[3 * at + 2];
     }
   }
   {
@@ -181,6 +186,25 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     if (a * cx + b * cy + c * cz + d + std::fabs(a) * hx + std::fabs(b) * hy + std::fabs(c) * hz < -2 * margin) continue;
     auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
     const size_t cell = cube_cell(cells_per_side, a, b, c);
+    if (cell != kNoCell && !cell_resolved[cell]) {
+      // h is convex and positively homogeneous, and n / |n_axis| is the bilinear interpolation of
+      // the cell's four corner directions (exact: they are affine in the cell's coordinates), so
+      // max f <= |n_axis| (the same interpolation of the corners' h) + d. Below -2 margin the
+      // plane holds K_S strictly without a climb.
+      const double n3[3] = {a, b, c};
+      int axis = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::fabs(n3[k]) > std::fabs(n3[axis])) axis = k;
+      const double m = std::fabs(n3[axis]);
+      const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
+                   j = cell % cells_per_side;
+      const double fi = std::min(1.0, std::max(0.0, (n3[(axis + 1) % 3] / m + 1) * 0.5 * double(cells_per_side) - double(i)));
+      const double fj = std::min(1.0, std::max(0.0, (n3[(axis + 2) % 3] / m + 1) * 0.5 * double(cells_per_side) - double(j)));
+      const size_t c0 = (face * side_pts + i) * side_pts + j;
+      const double h = (1 - fi) * ((1 - fj) * corner_support[c0] + fj * corner_support[c0 + 1]) +
+                       fi * ((1 - fj) * corner_support[c0 + side_pts] + fj * corner_support[c0 + side_pts + 1]);
+      if (m * h + d < -2 * margin) continue;
+    }
     uint32_t cur = cell == kNoCell ? 0 : start_of_cell[cell];
     double val = f(cur);
     if (cell != kNoCell && !cell_resolved[cell]) {
