@@ -126,14 +126,16 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     }
     return at;
   };
+  auto neighbors = [&](uint32_t u, const auto& fn) {
+    for (uint32_t i = adj_offset[u]; i < adj_offset[u + 1]; ++i) fn(adj[i]);
+  };
   // The corners of the cells too: along a ridge of K_S (an elongated kernel) the extreme
   // vertex jumps within a small change of direction, and the best of a cell's centre and
   // corner vertices starts the climb near its answer.
   const size_t side_pts = cells_per_side + 1;
   start_of_corner.resize(6 * side_pts * side_pts);
-  // The support function h(u) = max over K_S of u . x at each corner direction (the climb's
-  // maximum; a greedy climb on a convex polytope stops only at the maximum, up to rounding far
-  // below the margins used with it).
+  // The support function h(u) = max over K_S of u . x at each corner direction (up to rounding
+  // far below the margins it is used with).
   std::vector<double> corner_support(start_of_corner.size());
   {
     uint32_t at = 0;
@@ -142,7 +144,12 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       double dir[3];
       cube_cell_direction(cells_per_side, (face * cells_per_side) * cells_per_side, double(i), double(j), dir);
       at = start_of_corner[c] = extreme(dir, at);
-      corner_support[c] = dir[0] * xyz[3 * at] + dir[1] * xyz[3 * at + 1] + dir[2] * xyz[3 * at + 2];
+      // (The greedy climb can stop short where rounding makes neighbours tie; the full climb,
+      // with its plateau search, gives the maximum. The greedy start is kept for the planes.)
+      auto g = [&](uint32_t v) { return dir[0] * xyz[3 * v] + dir[1] * xyz[3 * v + 1] + dir[2] * xyz[3 * v + 2]; };
+      double h = g(at);
+      climb_to_max(at, h, g, neighbors, 1e-12 * (std::fabs(dir[0]) + std::fabs(dir[1]) + std::fabs(dir[2])), V, climb);
+      corner_support[c] = h;
     }
   }
   {
@@ -171,9 +178,6 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       cell_resolved[cell] = strict;
     }
   }
-  auto neighbors = [&](uint32_t u, const auto& fn) {
-    for (uint32_t i = adj_offset[u]; i < adj_offset[u + 1]; ++i) fn(adj[i]);
-  };
   for (uint32_t l : planes) {
     if (in_s[l]) continue;
     const double a = nx[l], b = ny[l], c = nz[l], d = nd[l];
