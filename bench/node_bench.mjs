@@ -1,12 +1,12 @@
 // node_bench.mjs: the wasm package's computeKernelSync timed in Node, optionally next to the
 // native build (kergen_bench --json) on the same meshes. One Markdown row (or JSON object) per mesh.
 //
-//   node bench/node_bench.mjs [--runs N] [--json] [--quick] [--liftoff] [--native build/bench/kergen_bench]
+//   node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick] [--liftoff] [--native build/bench/kergen_bench]
 //                             [--meshes DIR] [mesh.off ...]
 //
 // Needs dist/kergen.{mjs,wasm} (npm run build:wasm). Timed: computeKernelSync(positions, indices,
 // {faceSizes}) including the copies in and out of the wasm heap; not timed: reading the OFF file
-// and the warm-up calls per mesh (up to 20 or 300 ms).
+// and the warm-up calls per mesh (at least 20, up to 300 ms on small meshes: see below).
 //
 // Which code V8 runs: by default it starts every wasm function on its baseline compiler (Liftoff)
 // and swaps in optimized code once the function has run enough, which on a tiny mesh takes on the
@@ -27,7 +27,7 @@ if (!process.argv.includes('--liftoff')) v8.setFlagsFromString('--no-liftoff');
 const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 
 function parseArgs(argv) {
-  const a = { runs: 5, json: false, quick: false, liftoff: false, native: '', meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'), files: [] };
+  const a = { runs: 5, rounds: 3, json: false, quick: false, liftoff: false, native: '', meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'), files: [] };
   let runsGiven = false;
   for (let i = 0; i < argv.length; ++i) {
     const s = argv[i];
@@ -36,18 +36,19 @@ function parseArgs(argv) {
       return argv[++i];
     };
     if (s === '--runs') { a.runs = Math.max(1, parseInt(next(), 10) || 1); runsGiven = true; }
+    else if (s === '--rounds') a.rounds = Math.max(1, parseInt(next(), 10) || 1);
     else if (s === '--json') a.json = true;
     else if (s === '--liftoff') a.liftoff = true;
     else if (s === '--quick') a.quick = true;
     else if (s === '--native') a.native = next();
     else if (s === '--meshes') a.meshes = next();
     else if (s === '-h' || s === '--help') {
-      console.log('usage: node bench/node_bench.mjs [--runs N] [--json] [--quick] [--liftoff] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]');
+      console.log('usage: node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick] [--liftoff] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]');
       process.exit(0);
     } else if (s.startsWith('-')) throw new Error(`unknown option ${s}`);
     else a.files.push(s);
   }
-  if (a.quick && !runsGiven) a.runs = 1;
+  if (a.quick && !runsGiven) { a.runs = 1; a.rounds = 1; }
   return a;
 }
 
@@ -118,7 +119,7 @@ async function main() {
 
   const wasmStat = fs.statSync(wasmPath);
   if (!a.json) {
-    console.log(`# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.runs} run(s) | V8 ${a.liftoff ? 'default tiering (Liftoff first)' : 'optimizing tier only (--no-liftoff)'} | ms, parse excluded`);
+    console.log(`# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.rounds} x ${a.runs} run(s), alternating with native | V8 ${a.liftoff ? 'default tiering (Liftoff first)' : 'optimizing tier only (--no-liftoff)'} | ms, parse excluded`);
     console.log('| mesh | faces | kernel | V | E | F | wasm | native | wasm/native | validate | planes | lp | trace | assemble |');
     console.log('|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|');
   }
@@ -130,27 +131,36 @@ async function main() {
       console.log(a.json ? JSON.stringify({ mesh: label, error: String(e.message) }) : `| ${label} | | ERROR ${e.message} |`);
       continue;
     }
-    const nat = nativeRow(file);
     const options = mesh.faceSizes ? { faceSizes: mesh.faceSizes } : {};
     const times = [], results = [];
     let result = null, error = null;
-    // Warm-up, not timed: V8 first runs wasm from its baseline compiler and swaps in optimized
-    // code in the background, so the first calls (up to ~20 on tiny meshes) are slower than a
-    // long-lived page's. Up to 20 calls or 300 ms.
+    // Warm-up, not timed: 20 calls, and on small meshes more, up to 300 ms in all. The wasm code is
+    // optimized from the start (above), but the wrapper's JavaScript is not: V8 optimizes it only
+    // after many calls, and until then it added up to ~0.1 ms per call (tet10/0 timed right
+    // after start-up: 0.16 ms, after a large mesh: 0.05 ms).
     try {
       const w0 = performance.now();
-      for (let w = 0; w < 20 && performance.now() - w0 < 300; ++w) kergen.computeKernelSync(mesh.positions, mesh.indices, options);
+      for (let w = 0; w < 20 || (w < 20000 && performance.now() - w0 < 300); ++w) kergen.computeKernelSync(mesh.positions, mesh.indices, options);
     } catch { /* reported by the timed runs */ }
-    for (let r = 0; r < a.runs; ++r) {
-      const t0 = performance.now();
-      try {
-        result = kergen.computeKernelSync(mesh.positions, mesh.indices, options);
-      } catch (e) {
-        error = e;
+    // Rounds alternate the native runs (a child process, median of --runs) with as many wasm
+    // runs: the machine's speed drifts over seconds, and alternating spreads the drift over both.
+    // Reported: the median of all wasm runs and the median of the rounds' native medians.
+    const nativeMs = [];
+    let nat = null;
+    for (let round = 0; round < a.rounds && !error; ++round) {
+      nat = nativeRow(file);
+      if (nat && !nat.error) nativeMs.push(nat.ours_ms);
+      for (let r = 0; r < a.runs; ++r) {
+        const t0 = performance.now();
+        try {
+          result = kergen.computeKernelSync(mesh.positions, mesh.indices, options);
+        } catch (e) {
+          error = e;
+        }
+        times.push(performance.now() - t0);
+        if (error) break;
+        results.push(result);
       }
-      times.push(performance.now() - t0);
-      if (error) break;
-      results.push(result);
     }
     const ms = median(times);
     if (!error) {
@@ -158,9 +168,9 @@ async function main() {
       const order = times.map((t, i) => i).sort((x, y) => times[x] - times[y]);
       result = results[order[Math.floor(order.length / 2)]];
     }
-    const natMs = nat && !nat.error ? nat.ours_ms : NaN;
+    const natMs = nativeMs.length ? median(nativeMs) : NaN;
     if (a.json) {
-      const o = { mesh: label, node: process.version, v8_tiering: a.liftoff ? "default" : "no-liftoff", runs: a.runs, faces: mesh.faces, wasm_ms: ms };
+      const o = { mesh: label, node: process.version, v8_tiering: a.liftoff ? "default" : "no-liftoff", runs: a.runs, rounds: a.rounds, faces: mesh.faces, wasm_ms: ms };
       if (error) o.error = `${error.code ?? ''} ${error.message}`;
       else Object.assign(o, { type: result.status, V: result.vertices.length / 3, E: result.edges.length / 2, F: result.faceSizes.length, volume: result.volume, stats: result.stats });
       if (Number.isFinite(natMs)) Object.assign(o, { native_ms: natMs, wasm_over_native: ms / natMs });
