@@ -236,6 +236,9 @@ async function markPending(page) {
 
 async function waitFinished(page, timeout = 60000) {
   await page.waitForFunction(() => ['done', 'error', 'cancelled'].includes(document.getElementById('status').dataset.state), null, { timeout, polling: 20 });
+  // The timeline (scrubber, step label, counts) is redrawn by the page's animation frame, which
+  // can come after the status: wait for one (the page's frame callback runs before this one).
+  await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => resolve())));
   return readState(page);
 }
 
