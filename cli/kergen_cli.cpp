@@ -232,6 +232,7 @@ std::string json_line(const MeshOutcome& m) {
   const kergen::Stats& st = k.stats;
   s += ",\"stats\":{";
   s += "\"input_faces\":" + std::to_string(st.input_faces);
+  s += ",\"culled_faces\":" + std::to_string(st.culled_faces);
   s += ",\"distinct_planes\":" + std::to_string(st.distinct_planes);
   s += ",\"active_planes\":" + std::to_string(st.active_planes);
   s += ",\"traced_lines\":" + std::to_string(st.traced_lines);
@@ -262,8 +263,8 @@ void print_human(const MeshOutcome& m) {
   for (const kergen::Warning& w : k.warnings)
     std::printf("  warning     %s (%zu): %s\n", warning_kind_name(w.kind), w.count, w.message.c_str());
   const kergen::Stats& st = k.stats;
-  std::printf("  planes      %zu faces, %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
-              st.input_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);
+  std::printf("  planes      %zu faces (%zu culled), %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
+              st.input_faces, st.culled_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);
   std::printf("  time        %.3f ms (parse %.3f, validate %.3f, planes %.3f, lp %.3f, trace %.3f, assemble %.3f)\n",
               m.ms_total, m.ms_parse, st.ms_validate, st.ms_planes, st.ms_lp, st.ms_trace, st.ms_assemble);
 }

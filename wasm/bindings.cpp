@@ -72,7 +72,7 @@ enum Head : uint32_t {
   kHeadWords
 };
 static_assert(kHeadWords % 2 == 0, "the f64 section after the head must stay 8-byte aligned");
-// kStats: the 13 Stats fields in declaration order (index.js names them).
+// kStats: the 14 Stats fields in declaration order (index.js names them).
 enum Scalar : uint32_t {
   kVolume,
   kArea,
@@ -82,7 +82,7 @@ enum Scalar : uint32_t {
   kDeepestPoint = kKernelPoint + 3,
   kInscribedRadius = kDeepestPoint + 3,
   kStats,
-  kScalars = kStats + 13
+  kScalars = kStats + 14
 };
 
 // One step event as index.js reads it; kind 0 vertex, 1 edge, 2 face.
@@ -210,9 +210,10 @@ kergen::Options read_options(uintptr_t request) {
 }
 
 void put_stats(const kergen::Stats& s, double* out) {
-  const double v[13] = {static_cast<double>(s.input_vertices),
+  const double v[14] = {static_cast<double>(s.input_vertices),
                         static_cast<double>(s.input_faces),
                         static_cast<double>(s.dropped_faces),
+                        static_cast<double>(s.culled_faces),
                         static_cast<double>(s.distinct_planes),
                         static_cast<double>(s.active_planes),
                         static_cast<double>(s.traced_lines),

@@ -99,7 +99,12 @@ export interface KernelStats {
   inputFaces: number;
   /** Zero-area faces ignored. */
   droppedFaces: number;
-  /** Face planes after merging coplanar faces. */
+  /**
+   * Faces dropped before coplanar faces are merged (large closed meshes): their planes hold the
+   * kernel of a sample of faces strictly, so they cannot touch the kernel.
+   */
+  culledFaces: number;
+  /** Face planes after merging coplanar faces (of the faces not culled). */
   distinctPlanes: number;
   /** Planes left after culling those that cannot touch the kernel. */
   activePlanes: number;

@@ -238,8 +238,8 @@ const H_NUM_WARNINGS = 5;
 const H_TEXT_BYTES = 6;
 const H_NUM_VERTEX_VALUES = 7; // then edge values, face indices, faces, triangle values
 const HEAD_WORDS = 12;
-const SCALARS = 24; // f64 after the head, as `enum Scalar`
-const S_STATS = 11; // first of the 13 Stats fields, in their declaration order
+const SCALARS = 25; // f64 after the head, as `enum Scalar`
+const S_STATS = 11; // first of the 14 Stats fields, in their declaration order
 const OUT_OF_MEMORY = 'out of memory (the wasm heap is limited to 4 GB)';
 const textDecoder = new TextDecoder();
 
@@ -316,9 +316,10 @@ function readStrings(u8, start, end) {
 // Object.fromEntries, a measurable part of a call on a small mesh).
 function readStats(f64, st) {
   return {
-    inputVertices: f64[st], inputFaces: f64[st + 1], droppedFaces: f64[st + 2], distinctPlanes: f64[st + 3],
-    activePlanes: f64[st + 4], tracedLines: f64[st + 5], exactFallbacks: f64[st + 6], msValidate: f64[st + 7],
-    msPlanes: f64[st + 8], msLp: f64[st + 9], msTrace: f64[st + 10], msAssemble: f64[st + 11], msTotal: f64[st + 12],
+    inputVertices: f64[st], inputFaces: f64[st + 1], droppedFaces: f64[st + 2], culledFaces: f64[st + 3],
+    distinctPlanes: f64[st + 4], activePlanes: f64[st + 5], tracedLines: f64[st + 6], exactFallbacks: f64[st + 7],
+    msValidate: f64[st + 8], msPlanes: f64[st + 9], msLp: f64[st + 10], msTrace: f64[st + 11], msAssemble: f64[st + 12],
+    msTotal: f64[st + 13],
   };
 }
 

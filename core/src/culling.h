@@ -3,10 +3,37 @@
 
 #include <vector>
 
+#include "climb.h"
 #include "planes.h"
 #include "tracer.h"
 
 namespace kergen {
+
+// Whether a plane can reach above a traced convex polytope K_S (some vertex of K_S outside it):
+// a bounding-box test, then an upper bound from K_S's support function at the corners of a
+// cube map of directions, then hill climbing on K_S's vertex graph. All in double with a margin
+// far above rounding (plus the plane's coefficient error bounds and the vertices'), so a plane
+// that reaches above K_S is never missed; planes that merely come close are kept too.
+// `tr` must be a complete trace of a non-empty, bounded K_S (coordinates below ~2).
+class SupportTest {
+ public:
+  SupportTest(const TraceResult& tr, size_t expected_queries);
+  struct Scratch {
+    ClimbScratch climb;
+  };
+  // True when plane may hold a vertex of K_S outside (or within the margin of) its half-space;
+  // `hint` is then a vertex of K_S near the plane's maximum (a start for cutting).
+  bool may_reach(const PlaneCoef<Approx>& plane, Scratch& scratch, uint32_t& hint) const;
+
+ private:
+  std::vector<double> xyz_;
+  std::vector<uint32_t> adj_offset_, adj_, start_of_cell_, start_of_corner_;
+  std::vector<char> cell_resolved_;
+  std::vector<double> corner_support_;
+  size_t cells_per_side_ = 2;
+  double centre_[3] = {0, 0, 0}, half_[3] = {0, 0, 0};
+  double max_abs_ = 0, coord_error_ = 0;
+};
 
 struct CulledTrace {
   TraceResult trace;            // the kernel, traced against `active` only

@@ -69,9 +69,21 @@ struct Setup {
 
 // Generic objective for the LP (ties are broken lexicographically anyway).
 constexpr double kDefaultDirection[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
-// Below this many faces the sample LP would cost about as much as the full LP it could save.
-constexpr size_t kQuickRejectMinFaces = 2000;
+// Below this many faces the sample kernel would cost about as much as the plane classes it saves.
+constexpr size_t kFaceCullingMinFaces = 2000;
 constexpr double kLpBound = 8;  // scaled coordinates are below 1; the open-mesh box is within 4
+
+// A box twice the size of the data (scaled coordinates are below 1): it bounds what an open
+// surface leaves unbounded, and the subset kernels of culling. A closed mesh's kernel never
+// reaches it.
+void add_box(PlaneSet& ps, std::vector<uint32_t>& box) {
+  for (int k = 0; k < 3; ++k)
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      double n[3] = {0, 0, 0};
+      n[k] = sgn;
+      box.push_back(ps.add_explicit(n[0], n[1], n[2], -2.0));
+    }
+}
 
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
@@ -82,49 +94,77 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_validate = ms_since(t);
   if (s.mesh.error != Error::Ok) return;
 
-  // Fast rejection: if the face planes of a random sample of faces already admit no common
-  // point, the kernel is empty — proven by one small exact LP before any plane classes are built.
-  // (A feasible sample proves nothing; the full path follows.)
-  if (s.mesh.boundary_edges == 0 && s.mesh.num_faces() > kQuickRejectMinFaces) {
+  // Faces before planes: on a large closed mesh, the kernel K_R of the planes of an evenly
+  // spread sample R of faces bounds the kernel K (K is inside K_R). K is empty when K_R is (one
+  // small exact LP, before any plane classes of the whole mesh are built); otherwise only the
+  // faces whose planes reach above K_R can touch K, and the exact plane classes are built for
+  // them and R alone. (K_R from a feasible sample proves nothing about K's emptiness: the LP
+  // over the kept planes decides it.)
+  std::vector<uint32_t> kept_faces;
+  bool culled = false;
+  const size_t nf = s.mesh.num_faces();
+  if (s.mesh.boundary_edges == 0 && nf > kFaceCullingMinFaces) {
     t = Clock::now();
-    PlaneSet raw(&s.mesh.points, s.mesh.exact_shift);
     std::vector<uint32_t> sample;
-    const size_t nf = s.mesh.num_faces();
     const size_t k = std::min(nf, size_t(4 * std::sqrt(double(nf))) + 32);
-    for (size_t i = 0; i < k; ++i) {
-      const auto& r = s.mesh.rep[(i * nf) / k];  // evenly spread over the face order
-      sample.push_back(raw.add_from_points(r[0], r[1], r[2]));
-    }
-    LpResult quick = solve_lp(raw, sample, kDefaultDirection, kLpBound, options.seed);
-    stats.ms_lp = ms_since(t);
+    for (size_t i = 0; i < k; ++i) sample.push_back(uint32_t((i * nf) / k));  // increasing
+    PlaneSet sp(&s.mesh.points, s.mesh.exact_shift);
+    std::vector<uint32_t> sample_plane;
+    build_planes(s.mesh, sample, sp, sample_plane);
+    std::vector<uint32_t> sample_planes(sp.size()), sample_box;
+    for (uint32_t i = 0; i < sp.size(); ++i) sample_planes[i] = i;
+    add_box(sp, sample_box);
+    std::vector<uint32_t> lp_planes = sample_planes;
+    lp_planes.insert(lp_planes.end(), sample_box.begin(), sample_box.end());
+    const auto t_lp = Clock::now();
+    LpResult quick = solve_lp(sp, lp_planes, kDefaultDirection, kLpBound, options.seed);
+    stats.ms_lp = ms_since(t_lp);
     if (quick.outcome == LpResult::Outcome::Infeasible) {
       s.lp = quick;
       s.rejected_early = true;
+      stats.ms_planes = ms_since(t) - stats.ms_lp;
       return;
     }
+    if (options.cull_faces && quick.outcome == LpResult::Outcome::Optimal) {
+      TraceOptions quiet;
+      CulledTrace kr = trace_with_culling(sp, sample_planes, sample_box, quick.vertex, quiet, options.seed);
+      if (!kr.trace.internal_error && kr.trace.complete && !kr.trace.vertices.empty()) {
+        const SupportTest support(kr.trace, nf);
+        SupportTest::Scratch scratch;
+        kept_faces.reserve(2 * k);
+        size_t next_sample = 0;
+        for (uint32_t f = 0; f < nf; ++f) {
+          const auto& r = s.mesh.rep[f];
+          uint32_t hint = 0;
+          if (next_sample < k && sample[next_sample] == f) {
+            ++next_sample;
+            kept_faces.push_back(f);
+          } else if (support.may_reach(approx_plane(s.mesh.point(r[0]), s.mesh.point(r[1]), s.mesh.point(r[2])), scratch,
+                                       hint)) {
+            kept_faces.push_back(f);
+          }
+        }
+        culled = true;
+        stats.culled_faces = nf - kept_faces.size();
+      }
+    }
+    stats.ms_planes = ms_since(t) - stats.ms_lp;
   }
 
   t = Clock::now();
   s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
   std::vector<uint32_t> face_plane;
-  build_planes(s.mesh, *s.planes, face_plane);
+  if (culled) build_planes(s.mesh, kept_faces, *s.planes, face_plane);
+  else build_planes(s.mesh, *s.planes, face_plane);
   stats.distinct_planes = s.planes->size();
   s.active.reserve(s.planes->size() + 6);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
   for (int k = 0; k < 3; ++k) s.center[k] = 0.5 * (s.mesh.bbox_min[k] + s.mesh.bbox_max[k]);
-  // A box twice the size of the data (scaled coordinates are below 1): it bounds what an open
-  // surface leaves unbounded, and the subset kernels of culling. A closed mesh's kernel never
-  // reaches it.
-  for (int k = 0; k < 3; ++k)
-    for (int sgn = -1; sgn <= 1; sgn += 2) {
-      double n[3] = {0, 0, 0};
-      n[k] = sgn;
-      s.box.push_back(s.planes->add_explicit(n[0], n[1], n[2], -2.0));
-    }
+  add_box(*s.planes, s.box);
   if (s.mesh.boundary_edges > 0) s.active.insert(s.active.end(), s.box.begin(), s.box.end());
   s.is_box.assign(s.planes->size(), 0);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.is_box[i] = s.planes->explicit_plane(i);
-  stats.ms_planes = ms_since(t);
+  stats.ms_planes += ms_since(t);
 
   t = Clock::now();
   double dir[3] = {kDefaultDirection[0], kDefaultDirection[1], kDefaultDirection[2]};

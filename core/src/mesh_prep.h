@@ -39,6 +39,7 @@ struct PreparedMesh {
   double bbox_min[3] = {0, 0, 0}, bbox_max[3] = {0, 0, 0};  // scaled units
 
   size_t num_faces() const { return rep.size(); }
+  const double* point(uint32_t v) const { return &points[3 * size_t(v)]; }
 };
 
 PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options);

@@ -17,6 +17,7 @@
 #include "union_find.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace kergen {
@@ -197,10 +198,22 @@ class CellTable {
 // itself).
 uint64_t pair_key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
 
-}  // namespace
 
-void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
-  const size_t nf = m.num_faces();
+// The faces to build planes for: prepared faces (all, or a subset renumbered from 0).
+struct FaceLists {
+  const std::array<uint32_t, 3>* rep;
+  size_t num_faces;
+  const std::array<uint32_t, 2>* adjacent;  // edge-adjacent pairs among these faces
+  size_t num_adjacent;
+  const uint32_t* loop_offsets;  // num_faces + 1
+  const uint32_t* loops;
+};
+
+void face_incidence(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane);
+
+void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
+  const size_t nf = fl.num_faces;
+  const std::array<uint32_t, 3>* rep = fl.rep;
   // Plane ids index the per-plane arrays below, from the first one added here.
   const uint32_t first_plane = uint32_t(ps.size());
   // Loads a few iterations ahead are prefetched: the loops below are bound by cache misses on
@@ -216,7 +229,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   std::vector<Key> key;
   key.reserve(nf);
   for (uint32_t f = 0; f < nf; ++f) {
-    const auto& t = m.rep[f];
+    const auto& t = rep[f];
     const PlaneCoef<Approx> c = approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
     ps.put(f, c);
     key.push_back(face_key(m, t, c));
@@ -228,9 +241,10 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
   //    meshes) are kept: their classes are then known to differ without a second exact test.
   UnionFind uf(nf);
   std::vector<std::array<uint32_t, 2>> apart;
-  const auto& adj = m.adjacent;
-  for (size_t i = 0; i < adj.size(); ++i) {
-    if (i + kAhead < adj.size()) {
+  const std::array<uint32_t, 2>* adj = fl.adjacent;
+  const size_t num_adj = fl.num_adjacent;
+  for (size_t i = 0; i < num_adj; ++i) {
+    if (i + kAhead < num_adj) {
       prefetch(&key[adj[i + kAhead][0]]);
       prefetch(&key[adj[i + kAhead][1]]);
     }
@@ -238,7 +252,7 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     if (key_match(key[pr[0]], key[pr[1]]) <= 0) continue;
     const uint32_t a = uf.find(pr[0]), b = uf.find(pr[1]);
     if (a == b) continue;
-    if (!same_plane(m, m.rep[pr[0]], m.rep[pr[1]])) {
+    if (!same_plane(m, rep[pr[0]], rep[pr[1]])) {
       apart.push_back(pr);
       continue;
     }
@@ -279,14 +293,14 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     }
     const OwnCell cell = ahead[root_index % kAhead];
     prefetch_next(root_index++ % kAhead);
-    const auto& r = m.rep[f];
+    const auto& r = rep[f];
     const Key& k = key[f];
     uint32_t found = kNoPlane, opposite = kNoPlane;
     auto visit = [&](uint64_t h) KERGEN_INLINE {
       for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) {
         const uint32_t of = plane_face[other - first_plane];
         const int orientation = key_match(k, key[of]);
-        if (orientation == 0 || (orientation > 0 && distinct.contains(pair_key(f, of))) || !same_plane(m, m.rep[of], r)) continue;
+        if (orientation == 0 || (orientation > 0 && distinct.contains(pair_key(f, of))) || !same_plane(m, rep[of], r)) continue;
         if (orientation > 0) found = other;
         else opposite = other;  // at most one plane per orientation, so this one is unlinked
       }
@@ -303,14 +317,14 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
     next.push_back(table.push(cell.hash, id));
     if (opposite != kNoPlane) opposites.push_back({opposite, id});
   }
-  ps.keep_staged(m.rep.data(), plane_face.data(), plane_face.size());
+  ps.keep_staged(rep, plane_face.data(), plane_face.size());
   for (const auto& o : opposites) ps.set_opposite(o[0], o[1]);
 
   // 3. Incidence.
-  set_face_incidence(m, ps, face_plane);
+  face_incidence(m, fl, ps, face_plane);
 }
 
-void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
+void face_incidence(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
   // Compressed rows (sorted, unique) in linear time:
   //  a. each point's planes with repeats (one per face loop through it), bucketed by point;
   //  b. each row sorted and deduplicated in place (a point has a handful of faces) and compacted;
@@ -318,18 +332,18 @@ void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<u
   // Buckets are filled through their offsets: row r's count goes to off[r + 2], the prefix sum
   // makes off[r + 1] row r's start, filling advances it to row r's end = row r + 1's start, so
   // off[0..n] are then the final offsets.
-  const size_t nf = m.num_faces();
+  const size_t nf = fl.num_faces;
   const size_t np = ps.size(), nv = m.points.size() / 3;
   auto prefix_sum = [](RawVector<uint32_t>& off) {
     for (size_t i = 1; i < off.size(); ++i) off[i] += off[i - 1];
   };
   // a.
   RawVector<uint32_t> point_off(nv + 2, 0);
-  for (uint32_t i = 0; i < m.loop_offsets[nf]; ++i) point_off[m.loops[i] + 2]++;
+  for (uint32_t i = 0; i < fl.loop_offsets[nf]; ++i) point_off[fl.loops[i] + 2]++;
   prefix_sum(point_off);
   RawVector<uint32_t> point_pls(point_off[nv + 1]);
   for (uint32_t f = 0; f < nf; ++f)
-    for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) point_pls[point_off[m.loops[i] + 1]++] = face_plane[f];
+    for (uint32_t i = fl.loop_offsets[f]; i < fl.loop_offsets[f + 1]; ++i) point_pls[point_off[fl.loops[i] + 1]++] = face_plane[f];
   point_off.pop_back();
   // b. (Compacting writes never overtake the reads: out <= the row's read position.) Each
   // plane's point count goes to plane_off[plane + 2] for c.
@@ -362,6 +376,37 @@ void set_face_incidence(const PreparedMesh& m, PlaneSet& ps, const std::vector<u
     for (uint32_t i = point_off[v]; i < point_off[v + 1]; ++i) plane_pts[plane_off[point_pls[i] + 1]++] = v;
   plane_off.pop_back();
   ps.set_incidence(std::move(plane_off), std::move(plane_pts), std::move(point_off), std::move(point_pls));
+}
+
+}  // namespace
+
+void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
+  const FaceLists all{m.rep.data(), m.num_faces(), m.adjacent.data(), m.adjacent.size(), m.loop_offsets.data(), m.loops.data()};
+  build_planes(m, all, ps, face_plane);
+}
+
+void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
+  // The faces renumbered 0..n-1 in the order given: their triangles, loops, and the adjacent
+  // pairs among them (found through a bitmap of the chosen faces, then their new numbers).
+  const size_t nf = m.num_faces(), n = faces.size();
+  std::vector<std::array<uint32_t, 3>> rep(n);
+  std::vector<uint32_t> loop_offsets(n + 1, 0), loops;
+  std::vector<uint64_t> chosen((nf + 63) / 64, 0);
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t f = faces[k];
+    assert(f < nf && (k == 0 || faces[k - 1] < f) && "faces must be increasing face ids");
+    rep[k] = m.rep[f];
+    loops.insert(loops.end(), m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
+    loop_offsets[k + 1] = uint32_t(loops.size());
+    chosen[f >> 6] |= uint64_t(1) << (f & 63);
+  }
+  auto is_chosen = [&](uint32_t f) { return (chosen[f >> 6] >> (f & 63)) & 1; };
+  auto local = [&](uint32_t f) { return uint32_t(std::lower_bound(faces.begin(), faces.end(), f) - faces.begin()); };
+  std::vector<std::array<uint32_t, 2>> adjacent;
+  for (const auto& pr : m.adjacent)
+    if (is_chosen(pr[0]) && is_chosen(pr[1])) adjacent.push_back({local(pr[0]), local(pr[1])});
+  const FaceLists some{rep.data(), n, adjacent.data(), adjacent.size(), loop_offsets.data(), loops.data()};
+  build_planes(m, some, ps, face_plane);
 }
 
 }  // namespace kergen

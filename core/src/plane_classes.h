@@ -14,8 +14,9 @@ namespace kergen {
 // float filter's error bounds are absolute).
 void build_planes(const PreparedMesh& mesh, PlaneSet& ps, std::vector<uint32_t>& face_plane);
 
-// Records which input vertices lie on which plane by construction: the vertices of every face
-// f lie on plane face_plane[f].
-void set_face_incidence(const PreparedMesh& mesh, PlaneSet& ps, const std::vector<uint32_t>& face_plane);
+// The same for the prepared faces `faces` only (increasing ids; the others are ignored, as if
+// absent): face_plane[k] is the plane of face faces[k], and the incidence is that of these faces.
+void build_planes(const PreparedMesh& mesh, const std::vector<uint32_t>& faces, PlaneSet& ps,
+                  std::vector<uint32_t>& face_plane);
 
 }  // namespace kergen

@@ -269,6 +269,31 @@ inline Mesh uv_sphere(int nu, int nv, double twist) {
   return m;
 }
 
+// Bumpy UV sphere r(theta, phi) = 1 + amp sin(3 theta) cos(2 phi) with nu x nv cells (as
+// scripts/gen-big-mesh.mjs): 2 nu (nv - 1) triangles, star-shaped around the origin for small
+// amp, with a kernel much smaller than the shape (most faces cannot touch it).
+inline Mesh bumpy_sphere(int nu, int nv, double amp = 0.2) {
+  Mesh m;
+  const double pi = 3.14159265358979323846;
+  m.positions = {0, 0, 1, 0, 0, -1};
+  for (int j = 1; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const double th = pi * j / nv, ph = 2 * pi * i / nu, r = 1 + amp * std::sin(3 * th) * std::cos(2 * ph);
+      m.positions.insert(m.positions.end(), {r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
+    }
+  auto id = [&](int j, int i) { return uint32_t(2 + (j - 1) * nu + (i % nu)); };
+  for (int i = 0; i < nu; ++i) {
+    m.indices.insert(m.indices.end(), {0, id(1, i), id(1, i + 1)});
+    m.indices.insert(m.indices.end(), {1, id(nv - 1, i + 1), id(nv - 1, i)});
+  }
+  for (int j = 1; j < nv - 1; ++j)
+    for (int i = 0; i < nu; ++i) {
+      m.indices.insert(m.indices.end(), {id(j, i), id(j + 1, i), id(j + 1, i + 1)});
+      m.indices.insert(m.indices.end(), {id(j, i), id(j + 1, i + 1), id(j, i + 1)});
+    }
+  return m;
+}
+
 // Geodesic sphere: each face of an icosahedron cut into n^2 triangles, the points pushed onto
 // the unit sphere; 20 n^2 faces, 10 n^2 + 2 vertices. Strictly convex (no four points coplanar
 // in practice), so its kernel is the shape, face for face. `volume` is the mesh's own (the sum of

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
 
 #include "fixtures.h"
 #include "kergen/kergen.h"
@@ -224,6 +225,57 @@ TEST(Kernel, LargeConvexKernelIsTheShape) {
       std::sort(in.begin(), in.end());
       std::sort(out.begin(), out.end());
       EXPECT_EQ(in, out) << n << " seed " << seed;
+    }
+  }
+}
+
+// Face culling (Options::cull_faces) drops faces before their planes are merged; the kernel
+// must be the same, bit for bit, as with every face's plane. Large closed meshes only (small
+// ones skip the step): star-shaped with a small kernel (most faces culled), convex with
+// coplanar faces and with near-coplanar ones (nothing can be culled), a pyramid with a
+// tessellated base, and a non-star one.
+TEST(Kernel, FaceCullingKeepsTheKernel) {
+  struct Case {
+    const char* name;
+    Mesh mesh;
+    bool expect_culled;
+    bool check_invariants;  // false where distinct kernel vertices round to one output point
+  };
+  std::vector<Case> cases = {
+      {"bumpy sphere 80x40", bumpy_sphere(80, 40), true, false},
+      {"bumpy sphere 150x76", bumpy_sphere(150, 76, 0.1), true, false},
+      {"tessellated cube 20", tessellated_cube(20), false, true},
+      {"twisted uv sphere", uv_sphere(48, 30, 1e-3), false, false},
+      {"geodesic sphere 12", geodesic_sphere(12).mesh, false, true},
+      {"pyramid 3000", pyramid(3000, 1, 0.3), false, true},
+      {"torus", torus(80, 30), false, false},
+      {"bumpy sphere, strong bumps", bumpy_sphere(90, 40, 0.9), false, false},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    ASSERT_GT(c.mesh.num_faces(), 2000u) << c.name;
+    for (uint64_t seed : {1ull, 77ull}) {
+      Options on, off;
+      on.seed = off.seed = seed;
+      off.cull_faces = false;
+      const Kernel a = run(c.mesh, on), b = run(c.mesh, off);
+      ASSERT_TRUE(a.ok()) << c.name << ": " << a.message;
+      ASSERT_TRUE(b.ok()) << c.name << ": " << b.message;
+      EXPECT_EQ(a.type, b.type) << c.name;
+      EXPECT_EQ(b.stats.culled_faces, 0u) << c.name;
+      if (c.expect_culled) EXPECT_GT(a.stats.culled_faces, c.mesh.num_faces() / 2) << c.name;
+      EXPECT_LE(a.stats.distinct_planes, b.stats.distinct_planes) << c.name;
+      EXPECT_EQ(a.num_edges(), b.num_edges()) << c.name;
+      EXPECT_EQ(a.num_faces(), b.num_faces()) << c.name;
+      std::vector<std::array<double, 3>> va, vb;
+      for (size_t i = 0; i < a.num_vertices(); ++i) va.push_back({a.vertices[3 * i], a.vertices[3 * i + 1], a.vertices[3 * i + 2]});
+      for (size_t i = 0; i < b.num_vertices(); ++i) vb.push_back({b.vertices[3 * i], b.vertices[3 * i + 1], b.vertices[3 * i + 2]});
+      std::sort(va.begin(), va.end());
+      std::sort(vb.begin(), vb.end());
+      EXPECT_EQ(va, vb) << c.name << " seed " << seed;
+      EXPECT_NEAR(a.volume, b.volume, 1e-12 * std::max(1.0, b.volume)) << c.name;
+      EXPECT_EQ(a.kernel_point, b.kernel_point) << c.name;
+      if (c.check_invariants) expect_valid_polyhedron(c.mesh, a);
     }
   }
 }

@@ -110,6 +110,10 @@ struct Options {
   uint64_t seed = 0x4b6572476e;    // LP constraint order (results do not depend on it)
   size_t max_faces = 20'000'000;   // larger inputs get Error::TooLarge instead of exhausting memory
   size_t max_vertices = 20'000'000;
+  // Large closed meshes: drop the faces whose planes cannot reach the kernel (they hold the
+  // kernel of a sample of faces strictly) before coplanar faces are merged into planes. The
+  // kernel is the same either way; off, Stats::distinct_planes counts the planes of every face.
+  bool cull_faces = true;
 };
 
 struct Warning {
@@ -128,7 +132,8 @@ struct Stats {
   size_t input_vertices = 0;
   size_t input_faces = 0;
   size_t dropped_faces = 0;        // zero-area faces
-  size_t distinct_planes = 0;      // after merging coplanar faces (a plane used from both sides counts twice)
+  size_t culled_faces = 0;         // faces dropped before planes are merged: their planes cannot reach the kernel
+  size_t distinct_planes = 0;      // after merging the other faces' coplanar planes (a plane used from both sides counts twice)
   size_t active_planes = 0;        // planes left after culling (those that can touch the kernel)
   size_t traced_lines = 0;
   size_t exact_fallbacks = 0;      // predicate evaluations the floating-point filter could not decide
