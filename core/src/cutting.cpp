@@ -156,7 +156,10 @@ class Cutter {
     const uint32_t opposite = ps_.opposite(h);
     cut_points_ = on_;
     for (uint32_t v : out_) {
-      for (uint32_t e : adj_[v]) {
+      // A copy: add_vertex below grows adj_, which moves v's list once a cut adds more vertices
+      // than the room reserved (a plane cutting a vertex of many edges, such as a fan's apex).
+      const SmallVector<uint32_t, 4> edges_of_v = adj_[v];
+      for (uint32_t e : edges_of_v) {
         if (!alive_e_[e]) continue;
         const uint32_t w = other(e, v);
         if (state_[w] == kOutside) {

@@ -188,6 +188,29 @@ TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
   EXPECT_EQ(on_corner, 1u);
 }
 
+TEST(Cutting, OneCutAddsMoreVerticesThanItsRoom) {
+  // The plane -x + y - z = -1/2 (in the cube's units) through the cube's centre cuts a hexagon
+  // (and keeps the trace's start, the corner (1, 0, 1)):
+  // one cut adds 6 vertices, more than the 4 per cut reserved, so the vertex arrays grow while
+  // the outside vertices' edges are walked (which read freed memory before the walk took a copy;
+  // the sanitizer build catches it).
+  TracedCube t;
+  ASSERT_EQ(t.cube.vertices.size(), 8u);
+  PlanesWithStart& s = t.s;
+  uint32_t face_x1 = kNoPlane;
+  for (uint32_t l : s.mesh_planes)
+    if (s.ps->nx()[l] > 0 && s.ps->ny()[l] == 0 && s.ps->nz()[l] == 0) face_x1 = l;
+  ASSERT_NE(face_x1, kNoPlane);
+  const double a = s.ps->nx()[face_x1], d = s.ps->d()[face_x1];  // a x + d <= 0 is x <= 1
+  const std::vector<uint32_t> added = {s.ps->add_explicit(-a, a, -a, -0.5 * d)};
+  t.all.insert(t.all.end(), added.begin(), added.end());
+  TraceResult cut;
+  ASSERT_TRUE(cut_kernel_trace(*s.ps, t.cube, added, {0}, 1, cut));
+  TraceResult full = trace_kernel_edges(*s.ps, t.all, s.start, TraceOptions());
+  EXPECT_EQ(cut.vertices.size(), 10u);  // 4 corners cut away, 6 cut points
+  EXPECT_TRUE(canonical(cut) == canonical(full));
+}
+
 TEST(Cutting, DeclinesAFlatResult) {
   // The unit cube cut by x <= 0, the opposite of its own face x >= 0: the result is the square
   // x = 0, which the cuts leave to tracing.

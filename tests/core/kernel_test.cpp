@@ -280,6 +280,19 @@ TEST(Kernel, FaceCullingKeepsTheKernel) {
   }
 }
 
+TEST(Kernel, ConvexUvSphereWithPoleFans) {
+  // A convex UV sphere of 40 x 41 cells: the planes cutting the sample kernel at a pole's fan
+  // of 40 triangles add more vertices per cut than the cutter had room for. Its split quads are
+  // planar only up to rounding, so the kernel keeps slivers of them: it is the shape up to
+  // rounding-size features, and no larger.
+  const Mesh m = bumpy_sphere(40, 41, 0);
+  const Kernel k = run(m);
+  ASSERT_TRUE(k.ok()) << k.message;
+  EXPECT_EQ(k.type, KernelType::Polyhedron);
+  EXPECT_NEAR(k.volume_ratio, 1, 1e-9);
+  EXPECT_GE(k.num_vertices(), m.positions.size() / 3);
+}
+
 TEST(Kernel, SPrismIsPolygon) {
   Kernel k = run(s_prism());
   ASSERT_TRUE(k.ok()) << k.message;
