@@ -70,7 +70,7 @@ struct Setup {
 // Generic objective for the LP (ties are broken lexicographically anyway).
 constexpr double kDefaultDirection[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
 // Below this many faces the sample kernel would cost about as much as the plane classes it saves.
-constexpr size_t kFaceCullingMinFaces = 2000;
+constexpr size_t kFaceCullingMinFaces = 700;
 constexpr double kLpBound = 8;  // scaled coordinates are below 1; the open-mesh box is within 4
 
 // A box twice the size of the data (scaled coordinates are below 1): it bounds what an open
@@ -142,10 +142,13 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
           } else if (support.may_reach(approx_plane(s.mesh.point(r[0]), s.mesh.point(r[1]), s.mesh.point(r[2])), scratch,
                                        hint)) {
             kept_faces.push_back(f);
+            if (kept_faces.size() > nf / 2) break;  // not worth it (below)
           }
         }
-        culled = true;
-        stats.culled_faces = nf - kept_faces.size();
+        // When most faces may touch the kernel (a convex shape: all of them), the classes of
+        // all faces cost less than those of a renumbered subset.
+        culled = kept_faces.size() <= nf / 2;
+        if (culled) stats.culled_faces = nf - kept_faces.size();
       }
     }
     stats.ms_planes = ms_since(t) - stats.ms_lp;
