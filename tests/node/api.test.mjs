@@ -140,10 +140,21 @@ test('stats describe the input and add up', async () => {
   assert.equal(r.stats.inputVertices, m.positions.length / 3);
   assert.equal(r.stats.inputFaces, m.indices.length / 3);
   assert.equal(r.stats.droppedFaces, 0);
+  assert.equal(r.stats.culledFaces, 0, 'small meshes keep every face');
   assert.equal(r.stats.distinctPlanes, 10, '12 walls on 8 planes (collinear arm sides merge) + top + bottom');
   assert.ok(r.stats.activePlanes >= 6 && r.stats.activePlanes <= 10);
   for (const k of ['msValidate', 'msPlanes', 'msLp', 'msTrace', 'msAssemble', 'msTotal']) assert.ok(r.stats[k] >= 0, k);
   assert.ok(r.stats.msTotal + 1e-9 >= r.stats.msTrace, 'total includes tracing');
+});
+
+test('a large star-shaped mesh: most faces are culled before plane merging, the kernel stays valid', async () => {
+  const { bumpySphere } = await import('../../scripts/gen-big-mesh.mjs');
+  const m = bumpySphere(80, 40); // 6320 triangles, kernel far smaller than the shape
+  const r = await K.computeKernel(m.positions, m.indices);
+  assert.equal(r.status, 'POLYHEDRON');
+  assert.ok(r.stats.culledFaces > m.indices.length / 3 / 2, `culled ${r.stats.culledFaces}`);
+  assert.ok(r.stats.distinctPlanes + r.stats.culledFaces <= r.stats.inputFaces);
+  checkKernel(r, m);
 });
 
 test('an extruded star polygon: kernel vertices inside every half-space, volume from its own faces', async () => {
