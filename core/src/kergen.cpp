@@ -106,7 +106,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   if (s.mesh.boundary_edges == 0 && nf > kFaceCullingMinFaces) {
     t = Clock::now();
     std::vector<uint32_t> sample;
-    const size_t k = std::min(nf, size_t(4 * std::sqrt(double(nf))) + 32);
+    const size_t k = std::min(nf, size_t(3 * std::sqrt(double(nf))) + 32);
     for (size_t i = 0; i < k; ++i) sample.push_back(uint32_t((i * nf) / k));  // increasing
     PlaneSet sp(&s.mesh.points, s.mesh.exact_shift);
     std::vector<uint32_t> sample_plane;
