@@ -185,8 +185,32 @@ struct VertexGeom {
   mutable int32_t late_point = kNoPoint;
 };
 
-// Plane of an input triangle with error bounds, without adding it to a set.
-PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c);
+// Plane of an input triangle with error bounds, without adding it to a set (inline: the
+// per-face loops of plane classes and face culling call it once per face). One pass of doubles with bounds of the same form as the running error of
+// the generic formula: for u = b - a and v = c - a rounded (relative error eps each), a normal
+// component n = p - q with p, q the rounded products is within 3 eps (|p| + |q|) + eps |n| of
+// the exact one (two input errors and one rounding per product, one rounding of the difference;
+// the second-order terms fit in kBoundScale's slack), and d = -(n . a) with exact a adds the
+// normal errors times |a| and the roundings of the products and partial sums.
+inline PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c) {
+  using exact::kBoundScale;
+  using exact::kEps;
+  using exact::kUnderflowFloor;
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  PlaneCoef<Approx> r;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double p = u[i] * v[j], q = u[j] * v[i], n = p - q;
+    r.n[k] = Approx(n, (3 * kEps * (std::fabs(p) + std::fabs(q)) + kEps * std::fabs(n)) * kBoundScale + kUnderflowFloor);
+  }
+  const double p0 = r.n[0].v * a[0], p1 = r.n[1].v * a[1], p2 = r.n[2].v * a[2];
+  const double s01 = p0 + p1, s = s01 + p2;
+  const double input = std::fabs(a[0]) * r.n[0].e + std::fabs(a[1]) * r.n[1].e + std::fabs(a[2]) * r.n[2].e;
+  const double rounding = kEps * (std::fabs(p0) + std::fabs(p1) + std::fabs(p2) + std::fabs(s01) + std::fabs(s));
+  r.d = Approx(-s, (input + rounding) * kBoundScale + kUnderflowFloor);
+  return r;
+}
+
 // Exact plane of the triangle with its points times 2^shift (a positive multiple of the plane).
 PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c, int shift = 0);
 
