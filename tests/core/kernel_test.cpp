@@ -234,16 +234,16 @@ TEST(Kernel, LargeConvexKernelIsTheShape) {
 // ones skip the step): star-shaped with a small kernel (most faces culled), convex with
 // coplanar faces and with near-coplanar ones (nothing can be culled), a pyramid with a
 // tessellated base, and a non-star one.
-// s_prism with every side split into `parts` equal steps (dyadic: the new corners are exact and
-// exactly collinear): 8 parts + 2 faces, the same flat kernel.
-Mesh subdivided_s_prism(int parts) {
+// s_prism with side i split into parts[i] equal steps (dyadic: the new corners are exact and
+// exactly collinear): the same flat kernel, {y = 1, 1 <= x <= 2} x [0, 1].
+Mesh subdivided_s_prism(const std::array<int, 8>& parts) {
   const std::vector<std::array<double, 2>> corners = {{1, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 2}, {0, 2}, {0, 1}, {1, 1}};
   std::vector<std::array<double, 2>> poly;
   for (size_t i = 0; i < corners.size(); ++i) {
     const auto& a = corners[i];
     const auto& b = corners[(i + 1) % corners.size()];
-    for (int k = 0; k < parts; ++k) {
-      const double t = double(k) / parts;
+    for (int k = 0; k < parts[i]; ++k) {
+      const double t = double(k) / parts[i];
       poly.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
     }
   }
@@ -266,7 +266,11 @@ TEST(Kernel, FaceCullingKeepsTheKernel) {
       {"pyramid 3000", pyramid(3000, 1, 0.3), false, true},
       {"torus", torus(80, 30), false, false},
       {"bumpy sphere, strong bumps", bumpy_sphere(90, 40, 0.9), false, false},
-      {"subdivided S prism (flat kernel)", subdivided_s_prism(128), false, false},
+      // Sides 2, 3, 6, 7 lie on planes through the kernel. The sample kernel is bounded by the
+      // planes of the split sides (their faces are most of the sample), and every face on such a
+      // plane touches it: half of the faces do, and culling gives up.
+      {"S prism, far sides split (flat kernel)", subdivided_s_prism({256, 128, 1, 1, 256, 128, 1, 1}), false, false},
+      {"S prism, all sides split (flat kernel)", subdivided_s_prism({128, 128, 128, 128, 128, 128, 128, 128}), false, false},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
