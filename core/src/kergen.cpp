@@ -85,6 +85,38 @@ void add_box(PlaneSet& ps, std::vector<uint32_t>& box) {
     }
 }
 
+// The faces whose planes may reach above K_R (traced in `sample_kernel`), with the sample's
+// own faces, in increasing order; false when more than half the faces may (a convex shape: all of
+// them; a finely tessellated flat part of the kernel's boundary): the classes of all faces then
+// cost less than those of a renumbered subset. Evenly spread probes tell before the full scan.
+bool faces_reaching(const PreparedMesh& mesh, const TraceResult& sample_kernel, const std::vector<uint32_t>& sample,
+                    std::vector<uint32_t>& kept) {
+  const size_t nf = mesh.num_faces();
+  const SupportTest support(sample_kernel, nf);
+  SupportTest::Scratch scratch;
+  auto reaches = [&](uint32_t f) {
+    const auto& r = mesh.rep[f];
+    uint32_t hint = 0;
+    return support.may_reach(approx_plane(mesh.point(r[0]), mesh.point(r[1]), mesh.point(r[2])), scratch, hint);
+  };
+  constexpr size_t kProbes = 256;
+  size_t probes_reaching = 0;
+  for (size_t i = 0; i < kProbes; ++i) probes_reaching += reaches(uint32_t(((2 * i + 1) * nf) / (2 * kProbes)));
+  if (2 * probes_reaching > kProbes) return false;
+  kept.reserve(2 * sample.size());
+  size_t next_sample = 0;
+  for (uint32_t f = 0; f < nf; ++f) {
+    if (next_sample < sample.size() && sample[next_sample] == f) {
+      ++next_sample;
+      kept.push_back(f);
+    } else if (reaches(f)) {
+      kept.push_back(f);
+      if (kept.size() > nf / 2) return false;  // the probes were wrong: not worth it either
+    }
+  }
+  return true;
+}
+
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
   s.mesh = prepare_mesh(mesh, options);
@@ -129,25 +161,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
       TraceOptions quiet;
       CulledTrace kr = trace_with_culling(sp, sample_planes, sample_box, quick.vertex, quiet, options.seed);
       if (!kr.trace.internal_error && kr.trace.complete && !kr.trace.vertices.empty()) {
-        const SupportTest support(kr.trace, nf);
-        SupportTest::Scratch scratch;
-        kept_faces.reserve(2 * k);
-        size_t next_sample = 0;
-        for (uint32_t f = 0; f < nf; ++f) {
-          const auto& r = s.mesh.rep[f];
-          uint32_t hint = 0;
-          if (next_sample < k && sample[next_sample] == f) {
-            ++next_sample;
-            kept_faces.push_back(f);
-          } else if (support.may_reach(approx_plane(s.mesh.point(r[0]), s.mesh.point(r[1]), s.mesh.point(r[2])), scratch,
-                                       hint)) {
-            kept_faces.push_back(f);
-            if (kept_faces.size() > nf / 2) break;  // not worth it (below)
-          }
-        }
-        // When most faces may touch the kernel (a convex shape: all of them), the classes of
-        // all faces cost less than those of a renumbered subset.
-        culled = kept_faces.size() <= nf / 2;
+        culled = faces_reaching(s.mesh, kr.trace, sample, kept_faces);
         if (culled) stats.culled_faces = nf - kept_faces.size();
       }
     }
