@@ -775,6 +775,23 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     if (any) ++nonplanar; else ++degenerate;
   }
+  // The fans' volume chose the orientation and the splits then fold outward for it; polygons far
+  // from planar can fold into a surface that encloses a negative volume (two quads closing a
+  // tetrahedron, each folded outward after a flip). The split surface is what the planes come
+  // from: it is turned over once more, as a whole, when its own volume says so.
+  if (!open && nonplanar > 0 && m.volume < 0) {
+    for (size_t f = 0; f + 1 < m.loop_offsets.size(); ++f)
+      std::reverse(m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
+    for (auto& t : m.rep) std::swap(t[0], t[2]);
+    m.volume = -m.volume;
+    flip = !flip;
+    auto flipped = std::find_if(m.warnings.begin(), m.warnings.end(),
+                                [](const Warning& w) { return w.kind == Warning::Kind::OrientationFlipped; });
+    if (flipped != m.warnings.end()) m.warnings.erase(flipped);
+    else m.warnings.push_back({Warning::Kind::OrientationFlipped, cf, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"});
+  }
+  if (!open && nonplanar > 0 && !(m.volume > 1e-12 * vol6_abs / 6))
+    return fail(m, Error::DegenerateInput, "the mesh encloses no volume once its non-planar polygons are split");
   m.dropped_faces += degenerate;
   if (m.dropped_faces)
     m.warnings.push_back({Warning::Kind::DegenerateFacesDropped, m.dropped_faces, std::to_string(m.dropped_faces) + " zero-area faces were ignored"});

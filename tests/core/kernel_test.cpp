@@ -314,6 +314,30 @@ TEST(Kernel, ConvexUvSphereWithPoleFans) {
   EXPECT_GE(k.num_vertices(), m.positions.size() / 3);
 }
 
+TEST(Kernel, TwoNonPlanarQuadsClosingATetrahedron) {
+  // Quads (0 1 2 3) and (3 2 1 0) over the corners of the unit tetrahedron: their fans enclose a
+  // negative volume, so the mesh was flipped, and each split then folded outward for the flipped
+  // orientation, which closed the tetrahedron inside out (a wrong EMPTY). Every loop start and
+  // face order gives the tetrahedron.
+  const std::vector<std::array<uint32_t, 8>> orders = {
+      {0, 1, 2, 3, 3, 2, 1, 0}, {3, 2, 1, 0, 0, 1, 2, 3}, {1, 2, 3, 0, 0, 3, 2, 1}, {2, 3, 0, 1, 1, 0, 3, 2}};
+  for (const auto& o : orders) {
+    Mesh m;
+    add_point(m, 0, 0, 0);
+    add_point(m, 1, 0, 0);
+    add_point(m, 0, 1, 0);
+    add_point(m, 0, 0, 1);
+    add_face(m, {o[0], o[1], o[2], o[3]});
+    add_face(m, {o[4], o[5], o[6], o[7]});
+    const Kernel k = run(m);
+    ASSERT_TRUE(k.ok()) << k.message;
+    EXPECT_EQ(k.type, KernelType::Polyhedron) << o[0];
+    EXPECT_NEAR(k.volume, 1.0 / 6, 1e-15) << o[0];
+    EXPECT_NEAR(k.shape_volume, 1.0 / 6, 1e-15) << o[0];
+    EXPECT_EQ(k.num_vertices(), 4u) << o[0];
+  }
+}
+
 TEST(Kernel, SPrismIsPolygon) {
   Kernel k = run(s_prism());
   ASSERT_TRUE(k.ok()) << k.message;
