@@ -338,6 +338,19 @@ TEST(Kernel, TwoNonPlanarQuadsClosingATetrahedron) {
   }
 }
 
+TEST(Kernel, TallPyramidApexOfManyPlanes) {
+  // The LP's vertex is the apex, on all 1000 side planes, and it is traced first: its edges are
+  // the 1000 pairs of neighbouring planes among ~500,000 pairs (finding the ~499,000 that are not
+  // edges used to cost (planes)^3 / 6 sign tests; the sweep's 5000-gon pyramid took minutes).
+  const int n = 1000;
+  const Mesh m = pyramid(n, 1, 1000);
+  const Kernel k = run(m);
+  expect_valid_polyhedron(m, k);
+  EXPECT_EQ(k.num_vertices(), size_t(n + 1));
+  EXPECT_EQ(k.num_faces(), size_t(n + 1));
+  EXPECT_NEAR(k.volume_ratio, 1, 1e-12);
+}
+
 TEST(Kernel, SPrismIsPolygon) {
   Kernel k = run(s_prism());
   ASSERT_TRUE(k.ok()) << k.message;
