@@ -10,6 +10,7 @@
 #include "tracer.h"
 
 #include "flat_set.h"
+#include "hints.h"
 #include "vertex_filter.h"
 
 #include <algorithm>
@@ -420,13 +421,8 @@ class Tracer {
         // few planes of the other sign are met after about n / (their number) tries wherever
         // they are. Testing in index order found them only after ~i tries: a 1000-face apex
         // cost (tight planes)^3 / 6 tests.
-        const bool many = n > 8;
-        const size_t first[4] = {(i + 1) % n, (j + 1) % n, (i + n - 1) % n, (j + n - 1) % n};
-        const size_t tries = many ? 4 : 0;
-        const size_t stride = !many ? 1 : (n % 7919 != 0 ? 7919 : 7927) % n, offset = many ? (31 * i + 17 * j) % n : 0;
-        for (size_t t = 0; t < tries + n && !(pos && neg); ++t) {
-          const size_t k = t < tries ? first[t] : (offset + (t - tries) * stride) % n;
-          if (k == i || k == j) { s[k] = 0; continue; }
+        auto sign_of = [&](size_t k) KERGEN_INLINE {
+          if (k == i || k == j) { s[k] = 0; return; }
           // det3(n_k, n_i, n_j) is the sorted triple's determinant, negated when k lies between
           // i and j (one transposition; k < i or k > j is a rotation).
           const int parity = i < k && k < j ? -1 : 1;
@@ -444,6 +440,18 @@ class Tracer {
           }
           pos |= s[k] > 0;
           neg |= s[k] < 0;
+        };
+        if (n <= 8) {
+          for (size_t k = 0; k < n && !(pos && neg); ++k) sign_of(k);
+        } else {
+          const size_t first[4] = {i + 1, j + 1 < n ? j + 1 : 0, i > 0 ? i - 1 : n - 1, j - 1};
+          for (size_t t = 0; t < 4 && !(pos && neg); ++t) sign_of(first[t]);
+          const size_t stride = (n % 7919 != 0 ? 7919 : 7927) % n;
+          for (size_t t = 0, k = (31 * i + 17 * j) % n; t < n && !(pos && neg); ++t) {
+            sign_of(k);
+            k += stride;
+            if (k >= n) k -= n;
+          }
         }
         if (pos && neg) continue;
         if (!pos && !neg) continue;  // every tight plane contains the line: not a vertex (unreachable)
