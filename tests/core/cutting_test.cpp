@@ -153,6 +153,13 @@ struct TracedCube {
   PlanesWithStart s{kergen_test::unit_cube(), kDir};
   std::vector<uint32_t> all = s.planes_and_box();
   TraceResult cube = trace_kernel_edges(*s.ps, all, s.start, TraceOptions());
+  // The cube's face plane whose normal points along +axis (sign 1) or -axis (sign -1).
+  uint32_t face(int axis, int sign) const {
+    const double* n[3] = {s.ps->nx(), s.ps->ny(), s.ps->nz()};
+    for (uint32_t l : s.mesh_planes)
+      if (n[axis][l] * sign > 0 && n[(axis + 1) % 3][l] == 0 && n[(axis + 2) % 3][l] == 0) return l;
+    return kNoPlane;
+  }
 };
 
 TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
@@ -190,16 +197,13 @@ TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
 
 TEST(Cutting, OneCutAddsMoreVerticesThanItsRoom) {
   // The plane -x + y - z = -1/2 (in the cube's units) through the cube's centre cuts a hexagon
-  // (and keeps the trace's start, the corner (1, 0, 1)):
-  // one cut adds 6 vertices, more than the 4 per cut reserved, so the vertex arrays grow while
-  // the outside vertices' edges are walked (which read freed memory before the walk took a copy;
-  // the sanitizer build catches it).
+  // and keeps the trace's start, the corner (1, 0, 1). One cut adds 6 vertices, more than the 4
+  // per cut reserved, so the vertex arrays grow while the outside vertices' edges are walked
+  // (which read freed memory before the walk took a copy; the sanitizer build catches it).
   TracedCube t;
   ASSERT_EQ(t.cube.vertices.size(), 8u);
   PlanesWithStart& s = t.s;
-  uint32_t face_x1 = kNoPlane;
-  for (uint32_t l : s.mesh_planes)
-    if (s.ps->nx()[l] > 0 && s.ps->ny()[l] == 0 && s.ps->nz()[l] == 0) face_x1 = l;
+  const uint32_t face_x1 = t.face(0, 1);
   ASSERT_NE(face_x1, kNoPlane);
   const double a = s.ps->nx()[face_x1], d = s.ps->d()[face_x1];  // a x + d <= 0 is x <= 1
   const std::vector<uint32_t> added = {s.ps->add_explicit(-a, a, -a, -0.5 * d)};
@@ -217,9 +221,7 @@ TEST(Cutting, DeclinesAFlatResult) {
   TracedCube t;
   ASSERT_EQ(t.cube.vertices.size(), 8u);
   PlanesWithStart& s = t.s;
-  uint32_t face_x0 = kNoPlane;
-  for (uint32_t l : s.mesh_planes)
-    if (s.ps->nx()[l] < 0 && s.ps->ny()[l] == 0 && s.ps->nz()[l] == 0) face_x0 = l;
+  const uint32_t face_x0 = t.face(0, -1);
   ASSERT_NE(face_x0, kNoPlane);
   const uint32_t x_le_0 = s.ps->add_explicit(1, 0, 0, -s.ps->d()[face_x0] / -s.ps->nx()[face_x0]);
   s.ps->set_opposite(face_x0, x_le_0);
