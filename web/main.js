@@ -206,7 +206,9 @@ function finish(result) {
 
   const s = result.stats ?? {};
   setStat('stat-input-faces', `${s.inputFaces ?? '—'}${s.droppedFaces ? ` (${s.droppedFaces} zero-area dropped)` : ''}`, s.inputFaces);
-  setStat('stat-planes', `${s.distinctPlanes ?? '—'}${s.activePlanes != null ? ` (${s.activePlanes} active)` : ''}`, s.distinctPlanes);
+  const planesNote = [s.activePlanes != null ? `${s.activePlanes} active` : null, s.culledFaces ? `${s.culledFaces} faces culled first` : null]
+    .filter(Boolean).join(', ');
+  setStat('stat-planes', `${s.distinctPlanes ?? '—'}${planesNote ? ` (${planesNote})` : ''}`, s.distinctPlanes);
   setStat('stat-status', result.status + (result.complete === false ? ' (partial)' : ''), result.status);
   setStat('stat-vertices', String(V), V);
   setStat('stat-edges', String(E), E);
