@@ -198,7 +198,6 @@ class CellTable {
 // itself).
 uint64_t pair_key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
 
-
 // The faces to build planes for: prepared faces (all, or a subset renumbered from 0).
 struct FaceLists {
   const std::array<uint32_t, 3>* rep;
