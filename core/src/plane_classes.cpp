@@ -194,6 +194,93 @@ class CellTable {
   size_t mask_;
 };
 
+// Fine keys, for planes whose float keys crowd one cell: a nearly (not exactly) flat region, such
+// as a tessellated face rounded after a rotation, puts thousands of planes within 1e-16 of each
+// other into one cell, and each new plane would be tested exactly against all of them. The fine
+// key is the plane divided by the magnitude of its normal's largest component m, in double-double
+// (error below kFineMaxError): one exact plane gives the same value from any of its triangles, so
+// its fine keys agree within their error bounds, while planes 1e-16 apart fall into different
+// cells of 2^-70. Like the float keys they only select candidates; the exact test decides.
+constexpr double kFineScale = 1180591620717411303424.0;  // 2^70
+constexpr double kFineMaxError = 1e-26;
+constexpr size_t kCrowded = 8;  // float-key planes walked in vain before fine keys are used
+
+// floor(x 2^70) of a double-double x (|x| < 2^9) and whether x lies within `margin` cells of the
+// lower (-1) or upper (+1) border of that cell.
+struct FineCoord {
+  __int128 cell;
+  int near;
+};
+FineCoord fine_coord(double hi, double lo, double margin) {
+  const double hs = hi * kFineScale, ls = lo * kFineScale;  // exact: a power of two
+  const double h = std::floor(hs);
+  const double t = (hs - h) + ls;  // hs - h is exact; t is rounded once (far below the margin)
+  const double ft = std::floor(t);
+  const double frac = t - ft;
+  return {static_cast<__int128>(h) + static_cast<__int128>(ft), frac < margin ? -1 : (frac > 1 - margin ? 1 : 0)};
+}
+
+uint64_t fine_hash(int m, int sign, const __int128 c[3]) {
+  uint64_t h = 0x9e3779b97f4a7c15ull ^ uint64_t(m * 2 + (sign > 0));
+  for (int i = 0; i < 3; ++i)
+    for (uint64_t part : {uint64_t(c[i]), uint64_t(c[i] >> 64)}) {
+      h ^= part;
+      h *= 0xff51afd7ed558ccdull;
+      h ^= h >> 33;
+    }
+  return h;
+}
+
+// Calls visit(hash) for every fine cell a plane on the same exact plane as (key k, double-double
+// plane p), or on its opposite, can have been stored under; sets `own` to the cell to store this
+// plane under. Returns false when p is too poorly known for fine keys (then nothing is visited).
+// `own_valid` is false when the largest normal component is not clear-cut (two candidates for
+// m, both visited): such a plane is stored with the float keys.
+template <class Visit>
+bool for_each_fine_cell(const Key& k, const PlaneCoef<exact::ApproxDD>& p, Visit visit, uint64_t& own, bool& own_valid) {
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int a, int b) { return std::fabs(k.k[a]) > std::fabs(k.k[b]); });
+  // Keys are within kKeyError of the exact normalized plane: a gap of 1e-12 between the two
+  // largest components means every plane with this exact plane picks the same m.
+  const int candidates = std::fabs(k.k[order[0]]) - std::fabs(k.k[order[1]]) > 1e-12 ? 1 : 2;
+  own_valid = candidates == 1;
+  for (int ci = 0; ci < candidates; ++ci) {
+    const int m = order[ci];
+    const exact::ApproxDD& nm = p.n[m];
+    if (!(std::fabs(nm.hi) - std::fabs(nm.lo) > 2 * nm.e)) return false;
+    const int sign = nm.hi > 0 ? 1 : -1;
+    exact::ApproxDD v[3];
+    int slot = 0;
+    for (int i = 0; i < 3; ++i)
+      if (i != m) v[slot++] = p.n[i] / nm;
+    v[2] = p.d / nm;
+    for (auto& x : v) {
+      if (!(x.e <= kFineMaxError) || !(std::fabs(x.hi) < 256)) return false;
+      if (sign < 0) x = -x;  // divided by |n_m|: the orientation stays in `sign`
+    }
+    // Two fine keys of one exact plane differ by at most 2 kFineMaxError: in cells,
+    const double margin = 2 * kFineMaxError * kFineScale + 1e-9;
+    for (int orientation : {1, -1}) {
+      FineCoord c[3];
+      for (int i = 0; i < 3; ++i) c[i] = orientation > 0 ? fine_coord(v[i].hi, v[i].lo, margin) : fine_coord(-v[i].hi, -v[i].lo, margin);
+      for (int mask = 0; mask < 8; ++mask) {
+        __int128 cell[3];
+        bool skip = false;
+        for (int i = 0; i < 3; ++i) {
+          const bool bit = (mask >> i) & 1;
+          if (bit && c[i].near == 0) { skip = true; break; }
+          cell[i] = c[i].cell + (bit ? c[i].near : 0);
+        }
+        if (skip) continue;
+        const uint64_t h = fine_hash(m, orientation * sign, cell);
+        if (ci == 0 && orientation > 0 && mask == 0) own = h;
+        visit(h);
+      }
+    }
+  }
+  return true;
+}
+
 // An unordered pair of face ids as one key of a U64Set (never ~0: a face is never paired with
 // itself).
 uint64_t pair_key(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
@@ -273,6 +360,10 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
   plane_face.reserve(num_roots);
   next.reserve(num_roots);
   CellTable table(num_roots);
+  // Planes stored under fine keys (crowded float-key cells) are in `fine`, and also in
+  // `fine_by_cell` under their float-key cell for the rare plane that has no fine key of its own.
+  CellTable fine(num_roots), fine_by_cell(num_roots);
+  std::vector<uint32_t> next_by_cell;
   // The table slots of the next kAhead representatives are prefetched; their hashes wait in a
   // ring until used.
   OwnCell ahead[kAhead];
@@ -295,17 +386,39 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
     const auto& r = rep[f];
     const Key& k = key[f];
     uint32_t found = kNoPlane, opposite = kNoPlane;
+    size_t walked = 0;
+    auto check = [&](uint32_t other) KERGEN_INLINE {
+      ++walked;
+      const uint32_t of = plane_face[other - first_plane];
+      const int orientation = key_match(k, key[of]);
+      if (orientation == 0 || (orientation > 0 && distinct.contains(pair_key(f, of))) || !same_plane(m, rep[of], r)) return;
+      if (orientation > 0) found = other;
+      else opposite = other;  // at most one plane per orientation, so this one is unlinked
+    };
     auto visit = [&](uint64_t h) KERGEN_INLINE {
-      for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) {
-        const uint32_t of = plane_face[other - first_plane];
-        const int orientation = key_match(k, key[of]);
-        if (orientation == 0 || (orientation > 0 && distinct.contains(pair_key(f, of))) || !same_plane(m, rep[of], r)) continue;
-        if (orientation > 0) found = other;
-        else opposite = other;  // at most one plane per orientation, so this one is unlinked
-      }
+      for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) check(other);
     };
     if (cell.near_border) for_each_cell(k, visit);
     else visit(cell.hash);
+    bool store_fine = false;
+    uint64_t fine_own = 0;
+    if (found == kNoPlane && walked >= kCrowded) {
+      bool own_valid = false;
+      auto visit_fine = [&](uint64_t h) {
+        for (uint32_t other = fine.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) check(other);
+      };
+      if (for_each_fine_cell(k, dd_plane(P(m, r[0]), P(m, r[1]), P(m, r[2])), visit_fine, fine_own, own_valid)) {
+        store_fine = own_valid;
+      } else {
+        // No fine key: every fine-keyed plane of the float-key cells, as the float keys would.
+        auto visit_by_cell = [&](uint64_t h) {
+          for (uint32_t other = fine_by_cell.head(h); other != kNoPlane && found == kNoPlane; other = next_by_cell[other - first_plane])
+            check(other);
+        };
+        if (cell.near_border) for_each_cell(k, visit_by_cell);
+        else visit_by_cell(cell.hash);
+      }
+    }
     if (found != kNoPlane) {
       face_plane[f] = found;
       continue;
@@ -313,7 +426,13 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
     const uint32_t id = first_plane + uint32_t(plane_face.size());
     face_plane[f] = id;
     plane_face.push_back(f);
-    next.push_back(table.push(cell.hash, id));
+    if (store_fine) {
+      next.push_back(fine.push(fine_own, id));
+      next_by_cell.resize(id - first_plane + 1, kNoPlane);
+      next_by_cell[id - first_plane] = fine_by_cell.push(cell.hash, id);
+    } else {
+      next.push_back(table.push(cell.hash, id));
+    }
     if (opposite != kNoPlane) opposites.push_back({opposite, id});
   }
   ps.keep_staged(rep, plane_face.data(), plane_face.size());

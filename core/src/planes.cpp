@@ -193,6 +193,10 @@ PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double*
 }
 
 
+PlaneCoef<exact::ApproxDD> dd_plane(const double* a, const double* b, const double* c) {
+  return plane_from_points<exact::ApproxDD>(a, b, c);
+}
+
 const PlaneCoef<exact::ApproxDD>& PlaneSet::dd(uint32_t i) const {
   if (const PlaneCoef<exact::ApproxDD>* cached = dd_.find(i)) return *cached;
   {

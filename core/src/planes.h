@@ -211,6 +211,9 @@ inline PlaneCoef<Approx> approx_plane(const double* a, const double* b, const do
   return r;
 }
 
+// The plane of an input triangle in double-double with a rigorous bound (error ~1e-32 of its
+// magnitude), as PlaneSet::dd computes it.
+PlaneCoef<exact::ApproxDD> dd_plane(const double* a, const double* b, const double* c);
 // Exact plane of the triangle with its points times 2^shift (a positive multiple of the plane).
 PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c, int shift = 0);
 
