@@ -20,6 +20,28 @@ namespace kergen {
 
 namespace {
 
+// The volume enclosed by the prepared faces (their loops, CCW from outside), summed in
+// double-double over fans about c.
+double accurate_volume(const PreparedMesh& m, const double c[3]) {
+  using exact::ApproxDD;
+  auto rel = [&](uint32_t v, int k) {
+    double x, y;
+    exact::eft::two_sum(m.points[3 * size_t(v) + k], -c[k], x, y);
+    return ApproxDD(x, y, 0);
+  };
+  ApproxDD vol6(0);
+  for (size_t f = 0; f + 1 < m.loop_offsets.size(); ++f) {
+    const uint32_t* loop = m.loops.data() + m.loop_offsets[f];
+    const size_t k = m.loop_offsets[f + 1] - m.loop_offsets[f];
+    for (size_t i = 1; i + 1 < k; ++i) {
+      ApproxDD a[3], b[3], d[3];
+      for (int j = 0; j < 3; ++j) { a[j] = rel(loop[0], j); b[j] = rel(loop[i], j); d[j] = rel(loop[i + 1], j); }
+      vol6 = vol6 + (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]));
+    }
+  }
+  return (vol6.hi + vol6.lo) / 6;
+}
+
 PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   m.error = e;
   m.message = msg;
@@ -686,12 +708,13 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     m.rep.resize(first_general);
   }
   // A closed surface enclosing nothing sums to zero up to rounding; anything at the rounding
-  // level of the terms' magnitudes is treated as zero.
-  if (!open && (!(std::fabs(vol6) > 1e-12 * vol6_abs) || ext == 0))
-    return fail(m, Error::DegenerateInput, "the mesh encloses no volume (flat or folded onto itself)");
-  bool flip = vol6 < 0 && !open;
-  m.volume = std::fabs(vol6) / 6;
-  if (open) m.volume = vol6 / 6;
+  // level of the terms' magnitudes is treated as zero. The fans of non-planar polygons may enclose
+  // nothing where their splits below do (two quads over a tetrahedron's corners whose fans take
+  // the same diagonal): then the split surface decides, below.
+  if (!open && ext == 0) return fail(m, Error::DegenerateInput, "the mesh encloses no volume (flat or folded onto itself)");
+  const bool fans_enclose_nothing = !open && !(std::fabs(vol6) > 1e-12 * vol6_abs);
+  bool flip = vol6 < 0 && !open && !fans_enclose_nothing;
+  m.volume = flip ? -vol6 / 6 : vol6 / 6;
   if (flip) {
     m.warnings.push_back({Warning::Kind::OrientationFlipped, cf, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"});
     for (size_t f = 0; f < cf; ++f) std::reverse(clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
@@ -790,26 +813,34 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     if (flipped != m.warnings.end()) m.warnings.erase(flipped);
     else m.warnings.push_back({Warning::Kind::OrientationFlipped, cf, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"});
   }
-  if (!open && nonplanar > 0 && !(m.volume > 1e-12 * vol6_abs / 6))
-    return fail(m, Error::DegenerateInput, "the mesh encloses no volume once its non-planar polygons are split");
+  if (!open && (nonplanar > 0 || fans_enclose_nothing) && !(m.volume > 1e-12 * vol6_abs / 6))
+    return fail(m, Error::DegenerateInput, nonplanar > 0 ? "the mesh encloses no volume once its non-planar polygons are split"
+                                                         : "the mesh encloses no volume (flat or folded onto itself)");
   m.dropped_faces += degenerate;
   if (m.dropped_faces)
     m.warnings.push_back({Warning::Kind::DegenerateFacesDropped, m.dropped_faces, std::to_string(m.dropped_faces) + " zero-area faces were ignored"});
   if (nonplanar)
     m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, nonplanar, std::to_string(nonplanar) + " non-planar polygons were split into triangles"});
   if (m.rep.empty()) return fail(m, Error::DegenerateInput, "every face has zero area");
+  // A nearly flat shape's volume is far below the rounding of its terms (the points' offsets
+  // from the centre, rounded, span its thickness): summed again in double-double once the loops
+  // are final, for shapes thinner than 1e-6 of their bounding cube (rare).
+  auto finish = [&]() {
+    if (!open && m.volume < 1e-6 * ext * ext * ext) m.volume = accurate_volume(m, c);
+    return std::move(m);
+  };
   if (!renumbered) {
     m.loops = std::move(clean);
     m.loop_offsets = std::move(clean_offsets);
     m.adjacent = std::move(face_pairs);
-    return m;
+    return finish();
   }
   m.adjacent.reserve(face_pairs.size());
   for (const auto& pr : face_pairs) {
     uint32_t a = face_of_clean[pr[0]], b = face_of_clean[pr[1]];
     if (a != 0xffffffffu && b != 0xffffffffu) m.adjacent.push_back({a, b});
   }
-  return m;
+  return finish();
 }
 
 }  // namespace kergen

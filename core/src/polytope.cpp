@@ -18,7 +18,7 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   // Coordinates to ~1e-30 relative (so the output is rounded once, from nearly exact values),
   // and local coordinates relative to the first vertex for area and volume: far from the origin
   // (offset >> size) the differences keep their accuracy.
-  std::vector<double> hi(3 * V), lo(3 * V), local(3 * V);
+  std::vector<double> hi(3 * V), lo(3 * V), local(3 * V), local_lo(3 * V);
   for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &hi[3 * i], &lo[3 * i]);
   out.vertices.resize(3 * V);
   for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = std::ldexp(hi[i], unscale_exp);
@@ -27,7 +27,11 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       // Knuth's two-sum of a = hi_i and b = -hi_0: s + err == a + b exactly.
       const double a = hi[3 * i + k], b = -hi[k];
       const double s = a + b, bb = s - a, err = (a - (s - bb)) + (b - bb);
-      local[3 * i + k] = s + (err + (lo[3 * i + k] - lo[k]));
+      // local + local_lo: the difference to ~1e-30 (the volume of a nearly flat kernel cancels
+      // far below the rounding of one double).
+      const double tail = err + (lo[3 * i + k] - lo[k]);
+      local[3 * i + k] = s + tail;
+      local_lo[3 * i + k] = tail - (local[3 * i + k] - s);
     }
   out.edges.resize(2 * E);
   for (size_t i = 0; i < E; ++i) { out.edges[2 * i] = trace.edges[i].a; out.edges[2 * i + 1] = trace.edges[i].b; }
@@ -150,14 +154,32 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   double c[3] = {0, 0, 0};
   for (uint32_t i = 0; i < V; ++i)
     for (int k = 0; k < 3; ++k) c[k] += P(i, k) / double(V);
-  double area = 0, vol6 = 0;
+  double area = 0, vol6 = 0, vol6_abs = 0;
   for (size_t t = 0; t < out.triangles.size(); t += 3) {
     uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
     double u[3], w[3], r[3];
     for (int k = 0; k < 3; ++k) { u[k] = P(b, k) - P(a, k); w[k] = P(d, k) - P(a, k); r[k] = P(a, k) - c[k]; }
     double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
     area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    vol6 += n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+    const double term = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+    vol6 += term;
+    vol6_abs += std::fabs(n[0] * r[0]) + std::fabs(n[1] * r[1]) + std::fabs(n[2] * r[2]);
+  }
+  // A nearly flat kernel's volume is far below the rounding of its terms (a tetrahedron of volume
+  // 1e-17 with unit edges came out negative): then it is summed again in double-double, from the
+  // local coordinates to ~1e-30.
+  if (!(vol6 > 1e-6 * vol6_abs)) {
+    using exact::ApproxDD;
+    auto PD = [&](uint32_t v, int k) { return ApproxDD(local[3 * size_t(v) + k], local_lo[3 * size_t(v) + k], 0); };
+    ApproxDD sum(0);
+    for (size_t t = 0; t < out.triangles.size(); t += 3) {
+      uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
+      ApproxDD u[3], w[3], r[3];
+      for (int k = 0; k < 3; ++k) { u[k] = PD(b, k) - PD(a, k); w[k] = PD(d, k) - PD(a, k); r[k] = PD(a, k) - ApproxDD(c[k]); }
+      const ApproxDD n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      sum = sum + (n[0] * r[0] + n[1] * r[1] + n[2] * r[2]);
+    }
+    vol6 = sum.hi + sum.lo;
   }
   scaled_volume = (out.type == KernelType::Polyhedron && trace.complete) ? vol6 / 6 : 0;
   out.area = std::ldexp(area, 2 * unscale_exp);

@@ -351,6 +351,45 @@ TEST(Kernel, TallPyramidApexOfManyPlanes) {
   EXPECT_NEAR(k.volume_ratio, 1, 1e-12);
 }
 
+TEST(Kernel, NonPlanarQuadsWhoseFansEncloseNothing) {
+  // Quads (0 1 2 3) and (2 1 0 3) over a tetrahedron of volume 5/6, every loop start: where both
+  // fans take the same diagonal they enclose nothing, which was refused as DEGENERATE_INPUT before
+  // the quads were split (the split surface is the tetrahedron).
+  const double pts[4][3] = {{1, 0, 0.25}, {0, 1, 1.5}, {-1, 0, 0.25}, {0, -1, 1.5}};
+  const uint32_t qa[4] = {0, 1, 2, 3}, qb[4] = {2, 1, 0, 3};
+  for (int sa = 0; sa < 4; ++sa)
+    for (int sb = 0; sb < 4; ++sb) {
+      Mesh m;
+      for (const auto& p : pts) add_point(m, p[0], p[1], p[2]);
+      add_face(m, {qa[sa], qa[(sa + 1) % 4], qa[(sa + 2) % 4], qa[(sa + 3) % 4]});
+      add_face(m, {qb[sb], qb[(sb + 1) % 4], qb[(sb + 2) % 4], qb[(sb + 3) % 4]});
+      const Kernel k = run(m);
+      ASSERT_TRUE(k.ok()) << sa << sb << ": " << k.message;
+      EXPECT_EQ(k.type, KernelType::Polyhedron) << sa << sb;
+      EXPECT_NEAR(k.volume, 5.0 / 6, 1e-14) << sa << sb;
+      EXPECT_NEAR(k.volume_ratio, 1, 1e-14) << sa << sb;
+    }
+}
+
+TEST(Kernel, NearlyFlatTetrahedronVolume) {
+  // Four points on a plane up to rounding (a quad bent by 1e-17): the tetrahedron of volume
+  // ~8.2e-18 came out with volume -9.3e-18 (summed in double from unit-size terms) and a
+  // shape volume of +9.3e-18. Both are summed in double-double now.
+  Mesh m;
+  add_point(m, 1, 0, -0.20000000000000001);
+  add_point(m, 6.123233995736766e-17, 1, 0.29999999999999999);
+  add_point(m, -1, 1.2246467991473532e-16, 0.5);
+  add_point(m, -1.8369701987210297e-16, -1, 0);
+  add_face(m, {0, 1, 2, 3});
+  add_face(m, {3, 2, 1, 0});
+  const Kernel k = run(m);
+  ASSERT_TRUE(k.ok()) << k.message;
+  EXPECT_EQ(k.type, KernelType::Polyhedron);
+  EXPECT_GT(k.volume, 0);
+  EXPECT_NEAR(k.volume, k.shape_volume, 1e-6 * k.shape_volume);
+  EXPECT_NEAR(k.volume_ratio, 1, 1e-6);
+}
+
 TEST(Kernel, SPrismIsPolygon) {
   Kernel k = run(s_prism());
   ASSERT_TRUE(k.ok()) << k.message;
