@@ -42,6 +42,10 @@ double accurate_volume(const PreparedMesh& m, const double c[3]) {
   return (vol6.hi + vol6.lo) / 6;
 }
 
+Warning flipped_warning(size_t faces) {
+  return {Warning::Kind::OrientationFlipped, faces, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"};
+}
+
 PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   m.error = e;
   m.message = msg;
@@ -716,7 +720,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   bool flip = vol6 < 0 && !open && !fans_enclose_nothing;
   m.volume = flip ? -vol6 / 6 : vol6 / 6;
   if (flip) {
-    m.warnings.push_back({Warning::Kind::OrientationFlipped, cf, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"});
+    m.warnings.push_back(flipped_warning(cf));
     for (size_t f = 0; f < cf; ++f) std::reverse(clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
     for (auto& t : m.rep) std::swap(t[0], t[2]);
   }
@@ -811,7 +815,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     auto flipped = std::find_if(m.warnings.begin(), m.warnings.end(),
                                 [](const Warning& w) { return w.kind == Warning::Kind::OrientationFlipped; });
     if (flipped != m.warnings.end()) m.warnings.erase(flipped);
-    else m.warnings.push_back({Warning::Kind::OrientationFlipped, cf, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"});
+    else m.warnings.push_back(flipped_warning(cf));
   }
   if (!open && (nonplanar > 0 || fans_enclose_nothing) && !(m.volume > 1e-12 * vol6_abs / 6))
     return fail(m, Error::DegenerateInput, nonplanar > 0 ? "the mesh encloses no volume once its non-planar polygons are split"

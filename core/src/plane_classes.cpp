@@ -395,26 +395,23 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
       if (orientation > 0) found = other;
       else opposite = other;  // at most one plane per orientation, so this one is unlinked
     };
-    auto visit = [&](uint64_t h) KERGEN_INLINE {
-      for (uint32_t other = table.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) check(other);
+    // The planes of table t's chain h (linked through `links`), until one is found.
+    auto walk = [&](const CellTable& t, const std::vector<uint32_t>& links, uint64_t h) KERGEN_INLINE {
+      for (uint32_t other = t.head(h); other != kNoPlane && found == kNoPlane; other = links[other - first_plane]) check(other);
     };
+    auto visit = [&](uint64_t h) KERGEN_INLINE { walk(table, next, h); };
     if (cell.near_border) for_each_cell(k, visit);
     else visit(cell.hash);
     bool store_fine = false;
     uint64_t fine_own = 0;
     if (found == kNoPlane && walked >= kCrowded) {
       bool own_valid = false;
-      auto visit_fine = [&](uint64_t h) {
-        for (uint32_t other = fine.head(h); other != kNoPlane && found == kNoPlane; other = next[other - first_plane]) check(other);
-      };
+      auto visit_fine = [&](uint64_t h) { walk(fine, next, h); };
       if (for_each_fine_cell(k, dd_plane(P(m, r[0]), P(m, r[1]), P(m, r[2])), visit_fine, fine_own, own_valid)) {
         store_fine = own_valid;
       } else {
         // No fine key: every fine-keyed plane of the float-key cells, as the float keys would.
-        auto visit_by_cell = [&](uint64_t h) {
-          for (uint32_t other = fine_by_cell.head(h); other != kNoPlane && found == kNoPlane; other = next_by_cell[other - first_plane])
-            check(other);
-        };
+        auto visit_by_cell = [&](uint64_t h) { walk(fine_by_cell, next_by_cell, h); };
         if (cell.near_border) for_each_cell(k, visit_by_cell);
         else visit_by_cell(cell.hash);
       }
