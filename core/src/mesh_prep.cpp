@@ -717,7 +717,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // the same diagonal): then the split surface decides, below.
   if (!open && ext == 0) return fail(m, Error::DegenerateInput, "the mesh encloses no volume (flat or folded onto itself)");
   const bool fans_enclose_nothing = !open && !(std::fabs(vol6) > 1e-12 * vol6_abs);
-  bool flip = vol6 < 0 && !open && !fans_enclose_nothing;
+  const bool flip = vol6 < 0 && !open && !fans_enclose_nothing;
   m.volume = flip ? -vol6 / 6 : vol6 / 6;
   if (flip) {
     m.warnings.push_back(flipped_warning(cf));
@@ -811,7 +811,6 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       std::reverse(m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
     for (auto& t : m.rep) std::swap(t[0], t[2]);
     m.volume = -m.volume;
-    flip = !flip;
     auto flipped = std::find_if(m.warnings.begin(), m.warnings.end(),
                                 [](const Warning& w) { return w.kind == Warning::Kind::OrientationFlipped; });
     if (flipped != m.warnings.end()) m.warnings.erase(flipped);
