@@ -283,6 +283,24 @@ std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, co
   return {0, 0};  // not reached: called only when a shared position exists
 }
 
+// Coordinates times a factor, read as a range: a vector assigned from it is filled once (a
+// resize would first write zeros over it).
+struct ScaledCoordinates {
+  using iterator_category = std::random_access_iterator_tag;
+  using value_type = double;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const double*;
+  using reference = double;
+  const double* at;
+  double factor;
+  double operator*() const { return *at * factor; }
+  ScaledCoordinates& operator++() { ++at; return *this; }
+  ScaledCoordinates operator++(int) { ScaledCoordinates old = *this; ++at; return old; }
+  difference_type operator-(const ScaledCoordinates& o) const { return at - o.at; }
+  bool operator==(const ScaledCoordinates& o) const { return at == o.at; }
+  bool operator!=(const ScaledCoordinates& o) const { return at != o.at; }
+};
+
 bool lex_less(const double* a, const double* b) {
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }
@@ -327,14 +345,17 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   }
   auto face_size = [&](size_t f) -> size_t { return mesh.face_sizes ? mesh.face_sizes[f] : 3; };
 
-  // Finite coordinates and the largest magnitude (for the scale below) in one branch-free pass
-  // over the bits: without the sign bit, doubles order like their bit patterns, and every NaN
-  // or infinity lies at or above that of infinity. The culprit is looked for only if needed.
-  double maxabs = 0;
+  // Finite coordinates, the largest magnitude (for the scale below) and the smallest non-zero
+  // one (for the exact shift below) in one branch-free pass over the bits: without the sign
+  // bit, doubles order like their bit patterns, and every NaN or infinity lies at or above that
+  // of infinity. The culprit is looked for only if needed.
+  double maxabs = 0, min_nonzero_abs = INFINITY;
   {
     const double* pos = mesh.positions;
     const uint64_t kAbs = ~(uint64_t(1) << 63), kInf = 0x7ff0000000000000ull;
-    uint64_t top[4] = {0, 0, 0, 0};  // four chains: the maxima do not wait on each other
+    // Four chains: the extrema do not wait on each other. The minimum is taken over the
+    // magnitudes' bits minus one, which turns a zero into the largest value.
+    uint64_t top[4] = {0, 0, 0, 0}, low[4] = {UINT64_MAX, UINT64_MAX, UINT64_MAX, UINT64_MAX};
     const size_t n = 3 * nv;
     size_t i = 0;
     for (; i + 4 <= n; i += 4)
@@ -342,11 +363,13 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         uint64_t b;
         std::memcpy(&b, pos + i + j, sizeof b);
         top[j] = std::max(top[j], b & kAbs);
+        low[j] = std::min(low[j], (b & kAbs) - 1);
       }
     for (; i < n; ++i) {
       uint64_t b;
       std::memcpy(&b, pos + i, sizeof b);
       top[0] = std::max(top[0], b & kAbs);
+      low[0] = std::min(low[0], (b & kAbs) - 1);
     }
     const uint64_t top_bits = std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
     if (top_bits >= kInf) {
@@ -357,6 +380,11 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       return fail(m, Error::NonFiniteCoordinate, s.str());
     }
     std::memcpy(&maxabs, &top_bits, sizeof maxabs);
+    const uint64_t low_bits = std::min(std::min(low[0], low[1]), std::min(low[2], low[3]));
+    if (low_bits != UINT64_MAX) {
+      const uint64_t min_bits = low_bits + 1;
+      std::memcpy(&min_nonzero_abs, &min_bits, sizeof min_nonzero_abs);
+    }
   }
   // Indices in range: the largest one first (a branch-free pass), the culprit only if needed.
   uint32_t max_index = 0;
@@ -377,7 +405,6 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   if (maxabs > 0) std::frexp(maxabs, &ex);
   // (As an exponent: for an input of subnormal numbers only, 2^-ex itself is not a double.)
   m.scale_exp = -ex;
-  m.points.resize(3 * nv);
   // The exact predicates are polynomials of degree <= 9 in the coordinates. Expansion
   // arithmetic is exact only while no bit of a product falls below 2^-1074 (underflow) and no
   // magnitude reaches ~2^996 (the splitter overflows): with coordinates below 1 (scaled above),
@@ -389,13 +416,20 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // otherwise (inputs of subnormal numbers only) ldexp scales each coordinate.
     const bool exact_factor = m.scale_exp >= -1074 && m.scale_exp <= 1023;
     const double factor = exact_factor ? std::ldexp(1.0, m.scale_exp) : 0;
-    int lowest = 0;
-    for (size_t i = 0; i < 3 * nv; ++i) {
-      const double x = exact_factor ? mesh.positions[i] * factor : m.to_scaled(mesh.positions[i]);
-      m.points[i] = x;
-      if (x != 0) lowest = std::min(lowest, lowest_bit_exponent(x));
-    }
     const int kLowestAllowed = -112, kMaxShift = 109;
+    int lowest = 0;
+    // The lowest set bit of a coordinate lies at most 52 bits below its leading one: when every
+    // non-zero coordinate is at least 2^(kLowestAllowed + 52), no lowest bit needs reading.
+    if (exact_factor && min_nonzero_abs * factor >= std::ldexp(1.0, kLowestAllowed + 52)) {
+      m.points = std::vector<double>(ScaledCoordinates{mesh.positions, factor}, ScaledCoordinates{mesh.positions + 3 * nv, factor});
+    } else {
+      m.points.resize(3 * nv);
+      for (size_t i = 0; i < 3 * nv; ++i) {
+        const double x = exact_factor ? mesh.positions[i] * factor : m.to_scaled(mesh.positions[i]);
+        m.points[i] = x;
+        if (x != 0) lowest = std::min(lowest, lowest_bit_exponent(x));
+      }
+    }
     int shift = std::max(0, kLowestAllowed - lowest);
     if (shift > kMaxShift) {
       std::ostringstream s;
@@ -425,9 +459,28 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     uint32_t* off = clean_offsets.data();
     char* us = used.data();
     uint32_t* count = bucket.data() + 1;
-    auto count_use = [count](uint32_t u, uint32_t v) { count[2 * size_t(std::min(u, v)) + (u < v)]++; };
+    // (bucket 2 lo + 1 < 2 hi, bucket 2 lo < 2 hi + 1: the smaller is the use's bucket)
+    auto count_use = [count](uint32_t u, uint32_t v) { count[std::min(2 * size_t(u) + 1, 2 * size_t(v))]++; };
     size_t n = 0, dropped = 0;  // clean entries so far, faces dropped
-    for (size_t f = 0; f < nf; ++f) {
+    size_t f = 0;
+    if (!mesh.face_sizes) {
+      // The usual leading run of a triangle mesh: face f is at 3 f (the offsets are written after).
+      for (; f < nf; ++f, in += 3) {
+        const uint32_t a = in[0], b = in[1], c = in[2];
+        if (a == b || b == c || c == a) break;
+        cl[3 * f] = a;
+        cl[3 * f + 1] = b;
+        cl[3 * f + 2] = c;
+        us[a] = us[b] = us[c] = 1;
+        count_use(a, b);
+        count_use(b, c);
+        count_use(c, a);
+      }
+      for (size_t g = 1; g <= f; ++g) off[g] = uint32_t(3 * g);
+      n = 3 * f;
+      cf = f;
+    }
+    for (; f < nf; ++f) {
       const size_t begin = n, k = mesh.face_sizes ? mesh.face_sizes[f] : 3;
       if (k == 3 && in[0] != in[1] && in[1] != in[2] && in[2] != in[0]) {  // the usual case
         const uint32_t a = in[0], b = in[1], c = in[2];
@@ -469,8 +522,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // the edges of one lower vertex are tallied per upper vertex, then each edge is judged once:
   // on a closed, consistently oriented 2-manifold every edge has one use each way, and its two
   // faces are a pair.
-  for (size_t b = 0; b < 2 * nv; ++b) bucket[b + 1] += bucket[b];
-  const uint32_t total_uses = bucket[2 * nv];
+  uint32_t total_uses = 0;  // (the running sum stays in a register)
+  for (size_t b = 1; b <= 2 * nv; ++b) bucket[b] = total_uses += bucket[b];
   bucket[2 * nv + 1] = total_uses;
   // Faulty edges are counted; the one named is the smallest (lower id, upper id).
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
@@ -514,7 +567,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       const uint32_t* off = clean_offsets.data();
       uint32_t* cursor = bucket.data() + 1;
       auto put = [&](uint32_t u, uint32_t v, uint32_t f) {
-        const uint32_t slot = --cursor[2 * size_t(std::min(u, v)) + (u < v)];
+        const uint32_t slot = --cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))];
         upper[slot] = std::max(u, v);
         use_face[slot] = f;
       };
@@ -554,11 +607,40 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         ++t.down;
         t.down_face = use_face[j];
       }
+      // (the smaller root wins, as in UnionFind::unite)
+      auto unite = [&](uint32_t f0, uint32_t f1) KERGEN_INLINE {
+        const uint32_t r0 = find(f0), r1 = find(f1);
+        if (r0 != r1) {
+          parent[std::max(r0, r1)] = std::min(r0, r1);
+          ++unions;
+        }
+      };
+      // The upward uses are paired as they are tallied, tentatively (a later use of the same edge
+      // may spoil a pair). When each upward use made a pair and each downward use is in one,
+      // every edge of lo has one use each way, and the pairs are the ones judged below, in the
+      // same order: they stand, and only the tallies are cleared. (A pair never overwrites a
+      // use not read yet: lo's pairs number at most its downward uses and its upward uses read.)
+      const size_t downs = up_begin - down_begin, ups = end - up_begin;
+      std::array<uint32_t, 2>* const pairs_before = pair_out;
       for (size_t j = up_begin; j != end; ++j) {
         Tally& t = tally[upper[j]];
         ++t.up;
         t.up_face = use_face[j];
+        if (t.up == 1 && t.down == 1) {
+          (*pair_out)[0] = std::min(t.up_face, t.down_face);
+          (*pair_out)[1] = std::max(t.up_face, t.down_face);
+          ++pair_out;
+        }
       }
+      if (ups == downs && pair_out == pairs_before + ups) {
+        for (size_t j = up_begin; j != end; ++j) {
+          tally[upper[j]] = Tally{};
+          const auto& pair = pairs_before[j - up_begin];
+          unite(pair[0], pair[1]);
+        }
+        continue;
+      }
+      pair_out = pairs_before;
       // Judged at its first upward use, or first downward use if it has none; then cleared.
       auto judge = [&](uint32_t hi) KERGEN_INLINE {
         Tally& t = tally[hi];
@@ -567,12 +649,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
           (*pair_out)[0] = f0;
           (*pair_out)[1] = f1;
           ++pair_out;
-          // (the smaller root wins, as in UnionFind::unite)
-          const uint32_t r0 = find(f0), r1 = find(f1);
-          if (r0 != r1) {
-            parent[std::max(r0, r1)] = std::min(r0, r1);
-            ++unions;
-          }
+          unite(f0, f1);
         } else if (t.up + t.down > 0) {  // else judged already
           const uint64_t key = uint64_t(lo) << 32 | hi;
           const size_t n = size_t(t.up) + t.down;
@@ -582,10 +659,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         }
         t = Tally{};
       };
-      const std::array<uint32_t, 2>* pairs_before = pair_out;
       for (size_t j = up_begin; j != end; ++j) judge(upper[j]);
       // (as many pairs as downward uses: each pair took one, all are judged and cleared)
-      if (size_t(pair_out - pairs_before) == up_begin - down_begin) continue;
+      if (size_t(pair_out - pairs_before) == downs) continue;
       for (size_t j = down_begin; j != up_begin; ++j) judge(upper[j]);
     }
     face_pairs.resize(size_t(pair_out - face_pairs.data()));
@@ -686,21 +762,27 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     const uint32_t* cl = clean.data();
     const uint32_t* off = clean_offsets.data();
     const double* pts = m.points.data();
-    size_t f = 0;
-    for (; f < cf; ++f) {
-      const size_t b = off[f];
-      if (off[f + 1] - b != 3) break;
-      const uint32_t i0 = cl[b], i1 = cl[b + 1], i2 = cl[b + 2];
+    // The volume term of a triangle, and whether it extends the leading run.
+    auto take_triangle = [&](size_t f, uint32_t i0, uint32_t i1, uint32_t i2) KERGEN_INLINE {
       const double d = vol6_about_centre(i0, i1, i2);
       vol6 += d;
       vol6_abs += std::fabs(d);
-      if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) {
-        ++f;  // (its volume is counted)
-        break;
-      }
+      if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) return false;
       rep_out[f] = {i0, i1, i2};
-      ++first_general;
+      return true;
+    };
+    size_t f = 0;
+    if (clean.size() == 3 * cf) {  // every clean face is a triangle: loop f starts at 3 f
+      for (; f < cf; ++f)
+        if (!take_triangle(f, cl[3 * f], cl[3 * f + 1], cl[3 * f + 2])) break;
+    } else {
+      for (; f < cf; ++f) {
+        const size_t b = off[f];
+        if (off[f + 1] - b != 3 || !take_triangle(f, cl[b], cl[b + 1], cl[b + 2])) break;
+      }
     }
+    first_general = f;
+    if (f < cf && off[f + 1] - off[f] == 3) ++f;  // (its volume is counted)
     for (; f < cf; ++f) {
       const size_t b = off[f], e = off[f + 1];
       for (size_t i = b + 1; i + 1 < e; ++i) {
