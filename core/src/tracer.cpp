@@ -491,7 +491,9 @@ class Tracer {
   }
 
   // Direction sigma * (n_p x n_q) as doubles; when cancellation makes the double cross product
-  // unreliable (nearly parallel planes) it is rounded from the exact one instead.
+  // unreliable (nearly parallel planes: the triangles of a split polygon) it is taken from the
+  // double-double one, and from the exact one only when that cancels too. (The direction only
+  // steers the double scan; the exact certification decides.)
   void direction(const Ray& ray, double u[3]) const {
     auto pp = ps_.approx(ray.p), pq = ps_.approx(ray.q);
     Approx c[3] = {pp.n[1] * pq.n[2] - pp.n[2] * pq.n[1], pp.n[2] * pq.n[0] - pp.n[0] * pq.n[2],
@@ -501,6 +503,20 @@ class Tracer {
     if (err <= 1e-8 * len) {
       for (int k = 0; k < 3; ++k) u[k] = ray.sigma * c[k].v;
       return;
+    }
+    {
+      const auto &dp = ps_.dd(ray.p), &dq = ps_.dd(ray.q);
+      const exact::ApproxDD d[3] = {dp.n[1] * dq.n[2] - dp.n[2] * dq.n[1], dp.n[2] * dq.n[0] - dp.n[0] * dq.n[2],
+                                    dp.n[0] * dq.n[1] - dp.n[1] * dq.n[0]};
+      double dlen = 0, derr = 0;
+      for (int k = 0; k < 3; ++k) {
+        dlen += std::fabs(d[k].hi + d[k].lo);
+        derr += d[k].e;
+      }
+      if (derr <= 1e-8 * dlen) {
+        for (int k = 0; k < 3; ++k) u[k] = ray.sigma * (d[k].hi + d[k].lo);
+        return;
+      }
     }
     const auto &ep = ps_.exact(ray.p), &eq = ps_.exact(ray.q);
     u[0] = ray.sigma * (ep.n[1] * eq.n[2] - ep.n[2] * eq.n[1]).estimate();
