@@ -556,6 +556,46 @@ void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], 
   }
 }
 
+namespace {
+// Exact sign of f_plane at input point pt (orient3d of the plane's representative triangle).
+int sign_at_point(const PlaneSet& ps, uint32_t plane, uint32_t pt) {
+  if (ps.point_on_plane(pt, plane)) return 0;
+  if (ps.explicit_plane(plane)) {
+    Scaled x(ps.point(pt), ps.exact_shift());
+    return plane_value(ps.exact(plane), x.v).sign();
+  }
+  const auto& r = ps.rep(plane);
+  return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(pt), ps.exact_shift());
+}
+}  // namespace
+
+// Sign of f_l at a vertex whose anchor line (vertex_anchor) passes through an input point that
+// plane l holds; 2 when l holds none. f_l is affine along the line and 0 at that point, so its
+// value at the vertex factors into signs of degree 3 in the input (orient3d and normal
+// determinants) where the general formula has degree 6 and, at the nearly coincident vertices of
+// nearly coplanar planes (split polygons), needs exact expansions of every coefficient.
+//  - Line through x with direction u = n_a x n_b: v = x + t u, t = -f_c(x) / det3(n_a, n_b, n_c);
+//    if f_l(x) = 0 then f_l(v) = t det3(n_a, n_b, n_l).
+//  - Line xy: v = (a y - b x) / (a - b) with a = f_c(x), b = f_c(y); f_l(v) = (a f_l(y) - b f_l(x)) / (a - b).
+int side_through_anchor(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
+  const VertexAnchor an = vertex_anchor(ps, v);
+  if (an.kind == 0) return 2;
+  const int lx = sign_at_point(ps, l, an.x);
+  if (an.kind == 1) {
+    if (lx != 0) return 2;
+    const int cx = sign_at_point(ps, an.c, an.x);
+    if (cx == 0) return 0;  // the vertex is x
+    // det3(n_a, n_b, n_c) is a cyclic shift of the basis order: its sign is det_sign.
+    return -cx * v.det_sign * sign_det3_normals(ps, an.a, an.b, l);
+  }
+  const int ly = sign_at_point(ps, l, an.y);
+  if (lx != 0 && ly != 0) return 2;
+  // a - b = f_c(x) - f_c(y) = -n_c . (y - x), not 0: the line crosses plane c.
+  const int den = -sign_rate_between(ps, an.c, an.x, an.y);
+  if (lx == 0) return sign_at_point(ps, an.c, an.x) * ly * den;
+  return -sign_at_point(ps, an.c, an.y) * lx * den;
+}
+
 int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   // The defining planes hold the vertex by construction (their filtered value is a rounding
   // residue the filter cannot decide, and deciding it exactly costs a full Cramer solve).
@@ -600,6 +640,10 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     auto pl = ps.dd(l);
     int sf = (pl.n[0] * h.num[0] + pl.n[1] * h.num[1] + pl.n[2] * h.num[2] + pl.d * h.den).sign();
     if (sf != 2) return sf * h.den_sign;
+  }
+  {
+    const int sa = side_through_anchor(ps, l, v);
+    if (sa != 2) return sa;
   }
   const ExactHomogeneous& h = exact_homogeneous(ps, v);
   const auto& e = ps.exact(l);

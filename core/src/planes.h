@@ -245,6 +245,10 @@ struct LineDirection {
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point = true);
 // sign of f_l at the vertex: > 0 outside plane l, 0 on it, < 0 inside.
 int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v);
+// The same sign when the vertex lies on a line through an input point that plane l holds (the
+// line of two basis planes through their shared input points), from signs of degree 3; 2 when
+// there is no such point. side() uses it before exact expansions.
+int side_through_anchor(const PlaneSet& ps, uint32_t l, const VertexGeom& v);
 // sign of orient(a,b,c,p) = ((b-a) x (c-a)) . (p-a) for input points; exact stages use the points
 // times 2^shift (same sign, no underflow).
 int orient3d(const double* a, const double* b, const double* c, const double* p, int shift = 0);

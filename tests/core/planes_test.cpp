@@ -68,7 +68,7 @@ std::vector<std::array<uint32_t, 2>> planes_sharing(const Planes& p, int wanted)
 }
 
 struct Tally {
-  size_t det_checked = 0, det_undecided_by_filters = 0, side_checked = 0;
+  size_t det_checked = 0, det_undecided_by_filters = 0, side_checked = 0, anchor_decided = 0;
 };
 
 // Pairs along an edge or through a point with nearby and random third planes, in all argument
@@ -118,6 +118,13 @@ void check_mesh(const Mesh& m, const std::string& name, Tally& t, size_t max_pai
       for (uint32_t l : tested) {
         ASSERT_EQ(side(ps, l, v), ref.side(ps, l)) << "plane " << l << " at vertex " << a << " " << b << " " << c;
         ++t.side_checked;
+        if (l == a || l == b || l == c) continue;
+        // The factored formula wherever it applies, not only where the filters left it the sign.
+        const int anchored = side_through_anchor(ps, l, v);
+        if (anchored != 2) {
+          ASSERT_EQ(anchored, ref.side(ps, l)) << "anchor: plane " << l << " at vertex " << a << " " << b << " " << c;
+          ++t.anchor_decided;
+        }
       }
       // Coordinates from the line formula agree with Cramer's quotient to double-double accuracy.
       double hi[3], lo[3];
@@ -132,9 +139,10 @@ TEST(Planes, LineShortcutsMatchExpansionsOnTwistedSphere) {
   // A fine, twisted UV sphere: neighbouring triangles are nearly coplanar.
   Tally t;
   check_mesh(kergen_test::uv_sphere(32, 16, 0.37), "uv_sphere 32x16", t, 100);
-  std::printf("sphere: %zu det signs, %zu undecided by both filters; %zu side tests\n", t.det_checked,
-              t.det_undecided_by_filters, t.side_checked);
+  std::printf("sphere: %zu det signs, %zu undecided by both filters; %zu side tests, %zu by the anchor formula\n",
+              t.det_checked, t.det_undecided_by_filters, t.side_checked, t.anchor_decided);
   EXPECT_GT(t.side_checked, 0u);
+  EXPECT_GT(t.anchor_decided, 0u);
 }
 
 TEST(Planes, LineShortcutsMatchExpansionsOnVoronoiCells) {
@@ -150,9 +158,10 @@ TEST(Planes, LineShortcutsMatchExpansionsOnVoronoiCells) {
     ASSERT_TRUE(r.ok()) << r.message;
     check_mesh(r.mesh, file.string(), t);
   }
-  std::printf("voro: %zu det signs, %zu undecided by both filters; %zu side tests\n", t.det_checked,
-              t.det_undecided_by_filters, t.side_checked);
+  std::printf("voro: %zu det signs, %zu undecided by both filters; %zu side tests, %zu by the anchor formula\n",
+              t.det_checked, t.det_undecided_by_filters, t.side_checked, t.anchor_decided);
   EXPECT_GT(t.det_undecided_by_filters, 0u) << "the sample no longer exercises the exact shortcut";
+  EXPECT_GT(t.anchor_decided, 0u);
 }
 
 // The filtered plane of a triangle (the doubles every float scan uses) must contain the exact
