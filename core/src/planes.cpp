@@ -620,19 +620,8 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     // Cramer solve.
     if (v.late_point == kPointNotSearched) v.late_point = input_point_on(ps, v.basis[0], v.basis[1], v.basis[2]);
     point = v.late_point;
-    if (point != kNoPoint) {
-      if (ps.point_on_plane(uint32_t(point), l)) return 0;
-      if (!ps.explicit_plane(l)) {
-        const auto& r = ps.rep(l);
-        return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(uint32_t(point)), ps.exact_shift());
-      }
-    }
   }
-  if (point != kNoPoint) {  // explicit plane at an input point: exact coordinates
-    const auto& e = ps.exact(l);
-    Scaled x(ps.point(uint32_t(point)), ps.exact_shift());
-    return plane_value(e, x.v).sign();
-  }
+  if (point != kNoPoint) return sign_at_point(ps, l, uint32_t(point));  // exact input coordinates
   // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached
   // per vertex).
   {
