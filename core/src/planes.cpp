@@ -427,15 +427,25 @@ const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
 }
 
 // The input point on planes a, b and c (three planes with independent normals meet in one
-// point), or kNoPoint.
-int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
+// point), or kNoPoint. `near`, when given, holds the point's coordinates with rigorous bounds:
+// a candidate outside them cannot be the point and is skipped before any incidence lookup or
+// orient3d (in double: rounding is monotonic, so |q - x| <= e computes as at most e).
+int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, const Approx* near = nullptr) {
   if (ps.explicit_plane(a) || ps.explicit_plane(b) || ps.explicit_plane(c)) return kNoPoint;
+  auto may_be_it = [&](uint32_t p) {
+    if (!near) return true;
+    const double* q = ps.point(p);
+    for (int k = 0; k < 3; ++k)
+      if (!(std::fabs(q[k] - near[k].v) <= near[k].e)) return false;
+    return true;
+  };
   // An input vertex on all three planes by construction is the vertex itself.
   const uint32_t planes[3] = {a, b, c};
   int smallest = 0;
   for (int i = 1; i < 3; ++i)
     if (ps.points_on(planes[i]).size() < ps.points_on(planes[smallest]).size()) smallest = i;
   for (uint32_t p : ps.points_on(planes[smallest])) {
+    if (!may_be_it(p)) continue;
     bool on_all = true;
     for (int i = 0; i < 3 && on_all; ++i)
       if (i != smallest && !ps.point_on_plane(p, planes[i])) on_all = false;
@@ -449,7 +459,7 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
     if (ps.points_on(p1).size() > 64) continue;
     const auto& r = ps.rep(third);
     for (uint32_t p : ps.points_on(p1)) {
-      if (!ps.point_on_plane(p, p2)) continue;
+      if (!may_be_it(p) || !ps.point_on_plane(p, p2)) continue;
       if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift()) == 0) return int32_t(p);
     }
   }
@@ -466,8 +476,14 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
   v.det_sign = den.certain() ? den.sign() : sign_det3_normals(ps, a, b, c);
   assert(v.det_sign != 0 && "make_vertex: planes with dependent normals");
 
+  Approx num[3];
+  cramer_numerators(pa, pb, pc, num);
+  bool good = den.certain();
+  if (good)
+    for (int k = 0; k < 3; ++k) v.x[k] = num[k] / den;  // rigorous bounds (den is certain)
+
   if (find_input_point) {
-    v.mesh_point = input_point_on(ps, a, b, c);
+    v.mesh_point = input_point_on(ps, a, b, c, good ? v.x : nullptr);
     if (v.mesh_point != kNoPoint) {
       const double* x = ps.point(uint32_t(v.mesh_point));
       for (int k = 0; k < 3; ++k) v.x[k] = Approx(x[k]);
@@ -477,15 +493,10 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
     v.late_point = kPointNotSearched;
   }
 
-  Approx num[3];
-  cramer_numerators(pa, pb, pc, num);
-  bool good = den.certain();
   if (good) {
-    for (int k = 0; k < 3; ++k) {
-      v.x[k] = num[k] / den;
+    for (int k = 0; k < 3; ++k)
       // Coordinates feed the side filter; poorly conditioned ones are recomputed exactly.
       if (v.x[k].e > 1e-10 * (std::fabs(v.x[k].v) + 1e-3)) good = false;
-    }
   }
   if (!good) {
     // Double-double Cramer: x = num / den with |num - exact| <= e_num, |den - exact| <= e_den.
