@@ -2,11 +2,13 @@
 // K_S of a random plane subset S is traced; K_S contains the kernel, so a plane outside S
 // matters only if some vertex of K_S lies outside it. Finding that vertex is a support query on
 // the convex polytope K_S: hill climbing on its vertex graph from a cube map of extreme
-// vertices. K_S is then cut by the planes found.
+// vertices (or, for many planes at once and a small K_S, a vectorized scan of all its vertices).
+// K_S is then cut by the planes found.
 #include "culling.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "climb.h"
 #include "cutting.h"
@@ -35,9 +37,113 @@ void cube_cell_direction(size_t cells_per_side, size_t cell, double fi, double f
 
 constexpr size_t kDirectTraceLimit = 1024;  // below this many planes culling costs more than it saves
 
+// may_reach's margin and box test (see there), shared by the scalar and the batched test: the
+// same operations in the same order (no FMA contraction in this library) give the same bits,
+// hence the same decisions.
+inline double reach_margin(double a, double b, double c, double d, double ea, double eb, double ec, double ed,
+                           double max_abs, double coord_error) {
+  const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
+  const double coef_error = (ea + eb + ec) * (max_abs + coord_error) + ed;
+  return 1e-9 * scale + coef_error + (scale - std::fabs(d)) * coord_error;
+}
+inline bool box_clears(double a, double b, double c, double d, double margin, const double centre[3],
+                       const double half[3]) {
+  return a * centre[0] + b * centre[1] + c * centre[2] + d + std::fabs(a) * half[0] + std::fabs(b) * half[1] +
+             std::fabs(c) * half[2] < -2 * margin;
+}
+
+// Where a normal falls on the cube map (climb.h's cube_cell, with what the support bound needs):
+// its cell, the first of the cell's corners, its coordinates (fi, fj) in the cell and
+// m = max_k |n_k|; the cell is meaningless unless usable(m) (not a zero or non-finite normal).
+// The same operations as cube_cell (the bins of t in [0, k] fit an int; integers below 2^53 are
+// exact in double), so the same cells; written in doubles without branches to vectorize. For
+// an unusable m, t is NaN (std::max makes it 0) or 0, so the corner is still in range.
+struct CubePosition {
+  int32_t cell, corner;
+  double fi, fj, m;
+};
+inline bool usable(double m) { return m > 0 && m <= std::numeric_limits<double>::max(); }
+inline CubePosition cube_position(int cells_per_side, double a, double b, double c) {
+  const double x = std::fabs(a), y = std::fabs(b), z = std::fabs(c);
+  const bool y_over_x = y > x;
+  const double mxy = y_over_x ? y : x;
+  const bool z_top = z > mxy;  // axis 2, else axis 1 if y_over_x, else axis 0
+  const double m = z_top ? z : mxy;
+  const double u = z_top ? a : (y_over_x ? c : b), v = z_top ? b : (y_over_x ? a : c);  // n[axis + 1], n[axis + 2]
+  const double n_axis = z_top ? c : (y_over_x ? b : a);
+  const double face = (z_top ? 4.0 : (y_over_x ? 2.0 : 0.0)) + (n_axis < 0 ? 1.0 : 0.0);
+  const double k = double(cells_per_side);
+  const double tu = (u / m + 1) * 0.5 * k, tv = (v / m + 1) * 0.5 * k;
+  const double i = double(std::min(cells_per_side - 1, int(std::max(0.0, tu))));
+  const double j = double(std::min(cells_per_side - 1, int(std::max(0.0, tv))));
+  CubePosition p;
+  p.cell = int32_t((face * k + i) * k + j);
+  p.corner = int32_t((face * (k + 1) + i) * (k + 1) + j);
+  p.fi = std::min(1.0, std::max(0.0, tu - i));
+  p.fj = std::min(1.0, std::max(0.0, tv - j));
+  p.m = m;
+  return p;
+}
+
+// The bound on max f over K_S from the support values s_ij at the corners of the normal's cell
+// (see may_reach).
+inline double support_bound(double s00, double s01, double s10, double s11, double fi, double fj, double m, double d) {
+  const double h = (1 - fi) * ((1 - fj) * s00 + fj * s01) + fi * ((1 - fj) * s10 + fj * s11);
+  return m * h + d;
+}
+
+// may_reach over many planes runs in passes over structure of arrays, the branch-free ones
+// vectorized: the box test for all planes, then the cube positions and support bounds of those
+// it leaves, then the rest of the test one plane at a time. (Every array is a restrict
+// parameter: no aliasing to check at run time.) box_test: maybe[i] = 0 where the box clears
+// plane i, else 1.
+constexpr size_t kBatch = 64;
+// Up to this many vertices of K_S a scan of them all costs less than a climb (about 2 V
+// instructions with AVX2, a climb ~500).
+constexpr size_t kScanLimit = 128;
+KERGEN_MULTIVERSION
+void box_test(size_t n, const double* __restrict nx, const double* __restrict ny, const double* __restrict nz,
+              const double* __restrict d, const double* __restrict enx, const double* __restrict eny,
+              const double* __restrict enz, const double* __restrict ed, const double centre[3], const double half[3],
+              double max_abs, double coord_error, char* __restrict maybe, double* __restrict margin) {
+  const double c[3] = {centre[0], centre[1], centre[2]}, h[3] = {half[0], half[1], half[2]};
+  for (size_t i = 0; i < n; ++i) {
+    margin[i] = reach_margin(nx[i], ny[i], nz[i], d[i], enx[i], eny[i], enz[i], ed[i], max_abs, coord_error);
+    maybe[i] = !box_clears(nx[i], ny[i], nz[i], d[i], margin[i], c, h);
+  }
+}
+KERGEN_MULTIVERSION
+void cube_positions(size_t n, const double* __restrict a, const double* __restrict b, const double* __restrict c,
+                    int cells_per_side, int32_t* __restrict cell, int32_t* __restrict corner, double* __restrict fi,
+                    double* __restrict fj, double* __restrict m) {
+  for (size_t i = 0; i < n; ++i) {
+    const CubePosition q = cube_position(cells_per_side, a[i], b[i], c[i]);
+    cell[i] = q.cell;
+    corner[i] = q.corner;
+    fi[i] = q.fi;
+    fj[i] = q.fj;
+    m[i] = q.m;
+  }
+}
+KERGEN_MULTIVERSION
+void support_bounds(size_t n, const double* __restrict s00, const double* __restrict s01, const double* __restrict s10,
+                    const double* __restrict s11, const double* __restrict fi, const double* __restrict fj,
+                    const double* __restrict m, const double* __restrict d, double* __restrict bound) {
+  for (size_t i = 0; i < n; ++i) bound[i] = support_bound(s00[i], s01[i], s10[i], s11[i], fi[i], fj[i], m[i], d[i]);
+}
+// Whether some vertex (x, y, z) has a x + b y + c z + d > threshold, each value computed as the
+// climb computes it.
+KERGEN_MULTIVERSION
+bool any_above(size_t n, const double* __restrict x, const double* __restrict y, const double* __restrict z, double a,
+               double b, double c, double d, double threshold) {
+  int above = 0;
+  for (size_t v = 0; v < n; ++v) above |= a * x[v] + b * y[v] + c * z[v] + d > threshold;
+  return above;
+}
+
 }  // namespace
 
-SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries) {
+SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool batched) {
   // Vertex graph of K_S.
   const size_t V = tr.vertices.size();
   xyz_.resize(3 * V);
@@ -46,6 +152,10 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries) {
       xyz_[3 * v + k] = tr.vertices[v].geom.x[k].v;
       coord_error_ = std::max(coord_error_, tr.vertices[v].geom.x[k].e);
     }
+  for (int k = 0; k < 3; ++k) {
+    vertex_coord_[k].resize(V);
+    for (size_t v = 0; v < V; ++v) vertex_coord_[k][v] = xyz_[3 * v + k];
+  }
   adj_offset_.assign(V + 1, 0);
   for (const auto& e : tr.edges) { adj_offset_[e.a + 1]++; adj_offset_[e.b + 1]++; }
   for (size_t v = 0; v < V; ++v) adj_offset_[v + 1] += adj_offset_[v];
@@ -70,7 +180,12 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries) {
   // vertex's normal cone, which is convex, so every direction of the cell peaks there: planes
   // with normals in such a cell need one evaluation, no climb. Other cells only give the climb
   // a start a few steps from its answer, whatever the order of the planes.
-  cells_per_side_ = std::min<size_t>(24, std::max<size_t>(2, size_t(std::sqrt(double(expected_queries) / 100))));
+  // A cell costs about what it spares a query that lands in it: a climb (~500 instructions),
+  // or, for batched queries on a small K_S, a scan (~2 V + 40), which a coarser map balances.
+  // (The resolution only changes which of the tests, each sound, settles a plane.)
+  const double query_cost = batched && V <= kScanLimit ? (2 * double(V) + 40) / 500 : 1.0;
+  cells_per_side_ =
+      std::min<size_t>(24, std::max<size_t>(2, size_t(std::sqrt(double(expected_queries) * query_cost / 100))));
   const size_t cells = 6 * cells_per_side_ * cells_per_side_;
   start_of_cell_.resize(cells);
   cell_resolved_.assign(cells, 0);
@@ -141,59 +256,107 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries) {
 bool SupportTest::may_reach(const PlaneCoef<Approx>& plane, Scratch& scratch, uint32_t& hint) const {
   const double a = plane.n[0].v, b = plane.n[1].v, c = plane.n[2].v, d = plane.d.v;
   // The climb's values are doubles: their rounding is below 1e-15 (|n|_1 + |d|) for coordinates
-  // below ~2 (scaled input, box at 2). `tie` is far above that; `margin` keeps every plane that
-  // could be violated, and adds what the plane's coefficients and the vertices' coordinates
-  // may be off by (both tiny, but not for a sliver's plane or an ill-conditioned vertex).
-  const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
-  const double coef_error = (plane.n[0].e + plane.n[1].e + plane.n[2].e) * (max_abs_ + coord_error_) + plane.d.e;
-  const double tie = 1e-12 * scale;
-  const double margin = 1e-9 * scale + coef_error + (scale - std::fabs(d)) * coord_error_;
+  // below ~2 (scaled input, box at 2). `tie` (in the climb) is far above that; `margin` keeps
+  // every plane that could be violated, and adds what the plane's coefficients and the
+  // vertices' coordinates may be off by (both tiny, but not for a sliver's plane or an
+  // ill-conditioned vertex).
+  const double margin = reach_margin(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_, coord_error_);
   // (The box is a double computation like the climb; 2 * margin covers its rounding.)
-  if (a * centre_[0] + b * centre_[1] + c * centre_[2] + d + std::fabs(a) * half_[0] + std::fabs(b) * half_[1] +
-          std::fabs(c) * half_[2] < -2 * margin)
-    return false;
+  if (box_clears(a, b, c, d, margin, centre_, half_)) return false;
+  const CubePosition q = cube_position(int(cells_per_side_), a, b, c);
+  if (!usable(q.m)) return climb_reaches(a, b, c, d, margin, -1, 0, scratch, hint);
+  if (cell_resolved_[q.cell]) {
+    hint = start_of_cell_[q.cell];
+    return a * xyz_[3 * hint] + b * xyz_[3 * hint + 1] + c * xyz_[3 * hint + 2] + d > -margin;
+  }
+  // h is convex and positively homogeneous, and n / m (m = |n_axis|) is the bilinear
+  // interpolation of the cell's four corner directions (exact: they are affine in the cell's
+  // coordinates), so max f <= m (the same interpolation of the corners' h) + d. Below
+  // -2 margin the plane holds K_S strictly without a climb.
+  const double* s = &corner_support_[size_t(q.corner)];
+  const size_t side_pts = cells_per_side_ + 1;
+  if (support_bound(s[0], s[1], s[side_pts], s[side_pts + 1], q.fi, q.fj, q.m, d) < -2 * margin) return false;
+  return climb_reaches(a, b, c, d, margin, q.cell, q.corner, scratch, hint);
+}
+
+void SupportTest::may_reach_all(const PlaneArrays& p, size_t n, Scratch& scratch, char* reaching) const {
+  // Soundness: a plane is dropped only where K_S provably holds strictly inside it: by
+  // may_reach's box test, the one vertex of a resolved cell or the support bound (the same double
+  // operations on the same values and margins as may_reach, hence the same bits), or, on a small
+  // K_S, when no vertex's value is above -margin: the margin exceeds each value's error
+  // (rounding, the plane's coefficients, the vertex's coordinates), so every vertex, hence all
+  // of K_S, is strictly inside. (The climb drops a plane when the vertex it reaches is not above
+  // -margin: the scan, which sees every vertex, keeps whatever the climb keeps.)
+  double margin[kBatch], a[kBatch], b[kBatch], c[kBatch], d[kBatch], fi[kBatch], fj[kBatch], m[kBatch];
+  double s00[kBatch], s01[kBatch], s10[kBatch], s11[kBatch], bound[kBatch];
+  int32_t cell[kBatch], corner[kBatch];
+  uint32_t left[kBatch];
+  const size_t side_pts = cells_per_side_ + 1;
+  const size_t num_vertices = vertex_coord_[0].size();
+  const bool scan = num_vertices <= kScanLimit;
+  for (size_t first = 0; first < n; first += kBatch) {
+    const size_t count = std::min(kBatch, n - first);
+    char* maybe = reaching + first;
+    box_test(count, p.nx + first, p.ny + first, p.nz + first, p.d + first, p.enx + first, p.eny + first, p.enz + first,
+             p.ed + first, centre_, half_, max_abs_, coord_error_, maybe, margin);
+    size_t k = 0;
+    for (size_t i = 0; i < count; ++i)
+      if (maybe[i]) {
+        left[k] = uint32_t(i);
+        a[k] = p.nx[first + i];
+        b[k] = p.ny[first + i];
+        c[k] = p.nz[first + i];
+        d[k] = p.d[first + i];
+        ++k;
+      }
+    cube_positions(k, a, b, c, int(cells_per_side_), cell, corner, fi, fj, m);
+    for (size_t t = 0; t < k; ++t) {  // (the corner is in range even where the cell is not usable)
+      const double* s = &corner_support_[size_t(corner[t])];
+      s00[t] = s[0];
+      s01[t] = s[1];
+      s10[t] = s[side_pts];
+      s11[t] = s[side_pts + 1];
+    }
+    support_bounds(k, s00, s01, s10, s11, fi, fj, m, d, bound);
+    for (size_t t = 0; t < k; ++t) {
+      const double mg = margin[left[t]];
+      char& out = maybe[left[t]];
+      if (usable(m[t]) && cell_resolved_[cell[t]]) {
+        const uint32_t v = start_of_cell_[cell[t]];
+        out = a[t] * xyz_[3 * v] + b[t] * xyz_[3 * v + 1] + c[t] * xyz_[3 * v + 2] + d[t] > -mg;
+      } else if (usable(m[t]) && bound[t] < -2 * mg) {
+        out = 0;
+      } else if (scan) {
+        out = any_above(num_vertices, vertex_coord_[0].data(), vertex_coord_[1].data(), vertex_coord_[2].data(), a[t], b[t],
+                        c[t], d[t], -mg);
+      } else {
+        uint32_t hint = 0;
+        out = climb_reaches(a[t], b[t], c[t], d[t], mg, usable(m[t]) ? cell[t] : -1, corner[t], scratch, hint);
+      }
+    }
+  }
+}
+
+bool SupportTest::climb_reaches(double a, double b, double c, double d, double margin, int32_t cell, int32_t corner,
+                                Scratch& scratch, uint32_t& hint) const {
+  const double tie = 1e-12 * (std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d));
   const double* xyz = xyz_.data();
   auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
-  const size_t cell = cube_cell(cells_per_side_, a, b, c);
-  const size_t side_pts = cells_per_side_ + 1;
-  size_t c0 = 0;
-  if (cell != kNoCell && !cell_resolved_[cell]) {
-    // h is convex and positively homogeneous, and n / |n_axis| is the bilinear interpolation of
-    // the cell's four corner directions (exact: they are affine in the cell's coordinates), so
-    // max f <= |n_axis| (the same interpolation of the corners' h) + d. Below -2 margin the
-    // plane holds K_S strictly without a climb.
-    const double n3[3] = {a, b, c};
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (std::fabs(n3[k]) > std::fabs(n3[axis])) axis = k;
-    const double m = std::fabs(n3[axis]);
-    const size_t face = cell / (cells_per_side_ * cells_per_side_), i = cell / cells_per_side_ % cells_per_side_,
-                 j = cell % cells_per_side_;
-    const double fi = std::min(1.0, std::max(0.0, (n3[(axis + 1) % 3] / m + 1) * 0.5 * double(cells_per_side_) - double(i)));
-    const double fj = std::min(1.0, std::max(0.0, (n3[(axis + 2) % 3] / m + 1) * 0.5 * double(cells_per_side_) - double(j)));
-    c0 = (face * side_pts + i) * side_pts + j;
-    const double h = (1 - fi) * ((1 - fj) * corner_support_[c0] + fj * corner_support_[c0 + 1]) +
-                     fi * ((1 - fj) * corner_support_[c0 + side_pts] + fj * corner_support_[c0 + side_pts + 1]);
-    if (m * h + d < -2 * margin) return false;
-  }
-  uint32_t cur = cell == kNoCell ? 0 : start_of_cell_[cell];
+  uint32_t cur = cell < 0 ? 0 : start_of_cell_[cell];
   double val = f(cur);
-  if (cell != kNoCell && !cell_resolved_[cell]) {
+  if (cell >= 0) {
+    const size_t side_pts = cells_per_side_ + 1, c0 = size_t(corner);
     for (size_t k : {c0, c0 + 1, c0 + side_pts, c0 + side_pts + 1}) {
       const double fc = f(start_of_corner_[k]);
       if (fc > val) { val = fc; cur = start_of_corner_[k]; }
     }
   }
-  if (cell == kNoCell || !cell_resolved_[cell]) {
-    auto neighbors = [&](uint32_t u, const auto& fn) {
-      for (uint32_t k = adj_offset_[u]; k < adj_offset_[u + 1]; ++k) fn(adj_[k]);
-    };
-    cur = climb_to_max(cur, val, f, neighbors, tie, xyz_.size() / 3, scratch.climb);
-  }
-  hint = cur;
+  auto neighbors = [&](uint32_t u, const auto& fn) {
+    for (uint32_t k = adj_offset_[u]; k < adj_offset_[u + 1]; ++k) fn(adj_[k]);
+  };
+  hint = climb_to_max(cur, val, f, neighbors, tie, xyz_.size() / 3, scratch.climb);
   return val > -margin;
 }
-
 
 CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<uint32_t>& always,
                                const VertexGeom& start, const TraceOptions& options, uint64_t seed) {

@@ -10,6 +10,17 @@
 #define KERGEN_INLINE
 #endif
 
+// Function multi-versioning for the vectorized scans: GCC and clang compile an AVX2 clone and a
+// baseline one, and the loader picks by CPU (an ifunc: ELF on Linux only; plain code elsewhere,
+// in the wasm build and under AddressSanitizer). The clones compute the same bits: the library
+// is built with -ffp-contract=off, and "avx2" does not enable FMA.
+#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__EMSCRIPTEN__) && \
+    !defined(__SANITIZE_ADDRESS__)
+#define KERGEN_MULTIVERSION __attribute__((target_clones("avx2", "default")))
+#else
+#define KERGEN_MULTIVERSION
+#endif
+
 namespace kergen {
 
 // A prefetch of the cache line at p. Wasm has no prefetch instruction (__builtin_prefetch

@@ -37,12 +37,6 @@ typedef int64_t Mask4 __attribute__((vector_size(32)));
 typedef double Vec4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
 #define KERGEN_LOAD4(ptr) (*reinterpret_cast<const Vec4Unaligned*>(ptr))
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__EMSCRIPTEN__) && !defined(__SANITIZE_ADDRESS__)
-#define KERGEN_MULTIVERSION __attribute__((target_clones("avx2", "default")))
-#else
-#define KERGEN_MULTIVERSION
-#endif
-
 // Index of the smallest positive hit t_i = -f_i(p) / (n_i . u) over planes approaching along u
 // (n_i . u > 0), or n when none approaches. Blocks keep their hits in a buffer so the index is
 // found without recomputing (the block minimum improves only O(log n) times).
