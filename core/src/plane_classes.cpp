@@ -501,25 +501,46 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
 }
 
 void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
-  // The faces renumbered 0..n-1 in the order given: their triangles, loops, and the adjacent
-  // pairs among them (found through a bitmap of the chosen faces, then their new numbers).
+  // The faces renumbered 0..n-1 in the order given: their triangles, loops, and the pairs among
+  // them that share an edge, found by matching their loops' edges in a hash table: time in the
+  // chosen faces, not in the mesh (a scan of the mesh's pairs cost more than the classes of the
+  // few faces face culling keeps). The pairs only spare exact tests: the classes are the same
+  // with any of them.
   const size_t nf = m.num_faces(), n = faces.size();
   std::vector<std::array<uint32_t, 3>> rep(n);
   std::vector<uint32_t> loop_offsets(n + 1, 0), loops;
-  std::vector<uint64_t> chosen((nf + 63) / 64, 0);
   for (size_t k = 0; k < n; ++k) {
     const uint32_t f = faces[k];
     assert(f < nf && (k == 0 || faces[k - 1] < f) && "faces must be increasing face ids");
+    (void)nf;
     rep[k] = m.rep[f];
     loops.insert(loops.end(), m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
     loop_offsets[k + 1] = uint32_t(loops.size());
-    chosen[f >> 6] |= uint64_t(1) << (f & 63);
   }
-  auto is_chosen = [&](uint32_t f) { return (chosen[f >> 6] >> (f & 63)) & 1; };
-  auto local = [&](uint32_t f) { return uint32_t(std::lower_bound(faces.begin(), faces.end(), f) - faces.begin()); };
   std::vector<std::array<uint32_t, 2>> adjacent;
-  for (const auto& pr : m.adjacent)
-    if (is_chosen(pr[0]) && is_chosen(pr[1])) adjacent.push_back({local(pr[0]), local(pr[1])});
+  {
+    constexpr uint64_t kNoEdge = ~uint64_t(0);
+    size_t cap = 16;
+    while (cap < 2 * loops.size()) cap <<= 1;
+    const size_t mask = cap - 1;
+    std::vector<uint64_t> edge(cap, kNoEdge);
+    RawVector<uint32_t> first_face(cap);
+    for (uint32_t k = 0; k < n; ++k) {
+      const uint32_t b = loop_offsets[k], e = loop_offsets[k + 1];
+      for (uint32_t i = b; i < e; ++i) {
+        const uint32_t u = loops[i], v = loops[i + 1 < e ? i + 1 : b];
+        const uint64_t x = uint64_t(std::min(u, v)) << 32 | std::max(u, v);
+        size_t s = size_t((x * 0x9E3779B97F4A7C15ull) >> 32) & mask;
+        while (edge[s] != kNoEdge && edge[s] != x) s = (s + 1) & mask;
+        if (edge[s] == x) {
+          adjacent.push_back({first_face[s], k});  // (the lower face first)
+        } else {
+          edge[s] = x;
+          first_face[s] = k;
+        }
+      }
+    }
+  }
   const FaceLists some{rep.data(), n, adjacent.data(), adjacent.size(), loop_offsets.data(), loops.data()};
   build_planes(m, some, ps, face_plane);
 }

@@ -42,30 +42,36 @@ bool same_oriented_plane(const PreparedMesh& pm, uint32_t f, uint32_t g) {
   return (p.n[0] * q.n[0] + p.n[1] * q.n[1] + p.n[2] * q.n[2]).sign() > 0;
 }
 
-void expect_classes_match_brute_force(const Mesh& m, const char* name) {
-  const PreparedMesh pm = prepare_mesh(m.view(), Options{});
-  ASSERT_EQ(pm.error, Error::Ok) << name << ": " << pm.message;
+// The classes of the faces `faces` (increasing ids; all faces when empty), built by the full or
+// the subset overload, against the reference among those faces.
+void expect_classes_match_brute_force(const PreparedMesh& pm, const std::vector<uint32_t>& faces, const char* name) {
   PlaneSet ps(&pm.points, pm.exact_shift);
-  std::vector<uint32_t> face_plane;
-  build_planes(pm, ps, face_plane);
-  const size_t nf = pm.num_faces();
+  std::vector<uint32_t> face_plane, chosen = faces;
+  if (faces.empty()) {
+    build_planes(pm, ps, face_plane);
+    for (uint32_t f = 0; f < pm.num_faces(); ++f) chosen.push_back(f);
+  } else {
+    build_planes(pm, faces, ps, face_plane);
+  }
+  const size_t n = chosen.size();
+  ASSERT_EQ(face_plane.size(), n) << name;
   // The reference classes: each face joins the first earlier face on its oriented plane.
-  std::vector<uint32_t> ref(nf);
+  std::vector<uint32_t> ref(n);
   std::vector<uint32_t> firsts;
-  for (uint32_t f = 0; f < nf; ++f) {
-    ref[f] = f;
+  for (uint32_t k = 0; k < n; ++k) {
+    ref[k] = k;
     for (uint32_t g : firsts)
-      if (same_oriented_plane(pm, f, g)) { ref[f] = g; break; }
-    if (ref[f] == f) firsts.push_back(f);
+      if (same_oriented_plane(pm, chosen[k], chosen[g])) { ref[k] = g; break; }
+    if (ref[k] == k) firsts.push_back(k);
   }
   EXPECT_EQ(ps.size(), firsts.size()) << name;
   // The same partition: face_plane and ref map one to one.
   std::map<uint32_t, uint32_t> to_ref, from_ref;
   size_t mismatches = 0;
-  for (uint32_t f = 0; f < nf; ++f) {
-    auto a = to_ref.emplace(face_plane[f], ref[f]).first;
-    auto b = from_ref.emplace(ref[f], face_plane[f]).first;
-    mismatches += a->second != ref[f] || b->second != face_plane[f];
+  for (uint32_t k = 0; k < n; ++k) {
+    auto a = to_ref.emplace(face_plane[k], ref[k]).first;
+    auto b = from_ref.emplace(ref[k], face_plane[k]).first;
+    mismatches += a->second != ref[k] || b->second != face_plane[k];
   }
   EXPECT_EQ(mismatches, 0u) << name;
   // Opposite planes are linked both ways, and only to the reversed plane.
@@ -74,6 +80,21 @@ void expect_classes_match_brute_force(const Mesh& m, const char* name) {
     if (o == kNoPlane) continue;
     EXPECT_EQ(ps.opposite(o), p) << name;
   }
+}
+
+// All faces, then two subsets as face culling passes them: every third face, and runs of
+// neighbouring faces (whose shared edges the subset overload must pair itself).
+void expect_classes_match_brute_force(const Mesh& m, const char* name) {
+  const PreparedMesh pm = prepare_mesh(m.view(), Options{});
+  ASSERT_EQ(pm.error, Error::Ok) << name << ": " << pm.message;
+  expect_classes_match_brute_force(pm, {}, name);
+  std::vector<uint32_t> thirds, runs;
+  for (uint32_t f = 0; f < pm.num_faces(); ++f) {
+    if (f % 3 == 0) thirds.push_back(f);
+    if (f % 100 < 40) runs.push_back(f);
+  }
+  expect_classes_match_brute_force(pm, thirds, name);
+  expect_classes_match_brute_force(pm, runs, name);
 }
 
 TEST(PlaneClasses, RotatedTessellationsMatchBruteForce) {
