@@ -40,11 +40,19 @@ constexpr size_t kDirectTraceLimit = 1024;  // below this many planes culling co
 // may_reach's margin and box test (see there), shared by the scalar and the batched test: the
 // same operations in the same order (no FMA contraction in this library) give the same bits,
 // hence the same decisions.
+// The margin is 16 delta, delta bounding how far a computed value f(v) = a x + b y + c z + d at a
+// vertex of K_S can be from the exact plane's value at the exact vertex: the rounding of the
+// evaluation (below 8 eps of the sum of the terms' magnitudes), the vertices' coordinate errors
+// and the plane's coefficient errors. It scales with the coordinates' magnitudes, not with 1: a
+// kernel far smaller than its distance from the origin (a tiny shape placed far out) keeps a
+// margin below its own size, so the tests stay local on it. The climbs' tie is margin / 4 = 4
+// delta: above the 2 delta their plateau search needs to reach every higher vertex.
 inline double reach_margin(double a, double b, double c, double d, double ea, double eb, double ec, double ed,
                            double max_abs, double coord_error) {
-  const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
-  const double coef_error = (ea + eb + ec) * (max_abs + coord_error) + ed;
-  return 1e-9 * scale + coef_error + (scale - std::fabs(d)) * coord_error;
+  const double n1 = std::fabs(a) + std::fabs(b) + std::fabs(c), reach = max_abs + coord_error;
+  const double delta = 8 * exact::kEps * (n1 * reach + std::fabs(d)) + n1 * coord_error + (ea + eb + ec) * reach + ed +
+                       exact::kUnderflowFloor;
+  return 16 * delta;
 }
 inline bool box_clears(double a, double b, double c, double d, double margin, const double centre[3],
                        const double half[3]) {
@@ -223,7 +231,10 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
       // with its plateau search, gives the maximum. The greedy start is kept for the planes.)
       auto g = [&](uint32_t v) { return dir[0] * xyz_[3 * v] + dir[1] * xyz_[3 * v + 1] + dir[2] * xyz_[3 * v + 2]; };
       double h = g(at);
-      climb_to_max(at, h, g, neighbors, 1e-12 * (std::fabs(dir[0]) + std::fabs(dir[1]) + std::fabs(dir[2])), V, climb);
+      // (tie: twice the most a computed g can be off, see reach_margin, and twice again)
+      const double dir1 = std::fabs(dir[0]) + std::fabs(dir[1]) + std::fabs(dir[2]);
+      climb_to_max(at, h, g, neighbors, 4 * dir1 * (8 * exact::kEps * max_abs_ + coord_error_) + exact::kUnderflowFloor, V,
+                   climb);
       corner_support_[c] = h;
     }
   }
@@ -242,11 +253,13 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
         const double* w = &xyz_[3 * size_t(adj_[k])];
         const double* v = &xyz_[3 * size_t(at)];
         const double e[3] = {w[0] - v[0], w[1] - v[1], w[2] - v[2]};
-        // Strictly descending by a margin far above the rounding of the coordinates (which
-        // are below ~2): the rounded direction of a very short edge says nothing about the
-        // exact one, so such vertices are left to the climb and its plateau search.
+        // Strictly descending by four times the most the computed value can be off (both ends'
+        // coordinate errors, the rounding of the differences and of the dot product): the
+        // rounded direction of a very short edge says nothing about the exact one, so such
+        // vertices are left to the climb and its plateau search.
         const double cd1 = std::fabs(cd[0]) + std::fabs(cd[1]) + std::fabs(cd[2]);
-        strict = cd[0] * e[0] + cd[1] * e[1] + cd[2] * e[2] < -1e-9 * cd1;
+        strict = cd[0] * e[0] + cd[1] * e[1] + cd[2] * e[2] <
+                 -4 * cd1 * (2 * coord_error_ + 8 * exact::kEps * max_abs_) - exact::kUnderflowFloor;
       }
     }
     cell_resolved_[cell] = strict;
@@ -255,11 +268,8 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
 
 bool SupportTest::may_reach(const PlaneCoef<Approx>& plane, Scratch& scratch, uint32_t& hint) const {
   const double a = plane.n[0].v, b = plane.n[1].v, c = plane.n[2].v, d = plane.d.v;
-  // The climb's values are doubles: their rounding is below 1e-15 (|n|_1 + |d|) for coordinates
-  // below ~2 (scaled input, box at 2). `tie` (in the climb) is far above that; `margin` keeps
-  // every plane that could be violated, and adds what the plane's coefficients and the
-  // vertices' coordinates may be off by (both tiny, but not for a sliver's plane or an
-  // ill-conditioned vertex).
+  // `margin` (reach_margin) keeps every plane that could be violated: it is far above what a
+  // computed value can be off by (rounding, the plane's coefficients, the vertices' coordinates).
   const double margin = reach_margin(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_, coord_error_);
   // (The box is a double computation like the climb; 2 * margin covers its rounding.)
   if (box_clears(a, b, c, d, margin, centre_, half_)) return false;
@@ -339,7 +349,7 @@ void SupportTest::may_reach_all(const PlaneArrays& p, size_t n, Scratch& scratch
 
 bool SupportTest::climb_reaches(double a, double b, double c, double d, double margin, int32_t cell, int32_t corner,
                                 Scratch& scratch, uint32_t& hint) const {
-  const double tie = 1e-12 * (std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d));
+  const double tie = margin / 4;  // (see reach_margin)
   const double* xyz = xyz_.data();
   auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
   uint32_t cur = cell < 0 ? 0 : start_of_cell_[cell];

@@ -45,8 +45,7 @@ class Cutter {
     alive_e_.assign(edges_.size(), 1);
     adj_.resize(V);
     xyz_.resize(3 * V);
-    for (size_t v = 0; v < V; ++v)
-      for (int k = 0; k < 3; ++k) xyz_[3 * v + k] = vertices_[v].geom.x[k].v;
+    for (size_t v = 0; v < V; ++v) note_coordinates(v);
     for (uint32_t e = 0; e < edges_.size(); ++e) {
       adj_[edges_[e].a].push_back(e);
       adj_[edges_[e].b].push_back(e);
@@ -62,10 +61,16 @@ class Cutter {
   // gets a vertex on or nearest to h afterwards, a start for planes of similar normal. False
   // when the result is not handled (see cutting.h).
   bool cut(uint32_t h, std::initializer_list<uint32_t> hints, uint32_t& near) {
-    const double a = ps_.nx()[h], b = ps_.ny()[h], c = ps_.nz()[h], d = ps_.d()[h];
-    // Same bounds as culling's: coordinates below ~2, rounding far below `tie` and `margin`.
-    const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
-    const double tie = 1e-12 * scale, margin = 1e-9 * scale;
+    const PlaneCoef<Approx> plane = ps_.approx(h);
+    const double a = plane.n[0].v, b = plane.n[1].v, c = plane.n[2].v, d = plane.d.v;
+    // The bounds of culling's support test (reach_margin in culling.cpp): delta bounds how far
+    // a computed f(v) can be from the exact one (rounding, coordinate and coefficient errors),
+    // relative to the coordinates' magnitudes, so that a polytope far smaller than its distance
+    // from the origin keeps the search below local; the climb's tie is 4 delta, the margin 16.
+    const double n1 = std::fabs(a) + std::fabs(b) + std::fabs(c), reach = max_abs_ + coord_error_;
+    const double delta = 8 * exact::kEps * (n1 * reach + std::fabs(d)) + n1 * coord_error_ +
+                         (plane.n[0].e + plane.n[1].e + plane.n[2].e) * reach + plane.d.e + exact::kUnderflowFloor;
+    const double tie = 4 * delta, margin = 16 * delta;
     auto f = [&](uint32_t v) { return a * xyz_[3 * v] + b * xyz_[3 * v + 1] + c * xyz_[3 * v + 2] + d; };
     auto neighbors = [&](uint32_t u, const auto& fn) {
       for (uint32_t e : adj_[u]) fn(other(e, u));
@@ -211,10 +216,21 @@ class Cutter {
     return true;
   }
 
+  // The double coordinates of vertex v, and the bounds on them the margins are made of.
+  void note_coordinates(size_t v) {
+    for (int k = 0; k < 3; ++k) {
+      const Approx& x = vertices_[v].geom.x[k];
+      xyz_[3 * v + k] = x.v;
+      max_abs_ = std::max(max_abs_, std::fabs(x.v));
+      coord_error_ = std::max(coord_error_, x.e);
+    }
+  }
+
   uint32_t add_vertex(TracedVertex&& v) {
     const uint32_t id = uint32_t(vertices_.size());
-    for (int k = 0; k < 3; ++k) xyz_.push_back(v.geom.x[k].v);
+    xyz_.resize(xyz_.size() + 3);
     vertices_.push_back(std::move(v));
+    note_coordinates(id);
     alive_v_.push_back(1);
     adj_.emplace_back();
     replaced_by_.push_back(kNoPlane);
@@ -257,6 +273,7 @@ class Cutter {
   std::vector<uint32_t> replaced_by_;       // a cut point of the cut that removed the vertex
   std::vector<int8_t> state_;
   size_t alive_count_ = 0, traced_lines_ = 0;
+  double max_abs_ = 0, coord_error_ = 0;  // over every vertex so far (upper bounds for the live ones)
   ClimbScratch climb_;
   std::vector<uint32_t> region_, out_, on_, cut_points_;
   std::vector<std::pair<uint32_t, uint32_t>> by_plane_;

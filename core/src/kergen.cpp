@@ -184,6 +184,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
     const size_t k = std::min(nf, size_t(3 * std::sqrt(double(nf))) + 32);
     for (size_t i = 0; i < k; ++i) sample.push_back(uint32_t((i * nf) / k));  // increasing
     PlaneSet sp(&s.mesh.points, s.mesh.exact_shift);
+    sp.set_extent(s.mesh.extent());
     std::vector<uint32_t> sample_plane;
     build_planes(s.mesh, sample, sp, sample_plane);
     std::vector<uint32_t> sample_planes(sp.size()), sample_box;
@@ -213,6 +214,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
 
   t = Clock::now();
   s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
+  s.planes->set_extent(s.mesh.extent());
   std::vector<uint32_t> face_plane;
   if (culled) build_planes(s.mesh, kept_faces, *s.planes, face_plane);
   else build_planes(s.mesh, *s.planes, face_plane);

@@ -1,6 +1,7 @@
 // Input validation and clean-up: the checks every mesh passes before its planes are built.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -40,6 +41,10 @@ struct PreparedMesh {
 
   size_t num_faces() const { return rep.size(); }
   const double* point(uint32_t v) const { return &points[3 * size_t(v)]; }
+  // The bounding box's largest side (scaled units).
+  double extent() const {
+    return std::max(bbox_max[0] - bbox_min[0], std::max(bbox_max[1] - bbox_min[1], bbox_max[2] - bbox_min[2]));
+  }
 };
 
 PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options);

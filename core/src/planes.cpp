@@ -496,7 +496,7 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
   if (good) {
     for (int k = 0; k < 3; ++k)
       // Coordinates feed the side filter; poorly conditioned ones are recomputed exactly.
-      if (v.x[k].e > 1e-10 * (std::fabs(v.x[k].v) + 1e-3)) good = false;
+      if (v.x[k].e > ps.coordinate_tolerance(v.x[k].v)) good = false;
   }
   if (!good) {
     // Double-double Cramer: x = num / den with |num - exact| <= e_num, |den - exact| <= e_den.
@@ -514,7 +514,7 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
         double e = ((enm + std::fabs(x) * eden) / (std::fabs(den) - eden) + 2 * exact::kEps * std::fabs(x)) *
                    exact::kBoundScale + exact::kUnderflowFloor;
         v.x[k] = Approx(x, e);
-        if (e > 1e-10 * (std::fabs(x) + 1e-3)) good = false;
+        if (e > ps.coordinate_tolerance(x)) good = false;
       }
     }
   }

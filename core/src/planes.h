@@ -10,6 +10,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -38,6 +40,16 @@ class PlaneSet {
   explicit PlaneSet(const std::vector<double>* points, int exact_shift = 0) : points_(points), exact_shift_(exact_shift) {}
   // Exact evaluations work on the points times 2^exact_shift (see PreparedMesh::exact_shift).
   int exact_shift() const { return exact_shift_; }
+  // The extent of the shape (its bounding box's largest side, scaled units). Vertex coordinates
+  // whose error bound is not far below it are refined (make_vertex): every double filter, scan
+  // and climb works at the shape's scale, which for a shape far smaller than its distance from
+  // the origin is far below the rounding of its coordinates' magnitude. Infinite by default.
+  void set_extent(double extent) { extent_ = extent; }
+  // Largest error bound accepted for a filtered vertex coordinate of magnitude |x| (at least a
+  // few roundings of x: a double-double coordinate rounded to a double meets it).
+  double coordinate_tolerance(double x) const {
+    return std::max(1e-10 * std::min(std::fabs(x) + 1e-3, extent_), 4 * exact::kEps * std::fabs(x));
+  }
 
   uint32_t add_from_points(uint32_t a, uint32_t b, uint32_t c);
   // Adds the planes of triangles tri[which[0]], ..., tri[which[n - 1]] (ids size(), size() + 1,
@@ -110,6 +122,7 @@ class PlaneSet {
 
   const std::vector<double>* points_;
   int exact_shift_ = 0;
+  double extent_ = HUGE_VAL;
   RawVector<std::array<uint32_t, 3>> rep_;
   RawVector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
   RawVector<uint32_t> opposite_;

@@ -301,6 +301,31 @@ TEST(Kernel, FaceCullingKeepsTheKernel) {
   }
 }
 
+// A sphere far smaller than its distance from the origin: its coordinates keep ~6 digits of its
+// shape, so rounding makes it slightly non-convex. Vertex coordinates, margins and climbs work
+// at the shape's scale (PlaneSet::set_extent, culling's and cutting's margins), not at the
+// coordinates' magnitude; the kernel (most of the sphere, traced by sample and cuts above 1024
+// planes) must be valid, the same with and without face culling, and nearly the whole shape.
+TEST(Kernel, TinySphereFarFromTheOrigin) {
+  const Mesh m = transformed(kergen_test::uv_sphere(48, 24, 0.1), 1e-9, 1000, 0, 0);
+  Options all_faces;
+  all_faces.cull_faces = false;
+  const Kernel k = run(m), k_all = run(m, all_faces);
+  expect_valid_polyhedron(m, k);
+  EXPECT_GT(k.volume_ratio, 0.95);
+  EXPECT_LE(k.volume_ratio, 1.0);
+  ASSERT_EQ(k.num_vertices(), k_all.num_vertices());
+  std::vector<std::array<double, 3>> a, b;
+  for (size_t i = 0; i < k.num_vertices(); ++i) {
+    a.push_back({k.vertices[3 * i], k.vertices[3 * i + 1], k.vertices[3 * i + 2]});
+    b.push_back({k_all.vertices[3 * i], k_all.vertices[3 * i + 1], k_all.vertices[3 * i + 2]});
+  }
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(k.volume, k_all.volume);
+}
+
 TEST(Kernel, ConvexUvSphereWithPoleFans) {
   // A convex UV sphere of 40 x 41 cells: the planes cutting the sample kernel at a pole's fan
   // of 40 triangles add more vertices per cut than the cutter had room for. Its split quads are
