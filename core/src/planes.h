@@ -48,7 +48,7 @@ class PlaneSet {
   // Largest error bound accepted for a filtered vertex coordinate of magnitude |x| (at least a
   // few roundings of x: a double-double coordinate rounded to a double meets it).
   double coordinate_tolerance(double x) const {
-    return std::max(1e-10 * std::min(std::fabs(x) + 1e-3, extent_), 4 * exact::kEps * std::fabs(x));
+    return std::max(1e-10 * std::min(std::fabs(x) + 1e-3, extent_), 16 * exact::kEps * std::fabs(x));
   }
 
   uint32_t add_from_points(uint32_t a, uint32_t b, uint32_t c);
