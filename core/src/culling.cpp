@@ -40,19 +40,12 @@ constexpr size_t kDirectTraceLimit = 1024;  // below this many planes culling co
 // may_reach's margin and box test (see there), shared by the scalar and the batched test: the
 // same operations in the same order (no FMA contraction in this library) give the same bits,
 // hence the same decisions.
-// The margin is 16 delta, delta bounding how far a computed value f(v) = a x + b y + c z + d at a
-// vertex of K_S can be from the exact plane's value at the exact vertex: the rounding of the
-// evaluation (below 8 eps of the sum of the terms' magnitudes), the vertices' coordinate errors
-// and the plane's coefficient errors. It scales with the coordinates' magnitudes, not with 1: a
-// kernel far smaller than its distance from the origin (a tiny shape placed far out) keeps a
-// margin below its own size, so the tests stay local on it. The climbs' tie is margin / 4 = 4
-// delta: above the 2 delta their plateau search needs to reach every higher vertex.
+// The margin is 16 delta, delta = value_error_bound (climb.h): how far a computed value of the
+// plane at a vertex of K_S can be off. The climbs' tie is margin / 4 = 4 delta: above the
+// 2 delta their plateau search needs to reach every higher vertex.
 inline double reach_margin(double a, double b, double c, double d, double ea, double eb, double ec, double ed,
                            double max_abs, double coord_error) {
-  const double n1 = std::fabs(a) + std::fabs(b) + std::fabs(c), reach = max_abs + coord_error;
-  const double delta = 8 * exact::kEps * (n1 * reach + std::fabs(d)) + n1 * coord_error + (ea + eb + ec) * reach + ed +
-                       exact::kUnderflowFloor;
-  return 16 * delta;
+  return 16 * value_error_bound(a, b, c, d, ea, eb, ec, ed, max_abs, coord_error);
 }
 inline bool box_clears(double a, double b, double c, double d, double margin, const double centre[3],
                        const double half[3]) {

@@ -63,13 +63,9 @@ class Cutter {
   bool cut(uint32_t h, std::initializer_list<uint32_t> hints, uint32_t& near) {
     const PlaneCoef<Approx> plane = ps_.approx(h);
     const double a = plane.n[0].v, b = plane.n[1].v, c = plane.n[2].v, d = plane.d.v;
-    // The bounds of culling's support test (reach_margin in culling.cpp): delta bounds how far
-    // a computed f(v) can be from the exact one (rounding, coordinate and coefficient errors),
-    // relative to the coordinates' magnitudes, so that a polytope far smaller than its distance
-    // from the origin keeps the search below local; the climb's tie is 4 delta, the margin 16.
-    const double n1 = std::fabs(a) + std::fabs(b) + std::fabs(c), reach = max_abs_ + coord_error_;
-    const double delta = 8 * exact::kEps * (n1 * reach + std::fabs(d)) + n1 * coord_error_ +
-                         (plane.n[0].e + plane.n[1].e + plane.n[2].e) * reach + plane.d.e + exact::kUnderflowFloor;
+    // The bounds of culling's support test: the climb's tie is 4 delta, the margin 16 delta.
+    const double delta = value_error_bound(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_,
+                                           coord_error_);
     const double tie = 4 * delta, margin = 16 * delta;
     auto f = [&](uint32_t v) { return a * xyz_[3 * v] + b * xyz_[3 * v + 1] + c * xyz_[3 * v + 2] + d; };
     auto neighbors = [&](uint32_t u, const auto& fn) {
