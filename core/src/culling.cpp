@@ -224,10 +224,9 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
       // with its plateau search, gives the maximum. The greedy start is kept for the planes.)
       auto g = [&](uint32_t v) { return dir[0] * xyz_[3 * v] + dir[1] * xyz_[3 * v + 1] + dir[2] * xyz_[3 * v + 2]; };
       double h = g(at);
-      // (tie: twice the most a computed g can be off, see reach_margin, and twice again)
-      const double dir1 = std::fabs(dir[0]) + std::fabs(dir[1]) + std::fabs(dir[2]);
-      climb_to_max(at, h, g, neighbors, 4 * dir1 * (8 * exact::kEps * max_abs_ + coord_error_) + exact::kUnderflowFloor, V,
-                   climb);
+      // (tie: twice the most a computed g can be off, and twice again)
+      const double tie = 4 * value_error_bound(dir[0], dir[1], dir[2], 0, 0, 0, 0, 0, max_abs_, coord_error_);
+      climb_to_max(at, h, g, neighbors, tie, V, climb);
       corner_support_[c] = h;
     }
   }
