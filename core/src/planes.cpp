@@ -51,12 +51,6 @@ T orient3d_formula(const double* a, const double* b, const double* c, const doub
   return det3(u[0], u[1], u[2], v[0], v[1], v[2], w[0], w[1], w[2]);
 }
 
-template <class T>
-std::array<T, 3> cross_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q) {
-  return {p.n[1] * q.n[2] - p.n[2] * q.n[1], p.n[2] * q.n[0] - p.n[0] * q.n[2],
-          p.n[0] * q.n[1] - p.n[1] * q.n[0]};
-}
-
 // Cramer's rule for the vertex of planes a, b, c: coordinate k = num_k / den.
 template <class T>
 void cramer_numerators(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, T num[3]) {

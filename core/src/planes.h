@@ -168,6 +168,12 @@ template <class T>
 T det3_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>& r) {
   return det3(p.n[0], p.n[1], p.n[2], q.n[0], q.n[1], q.n[2], r.n[0], r.n[1], r.n[2]);
 }
+// n_p x n_q: the direction of the line of planes p and q.
+template <class T>
+std::array<T, 3> cross_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q) {
+  return {p.n[1] * q.n[2] - p.n[2] * q.n[1], p.n[2] * q.n[0] - p.n[0] * q.n[2],
+          p.n[0] * q.n[1] - p.n[1] * q.n[0]};
+}
 
 // Homogeneous coordinates of a plane-triple vertex, x_k = num[k] / den, in double-double with
 // error bounds and exactly: Cramer's rule in general; when two of the planes share two input

@@ -489,9 +489,7 @@ class Tracer {
   // double-double one, and from the exact one only when that cancels too. (The direction only
   // steers the double scan; the exact certification decides.)
   void direction(const Ray& ray, double u[3]) const {
-    auto pp = ps_.approx(ray.p), pq = ps_.approx(ray.q);
-    Approx c[3] = {pp.n[1] * pq.n[2] - pp.n[2] * pq.n[1], pp.n[2] * pq.n[0] - pp.n[0] * pq.n[2],
-                   pp.n[0] * pq.n[1] - pp.n[1] * pq.n[0]};
+    const std::array<Approx, 3> c = cross_normals(ps_.approx(ray.p), ps_.approx(ray.q));
     double len = std::fabs(c[0].v) + std::fabs(c[1].v) + std::fabs(c[2].v);
     double err = c[0].e + c[1].e + c[2].e;
     if (err <= 1e-8 * len) {
@@ -499,9 +497,7 @@ class Tracer {
       return;
     }
     {
-      const auto &dp = ps_.dd(ray.p), &dq = ps_.dd(ray.q);
-      const exact::ApproxDD d[3] = {dp.n[1] * dq.n[2] - dp.n[2] * dq.n[1], dp.n[2] * dq.n[0] - dp.n[0] * dq.n[2],
-                                    dp.n[0] * dq.n[1] - dp.n[1] * dq.n[0]};
+      const std::array<exact::ApproxDD, 3> d = cross_normals(ps_.dd(ray.p), ps_.dd(ray.q));
       double dlen = 0, derr = 0;
       for (int k = 0; k < 3; ++k) {
         dlen += std::fabs(d[k].hi + d[k].lo);
@@ -512,10 +508,8 @@ class Tracer {
         return;
       }
     }
-    const auto &ep = ps_.exact(ray.p), &eq = ps_.exact(ray.q);
-    u[0] = ray.sigma * (ep.n[1] * eq.n[2] - ep.n[2] * eq.n[1]).estimate();
-    u[1] = ray.sigma * (ep.n[2] * eq.n[0] - ep.n[0] * eq.n[2]).estimate();
-    u[2] = ray.sigma * (ep.n[0] * eq.n[1] - ep.n[1] * eq.n[0]).estimate();
+    const std::array<Expansion, 3> e = cross_normals(ps_.exact(ray.p), ps_.exact(ray.q));
+    for (int k = 0; k < 3; ++k) u[k] = ray.sigma * e[k].estimate();
   }
 
   // Nearest plane along the ray from its vertex (double scan; exactness comes after).
