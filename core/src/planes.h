@@ -9,9 +9,9 @@
 // the filters and the float scans) and, lazily, as exact expansions (for the rare undecided sign).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -205,8 +205,8 @@ struct VertexGeom {
 };
 
 // Plane of an input triangle with error bounds, without adding it to a set (inline: the
-// per-face loops of plane classes and face culling call it once per face). One pass of doubles with bounds of the same form as the running error of
-// the generic formula: for u = b - a and v = c - a rounded (relative error eps each), a normal
+// per-face loops of plane classes and face culling call it once per face). One pass of doubles
+// with bounds of the same form as the running error of the generic formula: for u = b - a and v = c - a rounded (relative error eps each), a normal
 // component n = p - q with p, q the rounded products is within 3 eps (|p| + |q|) + eps |n| of
 // the exact one (two input errors and one rounding per product, one rounding of the difference;
 // the second-order terms fit in kBoundScale's slack), and d = -(n . a) with exact a adds the
