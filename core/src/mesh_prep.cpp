@@ -446,7 +446,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // The same pass marks the used vertices and counts the edge uses per bucket of the edge
   // check below. (Raw pointers in the loops: the stores through char would otherwise make the
   // compiler reload every vector's pointers after each one.)
-  std::vector<uint32_t> clean(mesh.num_indices), clean_offsets(nf + 1);
+  RawVector<uint32_t> clean(mesh.num_indices), clean_offsets(nf + 1);  // (written in full below)
   std::vector<char> used(nv, 0);
   // Edge uses are bucketed by their lower vertex id and direction: bucket 2 lo + 1 holds the
   // uses running up from lo (lo -> hi, hi > lo), bucket 2 lo those running down to lo.
@@ -457,6 +457,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     const uint32_t* in = mesh.indices;
     uint32_t* cl = clean.data();
     uint32_t* off = clean_offsets.data();
+    off[0] = 0;
     char* us = used.data();
     uint32_t* count = bucket.data() + 1;
     // (bucket 2 lo + 1 < 2 hi, bucket 2 lo < 2 hi + 1: the smaller is the use's bucket)
@@ -538,7 +539,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // Pairs of faces sharing an edge, by lower vertex id, then in the order of the faces using
   // the edge upwards; each pair lists its lower face first. At most one pair per two uses;
   // written through a pointer (push_back went through a stack copy, a store-forwarding stall).
-  std::vector<std::array<uint32_t, 2>> face_pairs((size_t(total_uses) + 1) / 2);
+  RawVector<std::array<uint32_t, 2>> face_pairs((size_t(total_uses) + 1) / 2);
   {
     // A use is stored as its upper vertex id and its face, in two arrays indexed alike. No
     // fresh memory is taken for them (first touches of fresh pages are costly): the faces go
@@ -549,7 +550,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // vertex's faces are all read, by the tally, before its first pair is written).
     static_assert(sizeof(std::array<uint32_t, 3>) == 3 * sizeof(uint32_t), "packed representatives");
     static_assert(sizeof(std::array<uint32_t, 2>) == 2 * sizeof(uint32_t), "packed pairs");
-    std::vector<uint32_t> upper_store;
+    RawVector<uint32_t> upper_store;
     uint32_t* upper;
     if (total_uses == 3 * cf) {
       m.rep.resize(cf);

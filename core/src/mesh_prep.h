@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "flat_set.h"
 #include "kergen/kergen.h"
 
 namespace kergen {
@@ -27,11 +28,11 @@ struct PreparedMesh {
   // Faces that carry a plane: a loop of vertex ids (CCW from outside after any flip) and a
   // representative triangle with the loop's orientation. Planar polygons stay whole; zero-area
   // faces are gone; non-planar polygons are split into triangles (folded outward where possible).
-  std::vector<uint32_t> loop_offsets;  // size = faces + 1
-  std::vector<uint32_t> loops;
-  std::vector<std::array<uint32_t, 3>> rep;
+  RawVector<uint32_t> loop_offsets;  // size = faces + 1
+  RawVector<uint32_t> loops;
+  RawVector<std::array<uint32_t, 3>> rep;
   // Pairs of plane-faces that share an edge (for merging coplanar neighbours).
-  std::vector<std::array<uint32_t, 2>> adjacent;
+  RawVector<std::array<uint32_t, 2>> adjacent;
 
   size_t input_faces = 0;
   size_t dropped_faces = 0;

@@ -5,10 +5,12 @@
 #include <numeric>
 #include <vector>
 
+#include "flat_set.h"
+
 namespace kergen {
 
 struct UnionFind {
-  std::vector<uint32_t> parent;
+  RawVector<uint32_t> parent;  // (iota writes it in full)
   explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
   uint32_t find(uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];

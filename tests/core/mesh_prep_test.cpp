@@ -76,7 +76,7 @@ TEST(MeshPrep, AdjacentPairsOfATetrahedron) {
   // Uses up from 0, in face order: 0->2 (face 0, back in face 2), 0->1 (face 1, back in 0),
   // 0->3 (face 2, back in 1). From 1: 1->3 (face 1, back in 3), 1->2 (face 3, back in 0).
   // From 2: 2->3 (face 3, back in 2).
-  const std::vector<std::array<uint32_t, 2>> expected = {{0, 2}, {0, 1}, {1, 2}, {1, 3}, {0, 3}, {2, 3}};
+  const decltype(PreparedMesh::adjacent) expected = {{0, 2}, {0, 1}, {1, 2}, {1, 3}, {0, 3}, {2, 3}};
   EXPECT_EQ(p.adjacent, expected);
   EXPECT_EQ(p.num_faces(), 4u);
 }
@@ -92,8 +92,8 @@ Mesh quad_cube() {
 
 // The pairs as specified, found by brute force: for each lower vertex, the uses running up
 // from it in face order (loop order within a face), each with the face using the edge back.
-std::vector<std::array<uint32_t, 2>> adjacent_pairs_by_definition(const PreparedMesh& p, size_t num_vertices) {
-  std::vector<std::array<uint32_t, 2>> pairs;
+decltype(PreparedMesh::adjacent) adjacent_pairs_by_definition(const PreparedMesh& p, size_t num_vertices) {
+  decltype(PreparedMesh::adjacent) pairs;
   const size_t faces = p.loop_offsets.size() - 1;
   auto for_each_use = [&](auto&& visit) {
     for (uint32_t f = 0; f < faces; ++f) {
