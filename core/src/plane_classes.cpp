@@ -295,7 +295,7 @@ struct FaceLists {
   const uint32_t* loops;
 };
 
-void face_incidence(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane);
+void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane);
 
 void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
   const size_t nf = fl.num_faces;
@@ -436,61 +436,50 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
   for (const auto& o : opposites) ps.set_opposite(o[0], o[1]);
 
   // 3. Incidence.
-  face_incidence(m, fl, ps, face_plane);
+  face_incidence(fl, ps, face_plane);
 }
 
-void face_incidence(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
-  // Compressed rows (sorted, unique) in linear time:
-  //  a. each point's planes with repeats (one per face loop through it), bucketed by point;
-  //  b. each row sorted and deduplicated in place (a point has a handful of faces) and compacted;
-  //  c. each plane's points by transposing b point by point: sorted and unique by construction.
+void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
+  // Each plane's points as compressed rows (sorted, unique), in time linear in the faces' loops,
+  // not in the mesh's vertices (a culled subset's faces touch few of them):
+  //  a. the loops' points with repeats (one per face loop through a point), bucketed by plane;
+  //  b. each row sorted (a plane of a few faces holds a handful of points; a merged flat region
+  //     may hold thousands) and deduplicated, compacted in place.
   // Buckets are filled through their offsets: row r's count goes to off[r + 2], the prefix sum
   // makes off[r + 1] row r's start, filling advances it to row r's end = row r + 1's start, so
-  // off[0..n] are then the final offsets.
+  // off[0..n] are then the rows' offsets.
   const size_t nf = fl.num_faces;
-  const size_t np = ps.size(), nv = m.points.size() / 3;
-  auto prefix_sum = [](RawVector<uint32_t>& off) {
-    for (size_t i = 1; i < off.size(); ++i) off[i] += off[i - 1];
-  };
+  const size_t np = ps.size();
   // a.
-  RawVector<uint32_t> point_off(nv + 2, 0);
-  for (uint32_t i = 0; i < fl.loop_offsets[nf]; ++i) point_off[fl.loops[i] + 2]++;
-  prefix_sum(point_off);
-  RawVector<uint32_t> point_pls(point_off[nv + 1]);
-  for (uint32_t f = 0; f < nf; ++f)
-    for (uint32_t i = fl.loop_offsets[f]; i < fl.loop_offsets[f + 1]; ++i) point_pls[point_off[fl.loops[i] + 1]++] = face_plane[f];
-  point_off.pop_back();
-  // b. (Compacting writes never overtake the reads: out <= the row's read position.) Each
-  // plane's point count goes to plane_off[plane + 2] for c.
-  RawVector<uint32_t> plane_off(np + 2, 0);
+  RawVector<uint32_t> off(np + 2, 0);
+  for (size_t f = 0; f < nf; ++f) off[face_plane[f] + 2] += fl.loop_offsets[f + 1] - fl.loop_offsets[f];
+  for (size_t i = 1; i < off.size(); ++i) off[i] += off[i - 1];
+  RawVector<uint32_t> pts(off[np + 1]);
+  for (size_t f = 0; f < nf; ++f) {
+    uint32_t& fill = off[face_plane[f] + 1];
+    for (uint32_t i = fl.loop_offsets[f]; i < fl.loop_offsets[f + 1]; ++i) pts[fill++] = fl.loops[i];
+  }
+  off.pop_back();
+  // b. (Compacting writes never overtake the reads: out <= the row's read position.)
   uint32_t out = 0;
-  for (size_t v = 0, begin = 0; v < nv; ++v) {
-    const size_t end = point_off[v + 1];
-    uint32_t* row = point_pls.data() + begin;
+  for (size_t p = 0, begin = 0; p < np; ++p) {
+    const size_t end = off[p + 1];
+    uint32_t* row = pts.data() + begin;
     const size_t n = end - begin;
     if (n <= 16) {
       for (size_t i = 1; i < n; ++i)
         for (size_t k = i; k > 0 && row[k] < row[k - 1]; --k) std::swap(row[k], row[k - 1]);
     } else {
-      std::sort(row, row + n);  // a fan of many faces (a cone's apex)
+      std::sort(row, row + n);
     }
-    point_off[v] = out;
+    off[p] = out;
     for (size_t i = 0; i < n; ++i)
-      if (i == 0 || row[i] != row[i - 1]) {
-        point_pls[out++] = row[i];
-        plane_off[row[i] + 2]++;
-      }
+      if (i == 0 || row[i] != row[i - 1]) pts[out++] = row[i];
     begin = end;
   }
-  point_off[nv] = out;
-  point_pls.resize(out);
-  // c.
-  prefix_sum(plane_off);
-  RawVector<uint32_t> plane_pts(plane_off[np + 1]);
-  for (uint32_t v = 0; v < nv; ++v)
-    for (uint32_t i = point_off[v]; i < point_off[v + 1]; ++i) plane_pts[plane_off[point_pls[i] + 1]++] = v;
-  plane_off.pop_back();
-  ps.set_incidence(std::move(plane_off), std::move(plane_pts), std::move(point_off), std::move(point_pls));
+  off[np] = out;
+  pts.resize(out);
+  ps.set_incidence(std::move(off), std::move(pts));
 }
 
 }  // namespace

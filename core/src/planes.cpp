@@ -161,12 +161,9 @@ const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
   }
 }
 
-void PlaneSet::set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32_t> plane_points,
-                             RawVector<uint32_t> point_offsets, RawVector<uint32_t> point_planes) {
+void PlaneSet::set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32_t> plane_points) {
   plane_offsets_ = std::move(plane_offsets);
   plane_points_ = std::move(plane_points);
-  point_offsets_ = std::move(point_offsets);
-  point_planes_ = std::move(point_planes);
 }
 
 PlaneSet::Span PlaneSet::points_on(uint32_t plane) const {
@@ -175,10 +172,8 @@ PlaneSet::Span PlaneSet::points_on(uint32_t plane) const {
 }
 
 bool PlaneSet::point_on_plane(uint32_t pt, uint32_t plane) const {
-  if (size_t(pt) + 1 >= point_offsets_.size()) return false;
-  const uint32_t* b = point_planes_.data() + point_offsets_[pt];
-  const uint32_t* e = point_planes_.data() + point_offsets_[pt + 1];
-  return std::binary_search(b, e, plane);
+  const Span row = points_on(plane);
+  return std::binary_search(row.b, row.e, pt);
 }
 
 PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c, int shift) {

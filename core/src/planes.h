@@ -81,8 +81,8 @@ class PlaneSet {
   void set_opposite(uint32_t i, uint32_t j) { opposite_[i] = j; opposite_[j] = i; }
 
   // Incidence known by construction, as compressed rows (sorted, unique): the mesh vertices on
-  // each plane (vertices of its faces) and the planes through each mesh vertex. Planes added
-  // after set_incidence (bounding planes) have no incident points.
+  // each plane (vertices of its faces). Planes added after set_incidence (bounding planes) have
+  // no incident points.
   struct Span {
     const uint32_t* b = nullptr;
     const uint32_t* e = nullptr;
@@ -90,8 +90,7 @@ class PlaneSet {
     const uint32_t* end() const { return e; }
     size_t size() const { return size_t(e - b); }
   };
-  void set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32_t> plane_points,
-                     RawVector<uint32_t> point_offsets, RawVector<uint32_t> point_planes);
+  void set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32_t> plane_points);
   Span points_on(uint32_t plane) const;
   bool point_on_plane(uint32_t point, uint32_t plane) const;
 
@@ -126,7 +125,7 @@ class PlaneSet {
   RawVector<std::array<uint32_t, 3>> rep_;
   RawVector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
   RawVector<uint32_t> opposite_;
-  RawVector<uint32_t> plane_offsets_, plane_points_, point_offsets_, point_planes_;
+  RawVector<uint32_t> plane_offsets_, plane_points_;
   // Only a few planes ever need them: a map, not a pointer per plane.
   mutable SparseCache<PlaneCoef<Expansion>> exact_;
   mutable SparseCache<PlaneCoef<exact::ApproxDD>> dd_;
