@@ -305,6 +305,31 @@ bool lex_less(const double* a, const double* b) {
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }
 
+// The bits of the largest magnitude among x[0..n) (top) and of the smallest non-zero one minus
+// one (low; INT64_MAX when every value is zero), in one branch-free pass: without the sign bit,
+// doubles order like their bit patterns, and every NaN or infinity lies at or above infinity.
+// The bits are below 2^63, so signed extrema order them: SIMD units compare signed 64-bit
+// integers (SSE4.2, AVX2, wasm's i64x2), not unsigned ones. A zero's magnitude minus one wraps
+// and, masked to 63 bits, becomes the largest value. Four chains: the extrema do not wait on
+// each other.
+KERGEN_MULTIVERSION
+void magnitude_extrema(const double* x, size_t n, uint64_t& top_bits, int64_t& low_bits) {
+  const uint64_t kAbs = ~(uint64_t(1) << 63);
+  int64_t top[4] = {0, 0, 0, 0}, low[4] = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
+  auto take = [kAbs](const double* p, int64_t& t, int64_t& l) KERGEN_INLINE {
+    uint64_t b;
+    std::memcpy(&b, p, sizeof b);
+    t = std::max(t, int64_t(b & kAbs));
+    l = std::min(l, int64_t(((b & kAbs) - 1) & kAbs));
+  };
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (int j = 0; j < 4; ++j) take(x + i + j, top[j], low[j]);
+  for (; i < n; ++i) take(x + i, top[0], low[0]);
+  top_bits = uint64_t(std::max(std::max(top[0], top[1]), std::max(top[2], top[3])));
+  low_bits = std::min(std::min(low[0], low[1]), std::min(low[2], low[3]));
+}
+
 }  // namespace
 
 PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
@@ -346,43 +371,24 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   auto face_size = [&](size_t f) -> size_t { return mesh.face_sizes ? mesh.face_sizes[f] : 3; };
 
   // Finite coordinates, the largest magnitude (for the scale below) and the smallest non-zero
-  // one (for the exact shift below) in one branch-free pass over the bits: without the sign
-  // bit, doubles order like their bit patterns, and every NaN or infinity lies at or above that
-  // of infinity. The culprit is looked for only if needed.
+  // one (for the exact shift below) in one pass (magnitude_extrema); the culprit is looked for
+  // only if needed.
   double maxabs = 0, min_nonzero_abs = INFINITY;
   {
     const double* pos = mesh.positions;
-    const uint64_t kAbs = ~(uint64_t(1) << 63), kInf = 0x7ff0000000000000ull;
-    // Four chains: the extrema do not wait on each other. The minimum is taken over the
-    // magnitudes' bits minus one, which turns a zero into the largest value.
-    uint64_t top[4] = {0, 0, 0, 0}, low[4] = {UINT64_MAX, UINT64_MAX, UINT64_MAX, UINT64_MAX};
-    const size_t n = 3 * nv;
-    size_t i = 0;
-    for (; i + 4 <= n; i += 4)
-      for (int j = 0; j < 4; ++j) {
-        uint64_t b;
-        std::memcpy(&b, pos + i + j, sizeof b);
-        top[j] = std::max(top[j], b & kAbs);
-        low[j] = std::min(low[j], (b & kAbs) - 1);
-      }
-    for (; i < n; ++i) {
-      uint64_t b;
-      std::memcpy(&b, pos + i, sizeof b);
-      top[0] = std::max(top[0], b & kAbs);
-      low[0] = std::min(low[0], (b & kAbs) - 1);
-    }
-    const uint64_t top_bits = std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
-    if (top_bits >= kInf) {
-      i = 0;
+    uint64_t top_bits;
+    int64_t low_bits;
+    magnitude_extrema(pos, 3 * nv, top_bits, low_bits);
+    if (top_bits >= 0x7ff0000000000000ull) {  // (the bits of infinity)
+      size_t i = 0;
       while (std::isfinite(pos[i])) ++i;
       std::ostringstream s;
       s << "vertex " << i / 3 << " has a non-finite coordinate (" << pos[i] << ")";
       return fail(m, Error::NonFiniteCoordinate, s.str());
     }
     std::memcpy(&maxabs, &top_bits, sizeof maxabs);
-    const uint64_t low_bits = std::min(std::min(low[0], low[1]), std::min(low[2], low[3]));
-    if (low_bits != UINT64_MAX) {
-      const uint64_t min_bits = low_bits + 1;
+    if (low_bits != INT64_MAX) {
+      const uint64_t min_bits = uint64_t(low_bits) + 1;
       std::memcpy(&min_nonzero_abs, &min_bits, sizeof min_nonzero_abs);
     }
   }

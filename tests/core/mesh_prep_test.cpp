@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "mesh_prep.h"
@@ -63,6 +64,30 @@ TEST(MeshPrep, FirstNonFiniteCoordinateIsNamed) {
   PreparedMesh p = prepare_mesh(m.view(), Options{});
   EXPECT_EQ(p.error, Error::NonFiniteCoordinate);
   EXPECT_NE(p.message.find("vertex 2 has a non-finite coordinate (-inf)"), std::string::npos) << p.message;
+}
+
+// Coordinates are scanned four at a time, then a scalar tail: a non-finite value and the smallest
+// non-zero magnitude (which sets the exact shift) count in a block and in the tail alike. Two
+// unused vertices make 30 coordinates: 25 is in the last block, 29 in the tail.
+TEST(MeshPrep, CoordinateExtremaInABlockAndInTheTail) {
+  Mesh m = unit_cube();
+  m.positions.insert(m.positions.end(), {0.5, 0.5, 0.5, 0.25, 0.25, 0.25});
+  const PreparedMesh plain = prepare_mesh(m.view(), Options{});
+  ASSERT_EQ(plain.error, Error::Ok) << plain.message;
+  EXPECT_EQ(plain.exact_shift, 0);
+  for (size_t at : {size_t(25), size_t(29)}) {
+    Mesh t = m;
+    t.positions[at] = -std::ldexp(1.0, -200);
+    PreparedMesh p = prepare_mesh(t.view(), Options{});
+    ASSERT_EQ(p.error, Error::Ok) << p.message;
+    EXPECT_GT(p.exact_shift, 0) << "coordinate " << at;
+    for (double bad : {double(NAN), -double(INFINITY)}) {
+      t.positions[at] = bad;
+      p = prepare_mesh(t.view(), Options{});
+      EXPECT_EQ(p.error, Error::NonFiniteCoordinate) << "coordinate " << at;
+      EXPECT_NE(p.message.find("vertex " + std::to_string(at / 3) + " has a non-finite"), std::string::npos) << p.message;
+    }
+  }
 }
 
 // Edge-adjacent face pairs: ordered by lower vertex id, then by the face using the edge upwards,
