@@ -311,9 +311,14 @@ std::string json_baseline(const Baseline& b, double ours) {
 }
 
 // One summary per folder of meshes: each baseline's ratio (baseline / ours) as a geometric mean,
-// its minimum and the number of meshes where we are slower (ratio < 1).
+// its minimum and the number of meshes where we are slower (ratio < 1). A median of a few runs of
+// a 0.1 ms computation is at the mercy of this VM's hiccups, so every mesh found slower is measured
+// again (both sides, kRecheckRuns runs each): `confirmed` counts those still slower then. The
+// geometric mean and the minimum stay those of the first measurement.
+constexpr int kRecheckRuns = 21;
 struct RatioStats {
-  size_t count = 0, slower = 0;
+  size_t count = 0, slower = 0, confirmed = 0;
+  std::vector<std::string> rechecks;  // "mesh: first ratio -> ratio measured again"
   double log_sum = 0, min = std::numeric_limits<double>::infinity();
   std::string min_mesh;
   void add(const Baseline& b, double ours, const std::string& mesh) {
@@ -349,8 +354,9 @@ struct FamilySummary {
   }
   static std::string ratio_cells(const RatioStats& r) {
     if (!r.count) return "- | - | -";
-    return fmt(r.geomean()) + "x | " + fmt(r.min) + "x (" + fs::path(r.min_mesh).filename().string() + ") | " +
-           std::to_string(r.slower) + " of " + std::to_string(r.count);
+    std::string slower = std::to_string(r.slower) + " of " + std::to_string(r.count);
+    if (r.slower) slower += " (" + std::to_string(r.confirmed) + " when measured again)";
+    return fmt(r.geomean()) + "x | " + fmt(r.min) + "x (" + fs::path(r.min_mesh).filename().string() + ") | " + slower;
   }
   std::string table_row() const {
     return "| " + dir + " | " + std::to_string(meshes) + " | " + std::to_string(errors) + " | " + types_cell() + " | " +
@@ -359,7 +365,10 @@ struct FamilySummary {
   static std::string ratio_json(const RatioStats& r) {
     std::ostringstream os;
     os << "{\"meshes\":" << r.count << ",\"geomean\":" << r.geomean() << ",\"min\":" << (r.count ? r.min : 0)
-       << ",\"min_mesh\":\"" << json_escape(r.min_mesh) << "\",\"slower\":" << r.slower << "}";
+       << ",\"min_mesh\":\"" << json_escape(r.min_mesh) << "\",\"slower\":" << r.slower
+       << ",\"slower_when_measured_again\":" << r.confirmed << ",\"rechecks\":[";
+    for (size_t i = 0; i < r.rechecks.size(); ++i) os << (i ? "," : "") << "\"" << json_escape(r.rechecks[i]) << "\"";
+    os << "]}";
     return os.str();
   }
   std::string json(const std::string& compiler, const std::string& load, int runs) const {
@@ -463,7 +472,24 @@ int main(int argc, char** argv) {
     FamilySummary fam;
     const fs::path rel = fs::path(dir).lexically_relative(args.meshes);
     fam.dir = !rel.empty() && *rel.begin() != ".." ? rel.string() : dir;  // polyhedra/voro, not /abs/../polyhedra/voro
-    for (const std::string& f : files) fam.add(bench_mesh(f, f, args));
+    Args again = args;
+    again.runs = std::max(args.runs, kRecheckRuns);
+    for (const std::string& f : files) {
+      const Row r = bench_mesh(f, f, args);
+      fam.add(r);
+      if (!r.error.empty()) continue;
+      // (see RatioStats)
+      const bool epick_slower = r.epick.ran && r.epick.ms < r.ours_ms, epeck_slower = r.epeck.ran && r.epeck.ms < r.ours_ms;
+      if (!epick_slower && !epeck_slower) continue;
+      const Row r2 = bench_mesh(f, f, again);
+      auto note = [&](RatioStats& st, const Baseline& first, const Baseline& second) {
+        const double ratio = second.ran && r2.ours_ms > 0 ? second.ms / r2.ours_ms : 0;
+        st.confirmed += second.ran && ratio < 1;
+        st.rechecks.push_back(fs::path(f).filename().string() + ": " + fmt(first.ms / r.ours_ms) + "x -> " + fmt(ratio) + "x");
+      };
+      if (epick_slower) note(fam.epick, r.epick, r2.epick);
+      if (epeck_slower) note(fam.epeck, r.epeck, r2.epeck);
+    }
     if (!args.json) std::fprintf(stderr, "  done family %s (%zu meshes)\n", dir.c_str(), fam.meshes);
     families.push_back(std::move(fam));
   }
@@ -539,6 +565,12 @@ int main(int argc, char** argv) {
     std::printf("%s| family | meshes | errors | kernel types | ours: median ms | Epick/ours: geomean | min | slower | Epeck/ours: geomean | min | slower |\n", rows.empty() ? "" : "\n");
     std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const FamilySummary& f : families) std::printf("%s\n", f.table_row().c_str());
+    for (const FamilySummary& f : families)
+      for (const auto* st : {&f.epick, &f.epeck})
+        for (const std::string& r : st->rechecks)
+          std::printf("\nMeasured again (%d runs), %s vs %s: %s", kRecheckRuns, f.dir.c_str(), st == &f.epick ? "Epick" : "Epeck", r.c_str());
+    if (std::any_of(families.begin(), families.end(), [](const FamilySummary& f) { return f.epick.slower + f.epeck.slower > 0; }))
+      std::printf("\n");
   }
   return 0;
 }
