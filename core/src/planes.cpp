@@ -166,16 +166,6 @@ void PlaneSet::set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32
   plane_points_ = std::move(plane_points);
 }
 
-PlaneSet::Span PlaneSet::points_on(uint32_t plane) const {
-  if (size_t(plane) + 1 >= plane_offsets_.size()) return {};
-  return {plane_points_.data() + plane_offsets_[plane], plane_points_.data() + plane_offsets_[plane + 1]};
-}
-
-bool PlaneSet::point_on_plane(uint32_t pt, uint32_t plane) const {
-  const Span row = points_on(plane);
-  return std::binary_search(row.b, row.e, pt);
-}
-
 PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double* c, int shift) {
   Scaled sa(a, shift), sb(b, shift), sc(c, shift);
   return plane_from_points<Expansion>(sa.v, sb.v, sc.v);

@@ -91,8 +91,17 @@ class PlaneSet {
     size_t size() const { return size_t(e - b); }
   };
   void set_incidence(RawVector<uint32_t> plane_offsets, RawVector<uint32_t> plane_points);
-  Span points_on(uint32_t plane) const;
-  bool point_on_plane(uint32_t point, uint32_t plane) const;
+  Span points_on(uint32_t plane) const {
+    if (size_t(plane) + 1 >= plane_offsets_.size()) return {};
+    return {plane_points_.data() + plane_offsets_[plane], plane_points_.data() + plane_offsets_[plane + 1]};
+  }
+  // (A plane of a few faces holds a handful of points, scanned; a merged flat region's long row
+  // is searched.)
+  bool point_on_plane(uint32_t point, uint32_t plane) const {
+    const Span row = points_on(plane);
+    if (row.size() <= 8) return std::find(row.b, row.e, point) != row.e;
+    return std::binary_search(row.b, row.e, point);
+  }
 
   PlaneCoef<Approx> approx(uint32_t i) const {
     return {{Approx(nx_[i], enx_[i]), Approx(ny_[i], eny_[i]), Approx(nz_[i], enz_[i])}, Approx(d_[i], ed_[i])};
