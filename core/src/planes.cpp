@@ -590,14 +590,9 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   // The defining planes hold the vertex by construction (their filtered value is a rounding
   // residue the filter cannot decide, and deciding it exactly costs a full Cramer solve).
   if (l == v.basis[0] || l == v.basis[1] || l == v.basis[2]) return 0;
-  if (v.mesh_point != kNoPoint) {
-    uint32_t p = uint32_t(v.mesh_point);
-    if (ps.point_on_plane(p, l)) return 0;
-    if (!ps.explicit_plane(l)) {
-      const auto& r = ps.rep(l);
-      return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift());
-    }
-  }
+  // At an input point, a face plane's sign is orient3d's (filtered inside); an explicit plane
+  // (no incident points) tries the double filter below first.
+  if (v.mesh_point != kNoPoint && !ps.explicit_plane(l)) return sign_at_point(ps, l, uint32_t(v.mesh_point));
   auto pl = ps.approx(l);
   Approx f = pl.n[0] * v.x[0] + pl.n[1] * v.x[1] + pl.n[2] * v.x[2] + pl.d;
   int s = f.sign();

@@ -214,11 +214,12 @@ struct VertexGeom {
 
 // Plane of an input triangle with error bounds, without adding it to a set (inline: the
 // per-face loops of plane classes and face culling call it once per face). One pass of doubles
-// with bounds of the same form as the running error of the generic formula: for u = b - a and v = c - a rounded (relative error eps each), a normal
-// component n = p - q with p, q the rounded products is within 3 eps (|p| + |q|) + eps |n| of
-// the exact one (two input errors and one rounding per product, one rounding of the difference;
-// the second-order terms fit in kBoundScale's slack), and d = -(n . a) with exact a adds the
-// normal errors times |a| and the roundings of the products and partial sums.
+// with bounds of the same form as the running error of the generic formula: for u = b - a and
+// v = c - a rounded (relative error eps each), a normal component n = p - q with p, q the
+// rounded products is within 3 eps (|p| + |q|) + eps |n| of the exact one (two input errors and
+// one rounding per product, one rounding of the difference; the second-order terms fit in
+// kBoundScale's slack), and d = -(n . a) with exact a adds the normal errors times |a| and the
+// roundings of the products and partial sums.
 inline PlaneCoef<Approx> approx_plane(const double* a, const double* b, const double* c) {
   using exact::kBoundScale;
   using exact::kEps;
