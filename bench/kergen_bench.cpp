@@ -24,6 +24,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -321,13 +322,15 @@ struct RatioStats {
   std::vector<std::string> rechecks;  // "mesh: first ratio -> ratio measured again"
   double log_sum = 0, min = std::numeric_limits<double>::infinity();
   std::string min_mesh;
-  void add(const Baseline& b, double ours, const std::string& mesh) {
-    if (!b.ran || ours <= 0) return;
+  // Counts the ratio; returns whether we are slower.
+  bool add(const Baseline& b, double ours, const std::string& mesh) {
+    if (!b.ran || ours <= 0) return false;
     const double r = b.ms / ours;
     ++count;
     log_sum += std::log(r);
     slower += r < 1;
     if (r < min) { min = r; min_mesh = mesh; }
+    return r < 1;
   }
   double geomean() const { return count ? std::exp(log_sum / double(count)) : 0; }
 };
@@ -337,15 +340,16 @@ struct FamilySummary {
   std::vector<std::pair<std::string, size_t>> types;
   std::vector<double> ours;
   RatioStats epick, epeck;
-  void add(const Row& r) {
+  // Counts the row; returns which baselines it was slower than (Epick, Epeck).
+  std::array<bool, 2> add(const Row& r) {
     ++meshes;
-    if (!r.error.empty()) { ++errors; return; }
+    if (!r.error.empty()) { ++errors; return {false, false}; }
     auto it = std::find_if(types.begin(), types.end(), [&](const auto& t) { return t.first == r.type; });
     if (it == types.end()) types.emplace_back(r.type, 1);
     else ++it->second;
     ours.push_back(r.ours_ms);
-    epick.add(r.epick, r.ours_ms, r.mesh);
-    epeck.add(r.epeck, r.ours_ms, r.mesh);
+    const bool epick_slower = epick.add(r.epick, r.ours_ms, r.mesh);
+    return {epick_slower, epeck.add(r.epeck, r.ours_ms, r.mesh)};
   }
   std::string types_cell() const {
     std::string s;
@@ -476,11 +480,8 @@ int main(int argc, char** argv) {
     again.runs = std::max(args.runs, kRecheckRuns);
     for (const std::string& f : files) {
       const Row r = bench_mesh(f, f, args);
-      fam.add(r);
-      if (!r.error.empty()) continue;
-      // (see RatioStats)
-      const bool epick_slower = r.epick.ran && r.epick.ms < r.ours_ms, epeck_slower = r.epeck.ran && r.epeck.ms < r.ours_ms;
-      if (!epick_slower && !epeck_slower) continue;
+      const auto [epick_slower, epeck_slower] = fam.add(r);
+      if (!epick_slower && !epeck_slower) continue;  // (else measured again: see RatioStats)
       const Row r2 = bench_mesh(f, f, again);
       auto note = [&](RatioStats& st, const Baseline& first, const Baseline& second) {
         const double ratio = second.ran && r2.ours_ms > 0 ? second.ms / r2.ours_ms : 0;
