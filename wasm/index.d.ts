@@ -119,6 +119,11 @@ export interface KernelStats {
   msTotal: number;
 }
 
+/**
+ * A computed kernel. Its five typed arrays (`vertices`, `edges`, `faceIndices`, `faceSizes`,
+ * `triangles`) are copies out of the wasm heap into one fresh ArrayBuffer, which they share as
+ * views (use `.slice()` for an array with a buffer of its own, e.g. before transferring only it).
+ */
 export interface KernelResult {
   status: KernelStatus;
   /** false when stopped early by onStep / maxSteps (the result is then the partial kernel). */

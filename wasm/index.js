@@ -335,12 +335,24 @@ function readResult(m, ptr) {
     const s = (ptr + 4 * HEAD_WORDS) / 8; // scalars
     const counts = s + SCALARS; // warning counts
     const v = counts + numWarnings;
-    const vertices = f64.slice(v, v + u32[h + H_NUM_VERTEX_VALUES]);
-    let w = (v + vertices.length) * 2; // the u32 arrays
-    const edges = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 1]));
-    const faceIndices = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 2]));
-    const faceSizes = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 3]));
-    const triangles = u32.slice(w, (w += u32[h + H_NUM_VERTEX_VALUES + 4]));
+    // The five arrays lie back to back in the block (the vertices' f64 values, then the u32
+    // arrays): one copy into one fresh buffer, then views of it. (Each fresh typed array of more
+    // than a few values costs about a microsecond in V8, most of a tiny mesh's overhead here.)
+    const numVertexValues = u32[h + H_NUM_VERTEX_VALUES];
+    const numEdgeValues = u32[h + H_NUM_VERTEX_VALUES + 1];
+    const numFaceIndices = u32[h + H_NUM_VERTEX_VALUES + 2];
+    const numFaces = u32[h + H_NUM_VERTEX_VALUES + 3];
+    const numTriangleValues = u32[h + H_NUM_VERTEX_VALUES + 4];
+    const arraysStart = v * 8;
+    const u32Values = numEdgeValues + numFaceIndices + numFaces + numTriangleValues;
+    const arrays = m.HEAPU8.slice(arraysStart, arraysStart + 8 * numVertexValues + 4 * u32Values).buffer;
+    const vertices = new Float64Array(arrays, 0, numVertexValues);
+    let at = 8 * numVertexValues;
+    const edges = new Uint32Array(arrays, at, numEdgeValues);
+    const faceIndices = new Uint32Array(arrays, (at += 4 * numEdgeValues), numFaceIndices);
+    const faceSizes = new Uint32Array(arrays, (at += 4 * numFaceIndices), numFaces);
+    const triangles = new Uint32Array(arrays, (at += 4 * numFaces), numTriangleValues);
+    const w = v * 2 + 2 * numVertexValues + u32Values; // the text, in u32 words
     const text = readStrings(m.HEAPU8, w * 4, w * 4 + u32[h + H_TEXT_BYTES]);
     if (u32[h + H_OK] === 0) return { error: text[0], message: text[1] };
     const warnings = new Array(numWarnings);

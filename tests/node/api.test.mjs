@@ -46,6 +46,45 @@ test('convex box: the kernel is the box itself (triangles and quads, number[] an
   }
 });
 
+test('result arrays are copies out of the heap: later calls and heap growth leave them intact', async () => {
+  const m = lPrism();
+  const r = K.computeKernelSync(m.positions, m.indices, { faceSizes: m.faceSizes ?? undefined });
+  assert.equal(r.status, 'POLYHEDRON');
+  const names = ['vertices', 'edges', 'faceIndices', 'faceSizes', 'triangles'];
+  const saved = names.map((k) => Array.from(r[k]));
+  // One fresh buffer (not the wasm memory), shared by the five arrays, each aligned for its type.
+  for (const k of names) {
+    assert.equal(r[k].buffer, r.vertices.buffer, `${k} is a view of the result's buffer`);
+    assert.equal(r[k].byteOffset % r[k].BYTES_PER_ELEMENT, 0, `${k} aligned`);
+  }
+  const ends = names.map((k) => [r[k].byteOffset, r[k].byteOffset + r[k].byteLength]).sort((a, b) => a[0] - b[0]);
+  for (let i = 1; i < ends.length; i++) assert.ok(ends[i][0] >= ends[i - 1][1], 'the views do not overlap');
+  assert.equal(r.vertices.buffer.byteLength, ends[ends.length - 1][1], 'the buffer holds the arrays and nothing else');
+  // A different mesh, then a large one (a prism over a 50,000-gon: the heap grows), then the
+  // same mesh again.
+  K.computeKernelSync(box().positions, box().indices);
+  const n = 50000;
+  const heapBefore = K.memoryStats().heapSize;
+  const prism = { positions: new Float64Array(6 * n), indices: new Uint32Array(6 * n), faceSizes: new Uint32Array(n + 2) };
+  for (let i = 0; i < n; i++) {
+    const a = (2 * Math.PI * i) / n;
+    prism.positions.set([Math.cos(a), Math.sin(a), 0], 3 * i);
+    prism.positions.set([Math.cos(a), Math.sin(a), 1], 3 * (n + i));
+    prism.indices[i] = n + i; // top, counter-clockwise seen from +z
+    prism.indices[n + i] = n - 1 - i; // bottom, reversed
+    const j = (i + 1) % n;
+    prism.indices.set([i, j, n + j, n + i], 2 * n + 4 * i);
+    prism.faceSizes[2 + i] = 4;
+  }
+  prism.faceSizes[0] = prism.faceSizes[1] = n;
+  const p = K.computeKernelSync(prism.positions, prism.indices, { faceSizes: prism.faceSizes });
+  assert.equal(p.status, 'POLYHEDRON');
+  assert.ok(K.memoryStats().heapSize > heapBefore, 'the large mesh grew the heap');
+  names.forEach((k, i) => assert.deepEqual(Array.from(r[k]), saved[i], `${k} unchanged`));
+  const again = K.computeKernelSync(m.positions, m.indices, { faceSizes: m.faceSizes ?? undefined });
+  names.forEach((k, i) => assert.deepEqual(Array.from(again[k]), saved[i], `${k} the same on a second call`));
+});
+
 test('scale and translation do not change the answer (unit cube ×1e-3, ×1e3, moved by 1e6)', async () => {
   for (const [s, t] of [[1e-3, [0, 0, 0]], [1e3, [0, 0, 0]], [1, [1e6, -1e6, 1e6]]]) {
     const m = transform(box(), s, t);
