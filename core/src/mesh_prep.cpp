@@ -314,9 +314,9 @@ bool lex_less(const double* a, const double* b) {
 // each other.
 KERGEN_MULTIVERSION
 void magnitude_extrema(const double* x, size_t n, uint64_t& top_bits, int64_t& low_bits) {
-  const uint64_t kAbs = ~(uint64_t(1) << 63);
+  constexpr uint64_t kAbs = ~(uint64_t(1) << 63);
   int64_t top[4] = {0, 0, 0, 0}, low[4] = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
-  auto take = [kAbs](const double* p, int64_t& t, int64_t& l) KERGEN_INLINE {
+  auto take = [](const double* p, int64_t& t, int64_t& l) KERGEN_INLINE {
     uint64_t b;
     std::memcpy(&b, p, sizeof b);
     t = std::max(t, int64_t(b & kAbs));
