@@ -822,6 +822,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // dropped or split on, so in the usual case the clean loops and edge pairs are moved over as
   // they are.
   size_t degenerate = 0, nonplanar = 0;
+  double split_abs = 0;  // sum of |terms| of the split polygons' volume corrections
   bool renumbered = false;
   std::vector<uint32_t> face_of_clean;  // used once renumbered
   auto renumber = [&](size_t f) {  // faces before f were kept whole
@@ -874,12 +875,20 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     const auto tris = triangulate_polygon(m.points, loop, k, m.exact_shift);
     {
       // The shape's volume above came from a fan; the split may fold differently: use its volume.
+      // Its terms' magnitudes join the rounding scale of the volume test below.
       double delta = 0;
-      for (const auto& t : tris) delta += vol6_about_centre(t[0], t[1], t[2]);
+      for (const auto& t : tris) {
+        const double d = vol6_about_centre(t[0], t[1], t[2]);
+        delta += d;
+        split_abs += std::fabs(d);
+      }
       // (that fan was over the loop before any flip: from its first corner, now the last)
-      for (size_t i = 1; i + 1 < k; ++i)
-        delta -= flip ? vol6_about_centre(loop[k - 1], loop[k - 2 - i], loop[k - 1 - i])
-                      : vol6_about_centre(loop[0], loop[i], loop[i + 1]);
+      for (size_t i = 1; i + 1 < k; ++i) {
+        const double d = flip ? vol6_about_centre(loop[k - 1], loop[k - 2 - i], loop[k - 1 - i])
+                              : vol6_about_centre(loop[0], loop[i], loop[i + 1]);
+        delta -= d;
+        split_abs += std::fabs(d);
+      }
       m.volume += delta / 6;
     }
     for (const auto& tri : tris) {
@@ -905,7 +914,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     if (flipped != m.warnings.end()) m.warnings.erase(flipped);
     else m.warnings.push_back(flipped_warning(cf));
   }
-  if (!open && (nonplanar > 0 || fans_enclose_nothing) && !(m.volume > 1e-12 * vol6_abs / 6))
+  if (!open && (nonplanar > 0 || fans_enclose_nothing) && !(m.volume > 1e-12 * (vol6_abs + split_abs) / 6))
     return fail(m, Error::DegenerateInput, nonplanar > 0 ? "the mesh encloses no volume once its non-planar polygons are split"
                                                          : "the mesh encloses no volume (flat or folded onto itself)");
   m.dropped_faces += degenerate;
@@ -917,8 +926,17 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // A nearly flat shape's volume is far below the rounding of its terms (the points' offsets
   // from the centre, rounded, span its thickness): summed again in double-double once the loops
   // are final, for shapes thinner than 1e-6 of their bounding cube (rare).
+  // The orientation was chosen by the double sum, and the test above bounds its rounding by the
+  // terms' magnitudes, not by their products' (a term can be far smaller than its rounding when
+  // its cross product cancels). The accurate sum must agree that the surface as oriented encloses
+  // a positive volume; when it does not, the volume is lost in the double sum's rounding and no
+  // orientation can be trusted (fuzzed: folded shapes with coordinates from 1e-18 to 1 scaled).
   auto finish = [&]() {
-    if (!open && m.volume < 1e-6 * ext * ext * ext) m.volume = accurate_volume(m, c);
+    if (!open && m.volume < 1e-6 * ext * ext * ext) {
+      m.volume = accurate_volume(m, c);
+      if (!(m.volume > 0))
+        return fail(m, Error::DegenerateInput, "the mesh encloses almost no volume and its orientation cannot be decided reliably (flat or folded onto itself)");
+    }
     return std::move(m);
   };
   if (!renumbered) {

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "../../fuzz/kernel_input.h"
@@ -175,6 +176,103 @@ TEST(RegressionFuzzOff, FarSpikeInternalError_a5793cb9) {
   } catch (const std::exception& e) {
     ADD_FAILURE() << e.what();
   }
+}
+
+// Class E, fixed: a folded surface whose non-planar faces are split (fuzz_obj: a dodecahedron of
+// pentagons with coordinates pulled to 1e5 and 1e17). Its double volume sum came out positive
+// above the test's threshold, the orientation was kept, and the double-double sum then reported a
+// negative shape volume (-5.2e17 and -3.1e17 for a bounding box of ~1e37). The threshold now
+// includes the split polygons' terms, and the double-double sum must agree on a positive volume:
+// both are refused as DEGENERATE_INPUT. The invariants (a closed mesh's shape volume is not
+// negative) are checked as in the fuzz target.
+void expect_refused_as_degenerate(std::string_view text, const char* name) {
+  const kergen::ReadResult r = kergen::read_obj(text, name);
+  ASSERT_TRUE(r.ok()) << r.message;
+  ThrowOnViolation guard;
+  try {
+    kergen::Options o;
+    const kergen::Kernel k = kergen::compute_kernel(r.mesh.view(), o);
+    kfuzz::check_kernel(r.mesh.view(), k, false, true);
+    EXPECT_EQ(k.error, kergen::Error::DegenerateInput) << name << ": " << k.message << " (shape volume " << k.shape_volume << ")";
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << name << ": " << e.what();
+  }
+}
+TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_212c119c) {
+  // (The fuzzer left seven NUL bytes in a comment: the reader skips them with the comment.)
+  static const char kText[] =
+    "# written by kergen\n"
+    "v 1.214124 0 1.5893090000000301\n"
+    "v 0.37518499999999999 1.154700 1.5893090000000001\n"
+    "v -0.98224699999099998 0.71364399999999995 1.5893090000000001\n"
+    "v -0.98224699999999999 -0.71364399999999995 1.5893090000000001\n"
+    "v 0.37518499999999999 -0.154701 1.5893090000000001\n"
+    "v 1.964494 0 0.37518499919999999\n"
+    "v 0.60706199999999999 184364.79999999998 0.37518499999999999\n"
+    "v -1.5893090000000001 1.154701 0.37518499999999999\n"
+    "v -1.5893090000000001 -1.154701 0.37518499999999999\n"
+    "v 0.60706199999999999 -1.86834499999999997 3.5018499999999999\n"
+    "v 1.5893090000000001 1.077350 -0.37581499999999999\n"
+    "v -0.0000000001835148218 1.8683449999999999 -0.37518499999999999\n"
+    "v -1.964494 0 -0.37518499999999999\n"
+    "v -0.60706199999999999 -1.8683449999999999 -0.37518499999999999\n"
+    "v 1.5893090000000001 -1.154701 -0.37518499999999999\n"
+    "v 0.98224699999999998 0.71394399999999995 -1.5896180000000002\n"
+    "v -0.37518499999999999 1.154701 -1.5893090000000001\n"
+    "v -1.214124 0 -1.589#\0""\0""\0""\0""\0""\0""\0""3090000000001\n"
+    "v -0683449999999999999 -1.154701 -83449999999999 0.37518499991.5893090000000002\n"
+    "v 0.78224699999999998 -0.71364399999999995 -1.5893090000154701 0.37518499999999999\n"
+    "v 0.60706199999999999 -1.8683449999999999 0.37518499999999999\n"
+    "v 1.5893090000000001 1.154701 -0.375184999999999999000001\n"
+    "f 1 2 3 4 5\n"
+    "f 1 6 11 7 2\n"
+    "f 2 7 12 8 3\n"
+    "f 3 8 13 9 4\n"
+    "f 4 9 14 10 5\n"
+    "f 5 10 15 6 1\n"
+    "f 16 11 6 15 20\n"
+    "f 17 12 7 11 16\n"
+    "f 18 13 8 12 17\n"
+    "f 19 14 9 13 18\n"
+    "f 20 15 10 14 19\n"
+    "f 20 19 18 17 16\n";
+  expect_refused_as_degenerate(std::string_view(kText, sizeof kText - 1), "212c119c.obj");
+}
+TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_be3cb6b9) {
+  expect_refused_as_degenerate(R"(# written by kergen
+v 1.214124 0 1.5893000487077237
+v 0.37518499999999999 1.154700 1.5893090000000001
+v -0.98224699999999998 0.71364399999999995 17519949989999999
+v  -0.98224699999999999 -0.71364399999999995 1.5893090000000001
+v 0.37518499999999999 -1.154701 1.5893090000000001
+v 1.964494 0 0.37518499999999999
+v 0.60706199999999999 184364.79999999998 0.37518499999999999
+v -1.5893090000000001 1.154701 0.37518499999999999
+v -1.5893090000000001 -1.154701 0.37518499999999999
+v 0.60706199999999999 -1.86834499999999997 3.5018499999999999
+v 1.5893090000000001 1.077350 -0.37518499999999999
+v -0.60706199999999999 1.8683449999999999 -0.37518499999999999
+v -1.964494 0 -0.37518499999999999
+v -0.60706199999999999 -1.8683449999999999 -0.37518499999999999
+v 1.5893090000000001 -1.154701 -0.37518499999999999
+v 0.98224699999999998 0.71364399999999995 -1.5893090000000001
+v -0.375184999909999999 1.154701 -1.5893090000000001
+v -1.214124 0 -1.5893090000000001
+v -0683449999999999999 -1.154701 -1.5893090000000001
+v 0.78224699999999998 -0.71364399999999995 -0.5893090000000001
+f 1 2 3 4 5
+f 1 6 11 7 2
+f 2 7 12 8 3
+f 3 8 13 9 4
+f 4 9 14 10 5
+f 5 10 15 6 1
+f 16 11 6 15 20
+f 17 12 7 11 16
+f 18 13 8 12 17
+f 19 14 9 13 18
+f 20 15 10 14 19
+f 20 19 18 17 16
+)", "be3cb6b9.obj");
 }
 
 // Class D, fixed: output coordinates were refined in double-double and accepted whenever the
