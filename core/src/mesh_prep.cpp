@@ -926,11 +926,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // A nearly flat shape's volume is far below the rounding of its terms (the points' offsets
   // from the centre, rounded, span its thickness): summed again in double-double once the loops
   // are final, for shapes thinner than 1e-6 of their bounding cube (rare).
-  // The orientation was chosen by the double sum, and the test above bounds its rounding by the
-  // terms' magnitudes, not by their products' (a term can be far smaller than its rounding when
-  // its cross product cancels). The accurate sum must agree that the surface as oriented encloses
-  // a positive volume; when it does not, the volume is lost in the double sum's rounding and no
-  // orientation can be trusted (fuzzed: folded shapes with coordinates from 1e-18 to 1 scaled).
+  // The orientation was chosen by the double sum. The test above scales its rounding by the
+  // terms' magnitudes, but a term's own rounding scales with the products inside it, far larger
+  // when its cross product cancels. So the accurate sum must agree that the surface as oriented
+  // encloses a positive volume; when it does not, the volume was lost in the double sum's
+  // rounding and no orientation can be trusted (fuzzed: folded shapes with scaled coordinates
+  // from 1e-18 to 1).
   auto finish = [&]() {
     if (!open && m.volume < 1e-6 * ext * ext * ext) {
       m.volume = accurate_volume(m, c);
