@@ -40,6 +40,20 @@ void replay_kernel_input(const std::vector<uint8_t>& bytes) {
   }
 }
 
+// compute_kernel on a mesh read from a fuzz input, with the fuzz targets' invariant checks (a
+// violation is a test failure naming the input).
+kergen::Kernel compute_checked(const kergen::ReadResult& r, const std::string& name) {
+  ThrowOnViolation guard;
+  kergen::Options o;
+  kergen::Kernel k = kergen::compute_kernel(r.mesh.view(), o);
+  try {
+    kfuzz::check_kernel(r.mesh.view(), k, false, true);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << name << ": " << e.what();
+  }
+  return k;
+}
+
 // fuzz_kernel input bytes: [base mesh, flags, scale, translation] (see fuzz/fuzz_kernel.cpp).
 // None of these uses a perturbation: a generated, well-shaped mesh, uniformly scaled and
 // translated, is enough.
@@ -168,14 +182,7 @@ TEST(RegressionFuzzOff, FarSpikeInternalError_a5793cb9) {
   const std::string bytes(reinterpret_cast<const char*>(kFuzzOffA5793cb9), sizeof kFuzzOffA5793cb9);
   const kergen::ReadResult r = kergen::read_off(bytes, "a5793cb9.off");
   ASSERT_TRUE(r.ok()) << r.message;
-  ThrowOnViolation guard;
-  try {
-    kergen::Options o;
-    const kergen::Kernel k = kergen::compute_kernel(r.mesh.view(), o);
-    kfuzz::check_kernel(r.mesh.view(), k, false, true);
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << e.what();
-  }
+  compute_checked(r, "a5793cb9.off");
 }
 
 // Class E, fixed: a folded surface whose non-planar faces are split (fuzz_obj: a dodecahedron of
@@ -188,15 +195,8 @@ TEST(RegressionFuzzOff, FarSpikeInternalError_a5793cb9) {
 void expect_refused_as_degenerate(std::string_view text, const char* name) {
   const kergen::ReadResult r = kergen::read_obj(text, name);
   ASSERT_TRUE(r.ok()) << r.message;
-  ThrowOnViolation guard;
-  try {
-    kergen::Options o;
-    const kergen::Kernel k = kergen::compute_kernel(r.mesh.view(), o);
-    kfuzz::check_kernel(r.mesh.view(), k, false, true);
-    EXPECT_EQ(k.error, kergen::Error::DegenerateInput) << name << ": " << k.message << " (shape volume " << k.shape_volume << ")";
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << name << ": " << e.what();
-  }
+  const kergen::Kernel k = compute_checked(r, name);
+  EXPECT_EQ(k.error, kergen::Error::DegenerateInput) << name << ": " << k.message << " (shape volume " << k.shape_volume << ")";
 }
 TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_212c119c) {
   // (The fuzzer left seven NUL bytes in a comment: the reader skips them with the comment.)
