@@ -75,7 +75,9 @@ inline void check_inside_halfspaces(const kergen::MeshView& mesh, const kergen::
     const uint32_t* loop = mesh.indices + off;
     off += n;
     if (n < 3 || (n > 3 && split)) continue;  // a split non-planar polygon: its planes are the core's choice
-    // Plane of the best-shaped fan triangle (a planar polygon: every non-degenerate one gives it).
+    // Plane normal: the polygon's area vector, the sum of its fan triangles' cross products. (One
+    // fan triangle of a non-convex polygon may turn the other way: the largest one is not always
+    // oriented like the polygon.) For a triangle it is the triangle's own normal.
     long double best[3] = {0, 0, 0}, best_len = 0, best_scale = 0;
     uint32_t base = loop[0];
     for (size_t i = 1; i + 1 < n; ++i) {
@@ -84,16 +86,13 @@ inline void check_inside_halfspaces(const kergen::MeshView& mesh, const kergen::
         u[c] = P(loop[i], c) - P(base, c);
         w[c] = P(loop[i + 1], c) - P(base, c);
       }
-      long double nn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      long double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-      long double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-      long double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-      if (len > best_len) {
-        best_len = len;
-        best_scale = lu * lw;
-        for (int c = 0; c < 3; ++c) best[c] = nn[c];
-      }
+      const long double nn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      for (int c = 0; c < 3; ++c) best[c] += nn[c];
+      const long double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      const long double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      best_scale += lu * lw;  // bounds the sum's rounding with the tolerance below
     }
+    best_len = std::sqrt(best[0] * best[0] + best[1] * best[1] + best[2] * best[2]);
     if (best_len == 0) continue;
     const long double sign = flipped ? -1 : 1;
     for (size_t p = 0; p < np; ++p) {

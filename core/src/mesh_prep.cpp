@@ -20,9 +20,9 @@ namespace kergen {
 
 namespace {
 
-// The volume enclosed by the prepared faces (their loops, CCW from outside), summed in
-// double-double over fans about c.
-double accurate_volume(const PreparedMesh& m, const double c[3]) {
+// Six times the volume enclosed by the prepared faces (their loops, CCW from outside), summed in
+// double-double over fans about c, with a rigorous error bound (ApproxDD::sign decides it).
+exact::ApproxDD accurate_volume6(const PreparedMesh& m, const double c[3]) {
   using exact::ApproxDD;
   auto rel = [&](uint32_t v, int k) {
     double x, y;
@@ -39,7 +39,7 @@ double accurate_volume(const PreparedMesh& m, const double c[3]) {
       vol6 = vol6 + (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]));
     }
   }
-  return (vol6.hi + vol6.lo) / 6;
+  return vol6;
 }
 
 Warning flipped_warning(size_t faces) {
@@ -928,14 +928,16 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // are final, for shapes thinner than 1e-6 of their bounding cube (rare).
   // The orientation was chosen by the double sum. The test above scales its rounding by the
   // terms' magnitudes, but a term's own rounding scales with the products inside it, far larger
-  // when its cross product cancels. So the accurate sum must agree that the surface as oriented
-  // encloses a positive volume; when it does not, the volume was lost in the double sum's
-  // rounding and no orientation can be trusted (fuzzed: folded shapes with scaled coordinates
-  // from 1e-18 to 1).
+  // when its cross product cancels (or the term is pure noise: a face folded back onto itself).
+  // So the accurate sum, with its error bound, must certify that the surface as oriented
+  // encloses a positive volume; when it cannot, the volume was lost in the double sum's rounding
+  // and no orientation can be trusted (fuzzed: folded shapes with scaled coordinates from 1e-18
+  // to 1, a single face a b b a c).
   auto finish = [&]() {
     if (!open && m.volume < 1e-6 * ext * ext * ext) {
-      m.volume = accurate_volume(m, c);
-      if (!(m.volume > 0))
+      const exact::ApproxDD vol6_dd = accurate_volume6(m, c);
+      m.volume = (vol6_dd.hi + vol6_dd.lo) / 6;
+      if (vol6_dd.sign() != 1)
         return fail(m, Error::DegenerateInput, "the mesh encloses almost no volume and its orientation cannot be decided reliably (flat or folded onto itself)");
     }
     return std::move(m);

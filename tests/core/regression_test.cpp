@@ -2,7 +2,7 @@
 // the target's own decoder and invariant checks (fuzz/kernel_input.h, fuzz/invariants.h), plus a
 // hand-written reproducer per failure class with an independent expectation.
 //
-// Tests named DISABLED_ would be open core bugs (none at the moment); run them with
+// Tests named DISABLED_ are open core bugs (one: a self-intersecting polygon face); run them with
 //   kergen_tests --gtest_also_run_disabled_tests --gtest_filter='Regression*'
 // Classes A (tiny coordinates: wrong kernels, internal errors, hangs) and B (large offsets:
 // vertices outside the bounding box) were fixed in the core and are enabled.
@@ -273,6 +273,55 @@ f 19 14 9 13 18
 f 20 15 10 14 19
 f 20 19 18 17 16
 )", "be3cb6b9.obj");
+}
+
+// Class F, fixed: a single face "f 5 7 7 5 6" (fuzz_obj 29e80371; the rest of the file is noise
+// the reader skips). Cleaned to the loop 4 6 4 5, it folds back onto itself: each edge is used
+// once each way, so the edge check sees a closed surface, and its volume terms are pure
+// rounding noise, large relative to themselves. It came out UNBOUNDED (one half-space) without
+// allow_open. The double-double volume's error bound now has to certify a positive volume.
+TEST(RegressionFuzzObj, FaceFoldedOntoItselfUnbounded_29e80371) {
+  static const char kText[] =
+    "\xef""\xbb""\xbf""ritten b7777777777508499999999999\n"
+    "v -1.5893090000000001 1.154701 0.37518499999999999\n"
+    "v\xcb""\xc4""\xc4""\xc4""\xc4""\xc4""\xc4""\xc4"";;;;;;;;;;;;;;; -1.5893090000000001 -1.154n by ker8\n"
+    "f 5 7 7 5 6\n"
+    " 1 5 6\n"
+    "g 1 4 2\n"
+    "f8  f6 2\n"
+    "\xff""\xff""\xff""\xff""\xff""\xff""\xff""\xff""\xff""\xff""\x01""\x00""a\x10""\x00""\x10""\x08""\x04""\xff"")\xff""\xff""written bygkne\x03"" \xd0""\n"
+    "ven b79999999 -1.5474299999999999e-18 0.331395\n"
+    "v 0.34844999999999998 -1.5474299999999999e-18 8.92054701 0.37518498930900000000041 -.511701 0.37518499999999999\n"
+    "v 0.60706099999999999 -1.8683449999999999 0.37518499999999999\n"
+    "v 1.5893090000000001 1.154701 -0.3751849999777777777508499999999999499999999999\n"
+    "v;;;;;;;;;;999 -0.37518499\x17""9999999$\n"
+    "9 v -1.964494 0 -0.37518499999999999\n"
+    "v -0.60706199999999999 -1.868344999999999983449999999999 -0.37519489999999999\n"
+    "7518499999999999\n"
+    "v 1.5893090000000001 -1.154701 -0.37518999999999998\n"
+    "v 0.98224699999999998 0.71364399999999995 -0.5893000000001 -1.154701 0.37518499999999999\n"
+    "v701 +-0.37518999999999998\n"
+    "v 0.98224699999999998 0.17364399999999995 -0.5893000000001 -1.154701 0.37518499999999999\n"
+    "v 0.60706199999999999 83449999999999 -0.37518499439999999 59199.5893099999";
+  expect_refused_as_degenerate(std::string_view(kText, sizeof kText - 1), "29e80371.obj");
+}
+
+// The fuzz invariant checker took a polygon's plane from its largest fan triangle, which turns
+// the other way in some non-convex polygons (a flat pyramid whose base vertex was moved inside
+// the base): six false "kernel vertex outside face" reports. It uses the area vector now.
+TEST(RegressionFuzzKernel, NonConvexPolygonPlaneInChecker_d0df9dbf) { replay_kernel_input({0x3a, 0x07, 0x00, 0x23, 0x0e}); }
+TEST(RegressionFuzzKernel, NonConvexPolygonPlaneInChecker_b5992a37) {
+  replay_kernel_input({0x0a, 0x07, 0x00, 0x07, 0x0c, 0x3b, 0x66});
+}
+
+// Open: a polygon face that crosses itself (fuzz_kernel 74a871ac: the pinwheel prism, 1.7e66
+// units, whose bottom 12-gon has one corner moved across it). A face's plane is taken from the
+// triangle at its lexicographically smallest corner, which is oriented like the polygon only
+// when the polygon is simple; here it faces inward, and the kernel (a segment) reaches outside
+// the shape's bounding box. Polygons are not checked for self-intersection yet (an exact test
+// of the corner's triangle against the polygon's area vector would catch this one).
+TEST(RegressionFuzzKernel, DISABLED_SelfIntersectingPolygonFace_74a871ac) {
+  replay_kernel_input({0x37, 0x37, 0x37, 0x37, 0x37, 0x37, 0x37});
 }
 
 // Class D, fixed: output coordinates were refined in double-double and accepted whenever the
