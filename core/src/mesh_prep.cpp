@@ -283,6 +283,36 @@ std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, co
   return {0, 0};  // not reached: called only when a shared position exists
 }
 
+// Sign of the signed area of the polygon loop[0..k) projected onto coordinates (i, j): the sum of
+// its fan triangles' 2D orientations about loop[0] (for k = 3, the triangle's orientation).
+// Exact: a double filter, then expansions over the coordinates times 2^shift (exact, and clear of
+// underflow like the other exact predicates).
+int projected_area_sign(const std::vector<double>& pts, const uint32_t* loop, size_t k, int i, int j, int shift) {
+  auto at = [&](size_t t, int c) { return pts[3 * size_t(loop[t]) + c]; };
+  double sum = 0, magnitude = 0;
+  for (size_t t = 1; t + 1 < k; ++t) {
+    const double ux = at(t, i) - at(0, i), uy = at(t, j) - at(0, j);
+    const double vx = at(t + 1, i) - at(0, i), vy = at(t + 1, j) - at(0, j);
+    const double p = ux * vy, q = uy * vx;
+    sum += p - q;
+    magnitude += std::fabs(p) + std::fabs(q);
+  }
+  // Each term is off by at most ~4 eps of its products (differences, products, subtraction), the
+  // sum by k eps of the magnitudes more; the factor 2 and the floor keep clear of the edge cases.
+  const double bound = 2 * (double(k) + 8) * exact::kEps * magnitude + 1e-300;
+  if (sum > bound) return 1;
+  if (sum < -bound) return -1;
+  using exact::Expansion;
+  auto scaled = [&](size_t t, int c) { return std::ldexp(at(t, c), shift); };
+  Expansion total;
+  for (size_t t = 1; t + 1 < k; ++t) {
+    const Expansion ux = Expansion::difference(scaled(t, i), scaled(0, i)), uy = Expansion::difference(scaled(t, j), scaled(0, j));
+    const Expansion vx = Expansion::difference(scaled(t + 1, i), scaled(0, i)), vy = Expansion::difference(scaled(t + 1, j), scaled(0, j));
+    total = total + (ux * vy - uy * vx);
+  }
+  return total.sign();
+}
+
 // Coordinates times a factor, read as a range: a vector assigned from it is filled once (a
 // resize would first write zeros over it).
 struct ScaledCoordinates {
@@ -867,6 +897,26 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
           orient3d(P(rep[0]), P(rep[1]), P(rep[2]), P(loop[i]), m.exact_shift) != 0)
         planar = false;
     if (planar) {
+      // The corner at the lexicographically smallest vertex is strictly convex in a simple
+      // polygon, so its triangle is oriented like the polygon and gives the face's plane. In a
+      // polygon that crosses itself it may turn against the polygon's area, and that plane would
+      // face inward: such a face is refused (compared in the projection that drops the axis the
+      // corner's normal is largest along, where the corner cannot be degenerate).
+      const double *a = P(rep[0]), *b = P(rep[1]), *c3 = P(rep[2]);
+      double nrm[3];
+      for (int c = 0; c < 3; ++c) {
+        const int i = (c + 1) % 3, j = (c + 2) % 3;
+        nrm[c] = std::fabs((b[i] - a[i]) * (c3[j] - a[j]) - (b[j] - a[j]) * (c3[i] - a[i]));
+      }
+      const int axis = nrm[0] >= nrm[1] ? (nrm[0] >= nrm[2] ? 0 : 2) : (nrm[1] >= nrm[2] ? 1 : 2);
+      const int pi = (axis + 1) % 3, pj = (axis + 2) % 3;
+      const int corner = projected_area_sign(m.points, rep.data(), 3, pi, pj, m.exact_shift);
+      if (corner == 0 || projected_area_sign(m.points, loop, k, pi, pj, m.exact_shift) != corner) {
+        std::ostringstream msg;
+        msg << "a polygon face crosses itself (its loop of " << k << " vertices turns against its corner at vertex "
+            << rep[1] << "; the surface is not embedded there)";
+        return fail(m, Error::NonManifoldEdge, msg.str());
+      }
       keep_whole(f, rep);
       continue;
     }

@@ -2,7 +2,7 @@
 // the target's own decoder and invariant checks (fuzz/kernel_input.h, fuzz/invariants.h), plus a
 // hand-written reproducer per failure class with an independent expectation.
 //
-// Tests named DISABLED_ are open core bugs (one: a self-intersecting polygon face); run them with
+// Tests named DISABLED_ would be open core bugs (none at the moment); run them with
 //   kergen_tests --gtest_also_run_disabled_tests --gtest_filter='Regression*'
 // Classes A (tiny coordinates: wrong kernels, internal errors, hangs) and B (large offsets:
 // vertices outside the bounding box) were fixed in the core and are enabled.
@@ -192,11 +192,12 @@ TEST(RegressionFuzzOff, FarSpikeInternalError_a5793cb9) {
 // includes the split polygons' terms, and the double-double sum must agree on a positive volume:
 // both are refused as DEGENERATE_INPUT. The invariants (a closed mesh's shape volume is not
 // negative) are checked as in the fuzz target.
-void expect_refused_as_degenerate(std::string_view text, const char* name) {
+void expect_refused(std::string_view text, const char* name, kergen::Error expected) {
   const kergen::ReadResult r = kergen::read_obj(text, name);
   ASSERT_TRUE(r.ok()) << r.message;
   const kergen::Kernel k = compute_checked(r, name);
-  EXPECT_EQ(k.error, kergen::Error::DegenerateInput) << name << ": " << k.message << " (shape volume " << k.shape_volume << ")";
+  EXPECT_EQ(k.error, expected) << name << ": " << kergen::error_name(k.error) << " " << k.message << " (shape volume "
+                               << k.shape_volume << ")";
 }
 TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_212c119c) {
   // (The fuzzer left seven NUL bytes in a comment: the reader skips them with the comment.)
@@ -236,10 +237,10 @@ TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_212c119c) {
     "f 19 14 9 13 18\n"
     "f 20 15 10 14 19\n"
     "f 20 19 18 17 16\n";
-  expect_refused_as_degenerate(std::string_view(kText, sizeof kText - 1), "212c119c.obj");
+  expect_refused(std::string_view(kText, sizeof kText - 1), "212c119c.obj", kergen::Error::DegenerateInput);
 }
 TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_be3cb6b9) {
-  expect_refused_as_degenerate(R"(# written by kergen
+  expect_refused(R"(# written by kergen
 v 1.214124 0 1.5893000487077237
 v 0.37518499999999999 1.154700 1.5893090000000001
 v -0.98224699999999998 0.71364399999999995 17519949989999999
@@ -272,14 +273,15 @@ f 18 13 8 12 17
 f 19 14 9 13 18
 f 20 15 10 14 19
 f 20 19 18 17 16
-)", "be3cb6b9.obj");
+)", "be3cb6b9.obj", kergen::Error::DegenerateInput);
 }
 
 // Class F, fixed: a single face "f 5 7 7 5 6" (fuzz_obj 29e80371; the rest of the file is noise
 // the reader skips). Cleaned to the loop 4 6 4 5, it folds back onto itself: each edge is used
 // once each way, so the edge check sees a closed surface, and its volume terms are pure
 // rounding noise, large relative to themselves. It came out UNBOUNDED (one half-space) without
-// allow_open. The double-double volume's error bound now has to certify a positive volume.
+// allow_open. The double-double volume's error bound now has to certify a positive volume, and
+// before that check the polygon is refused as one that turns against its corner (its area is 0).
 TEST(RegressionFuzzObj, FaceFoldedOntoItselfUnbounded_29e80371) {
   static const char kText[] =
     "\xef""\xbb""\xbf""ritten b7777777777508499999999999\n"
@@ -303,7 +305,7 @@ TEST(RegressionFuzzObj, FaceFoldedOntoItselfUnbounded_29e80371) {
     "v701 +-0.37518999999999998\n"
     "v 0.98224699999999998 0.17364399999999995 -0.5893000000001 -1.154701 0.37518499999999999\n"
     "v 0.60706199999999999 83449999999999 -0.37518499439999999 59199.5893099999";
-  expect_refused_as_degenerate(std::string_view(kText, sizeof kText - 1), "29e80371.obj");
+  expect_refused(std::string_view(kText, sizeof kText - 1), "29e80371.obj", kergen::Error::NonManifoldEdge);
 }
 
 // The fuzz invariant checker took a polygon's plane from its largest fan triangle, which turns
@@ -314,14 +316,37 @@ TEST(RegressionFuzzKernel, NonConvexPolygonPlaneInChecker_b5992a37) {
   replay_kernel_input({0x0a, 0x07, 0x00, 0x07, 0x0c, 0x3b, 0x66});
 }
 
-// Open: a polygon face that crosses itself (fuzz_kernel 74a871ac: the pinwheel prism, 1.7e66
-// units, whose bottom 12-gon has one corner moved across it). A face's plane is taken from the
-// triangle at its lexicographically smallest corner, which is oriented like the polygon only
-// when the polygon is simple; here it faces inward, and the kernel (a segment) reaches outside
-// the shape's bounding box. Polygons are not checked for self-intersection yet (an exact test
-// of the corner's triangle against the polygon's area vector would catch this one).
-TEST(RegressionFuzzKernel, DISABLED_SelfIntersectingPolygonFace_74a871ac) {
-  replay_kernel_input({0x37, 0x37, 0x37, 0x37, 0x37, 0x37, 0x37});
+// Class G, fixed: a polygon face that crosses itself (fuzz_kernel 74a871ac: the pinwheel prism,
+// 1.7e66 units, whose bottom 12-gon has one corner moved across it). A face's plane is taken from
+// the triangle at its lexicographically smallest corner, which is oriented like the polygon only
+// when the polygon is simple; here it faced inward, and the kernel (a segment) reached outside
+// the shape's bounding box. A planar polygon whose exact projected area does not have its
+// corner's orientation is now refused as NON_MANIFOLD_EDGE (the surface is not embedded).
+TEST(RegressionFuzzKernel, SelfIntersectingPolygonFace_74a871ac) { replay_kernel_input({0x37, 0x37, 0x37, 0x37, 0x37, 0x37, 0x37}); }
+// The same class by hand: a cube of quads whose bottom quad has one corner moved within its
+// plane across the opposite side (a bowtie); the sides next to it become non-planar and are split.
+TEST(RegressionFuzzKernel, SelfIntersectingQuadCap) {
+  using kergen_test::add_face;
+  using kergen_test::add_point;
+  Mesh m;
+  add_point(m, 0, 0, 0); add_point(m, 1, 0, 0); add_point(m, 1, 1, 0); add_point(m, 2, 0.5, 0);  // (0, 1, 0) moved
+  add_point(m, 0, 0, 1); add_point(m, 1, 0, 1); add_point(m, 1, 1, 1); add_point(m, 0, 1, 1);
+  add_face(m, {0, 3, 2, 1});  // bottom, seen from below: it crosses itself
+  add_face(m, {4, 5, 6, 7});
+  add_face(m, {0, 1, 5, 4});
+  add_face(m, {1, 2, 6, 5});
+  add_face(m, {2, 3, 7, 6});
+  add_face(m, {3, 0, 4, 7});
+  kergen::Options o;
+  const kergen::Kernel k = kergen::compute_kernel(m.view(), o);
+  EXPECT_EQ(k.error, kergen::Error::NonManifoldEdge) << kergen::error_name(k.error) << " " << k.message;
+  EXPECT_NE(k.message.find("crosses itself"), std::string::npos) << k.message;
+  // The unmoved cube is accepted: the check refuses only the crossing loop.
+  Mesh cube = m;
+  cube.positions[9] = 0; cube.positions[10] = 1;
+  const kergen::Kernel kc = kergen::compute_kernel(cube.view(), o);
+  ASSERT_TRUE(kc.ok()) << kc.message;
+  EXPECT_NEAR(kc.volume, 1.0, 1e-12);
 }
 
 // Class D, fixed: output coordinates were refined in double-double and accepted whenever the

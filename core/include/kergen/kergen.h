@@ -35,8 +35,8 @@ enum class Error : int {
   IndexOutOfRange,          // a face refers to a vertex that does not exist
   FaceTooSmall,             // a face with fewer than 3 vertices
   OpenMesh,                 // an edge used by one face only (a hole); see Options::allow_open
-  NonManifoldEdge,          // an edge used by more than two faces, or two vertices at one position
-                            // (the surface touches itself)
+  NonManifoldEdge,          // an edge used by more than two faces, two vertices at one position
+                            // (the surface touches itself), or a polygon face that crosses itself
   InconsistentOrientation,  // two faces traverse a shared edge in the same direction
   MultipleComponents,       // more than one connected piece (the kernel of such a shape is undefined)
   DegenerateInput,          // encloses no volume (flat, or only zero-area faces)
