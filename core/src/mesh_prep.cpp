@@ -900,17 +900,23 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       // The corner at the lexicographically smallest vertex is strictly convex in a simple
       // polygon, so its triangle is oriented like the polygon and gives the face's plane. In a
       // polygon that crosses itself it may turn against the polygon's area, and that plane would
-      // face inward: such a face is refused (compared in the projection that drops the axis the
-      // corner's normal is largest along, where the corner cannot be degenerate).
+      // face inward: such a face is refused. (Compared in a projection where the corner is not
+      // degenerate: the axes are tried from the one the corner's normal is largest along, which
+      // is the first unless the normal is tiny; some axis works, the corner is not collinear.)
       const double *a = P(rep[0]), *b = P(rep[1]), *c3 = P(rep[2]);
       double nrm[3];
       for (int c = 0; c < 3; ++c) {
         const int i = (c + 1) % 3, j = (c + 2) % 3;
         nrm[c] = std::fabs((b[i] - a[i]) * (c3[j] - a[j]) - (b[j] - a[j]) * (c3[i] - a[i]));
       }
-      const int axis = nrm[0] >= nrm[1] ? (nrm[0] >= nrm[2] ? 0 : 2) : (nrm[1] >= nrm[2] ? 1 : 2);
-      const int pi = (axis + 1) % 3, pj = (axis + 2) % 3;
-      const int corner = projected_area_sign(m.points, rep.data(), 3, pi, pj, m.exact_shift);
+      int axes[3] = {0, 1, 2};
+      std::sort(axes, axes + 3, [&](int x, int y) { return nrm[x] > nrm[y]; });
+      int corner = 0, pi = 0, pj = 0;
+      for (int t = 0; t < 3 && corner == 0; ++t) {
+        pi = (axes[t] + 1) % 3;
+        pj = (axes[t] + 2) % 3;
+        corner = projected_area_sign(m.points, rep.data(), 3, pi, pj, m.exact_shift);
+      }
       if (corner == 0 || projected_area_sign(m.points, loop, k, pi, pj, m.exact_shift) != corner) {
         std::ostringstream msg;
         msg << "a polygon face crosses itself (its loop of " << k << " vertices turns against its corner at vertex "
