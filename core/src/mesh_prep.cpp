@@ -313,6 +313,34 @@ int projected_area_sign(const std::vector<double>& pts, const uint32_t* loop, si
   return total.sign();
 }
 
+// Why the split of a non-planar polygon would give a plane facing into the solid, or nullptr.
+// Seen along the dominant axis of the loop's Newell normal, every triangle of the split must turn
+// like the loop (or stand edge-on): the triangles' signed areas add up to the loop's, so one of
+// opposite sign means the loop crosses itself or turns back there (a bowtie, a fold), and that
+// triangle's normal points against the face's. Exact signs (projected_area_sign). The planar
+// counterpart is the corner test in prepare_mesh.
+const char* split_folds_over(const std::vector<double>& pts, const uint32_t* loop, size_t k,
+                             const std::vector<std::array<uint32_t, 3>>& tris, int shift) {
+  double n[3] = {0, 0, 0};
+  for (size_t t = 0; t < k; ++t) {
+    const double* a = &pts[3 * size_t(loop[t])];
+    const double* b = &pts[3 * size_t(loop[(t + 1) % k])];
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  const int turn = projected_area_sign(pts, loop, k, i, j, shift);
+  if (turn == 0) return "seen along its normal, its loop encloses no area";
+  for (const auto& tri : tris)
+    if (projected_area_sign(pts, tri.data(), 3, i, j, shift) == -turn)
+      return "seen along its normal, its loop crosses itself or turns back, and a triangle of its split would face inward";
+  return nullptr;
+}
+
 // Coordinates times a factor, read as a range: a vector assigned from it is filled once (a
 // resize would first write zeros over it).
 struct ScaledCoordinates {
@@ -929,6 +957,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     renumber(f);
     bool any = false;
     const auto tris = triangulate_polygon(m.points, loop, k, m.exact_shift);
+    if (const char* why = split_folds_over(m.points, loop, k, tris, m.exact_shift)) {
+      std::ostringstream msg;
+      msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why
+          << "; the surface is not embedded there";
+      return fail(m, Error::NonManifoldEdge, msg.str());
+    }
     {
       // The shape's volume above came from a fan; the split may fold differently: use its volume.
       // Its terms' magnitudes join the rounding scale of the volume test below.

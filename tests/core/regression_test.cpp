@@ -190,8 +190,10 @@ TEST(RegressionFuzzOff, FarSpikeInternalError_a5793cb9) {
 // above the test's threshold, the orientation was kept, and the double-double sum then reported a
 // negative shape volume (-5.2e17 and -3.1e17 for a bounding box of ~1e37). The threshold now
 // includes the split polygons' terms, and the double-double sum must agree on a positive volume:
-// both are refused as DEGENERATE_INPUT. The invariants (a closed mesh's shape volume is not
-// negative) are checked as in the fuzz target.
+// both were refused as DEGENERATE_INPUT. Since the fold check on split polygons, both are refused
+// before the volume test, as NON_MANIFOLD_EDGE: seen along its normal, a pulled-out pentagon
+// crosses itself or turns back, and a triangle of its split faces inward. The invariants (a
+// closed mesh's shape volume is not negative) are checked as in the fuzz target.
 void expect_refused(std::string_view text, const char* name, kergen::Error expected) {
   const kergen::ReadResult r = kergen::read_obj(text, name);
   ASSERT_TRUE(r.ok()) << r.message;
@@ -237,7 +239,7 @@ TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_212c119c) {
     "f 19 14 9 13 18\n"
     "f 20 15 10 14 19\n"
     "f 20 19 18 17 16\n";
-  expect_refused(std::string_view(kText, sizeof kText - 1), "212c119c.obj", kergen::Error::DegenerateInput);
+  expect_refused(std::string_view(kText, sizeof kText - 1), "212c119c.obj", kergen::Error::NonManifoldEdge);
 }
 TEST(RegressionFuzzObj, FoldedSplitSurfaceNegativeVolume_be3cb6b9) {
   expect_refused(R"(# written by kergen
@@ -273,7 +275,7 @@ f 18 13 8 12 17
 f 19 14 9 13 18
 f 20 15 10 14 19
 f 20 19 18 17 16
-)", "be3cb6b9.obj", kergen::Error::DegenerateInput);
+)", "be3cb6b9.obj", kergen::Error::NonManifoldEdge);
 }
 
 // Class F, fixed: a single face "f 5 7 7 5 6" (fuzz_obj 29e80371; the rest of the file is noise
@@ -347,6 +349,43 @@ TEST(RegressionFuzzKernel, SelfIntersectingQuadCap) {
   const kergen::Kernel kc = kergen::compute_kernel(cube.view(), o);
   ASSERT_TRUE(kc.ok()) << kc.message;
   EXPECT_NEAR(kc.volume, 1.0, 1e-12);
+}
+
+// The non-planar counterpart: the same bowtie cap with its moved corner lifted off the plane was
+// split into a fan whose triangles turn opposite ways, one plane facing into the solid, and came
+// out EMPTY with a positive shape volume. It is now refused; a non-planar cap that does not cross
+// itself is still split and accepted.
+TEST(RegressionFuzzKernel, SelfIntersectingNonPlanarQuadCap) {
+  using kergen_test::add_face;
+  using kergen_test::add_point;
+  kergen::Options o;
+  for (double lift : {0.01, -0.01, 1e-9}) {
+    SCOPED_TRACE("lift " + std::to_string(lift));
+    Mesh m;
+    add_point(m, 0, 0, 0); add_point(m, 1, 0, 0); add_point(m, 1, 1, 0); add_point(m, 2, 0.5, lift);
+    add_point(m, 0, 0, 1); add_point(m, 1, 0, 1); add_point(m, 1, 1, 1); add_point(m, 0, 1, 1);
+    add_face(m, {0, 3, 2, 1});  // bottom, seen from below: it crosses itself, and is not planar
+    add_face(m, {4, 5, 6, 7});
+    add_face(m, {0, 1, 5, 4});
+    add_face(m, {1, 2, 6, 5});
+    add_face(m, {2, 3, 7, 6});
+    add_face(m, {3, 0, 4, 7});
+    const kergen::Kernel k = kergen::compute_kernel(m.view(), o);
+    EXPECT_EQ(k.error, kergen::Error::NonManifoldEdge) << kergen::error_name(k.error) << " " << k.message;
+    EXPECT_NE(k.message.find("folds over itself"), std::string::npos) << k.message;
+    // Corner 3 back at (0, 1) but still lifted: a simple, non-planar bottom, split and accepted.
+    // Its kernel is the whole convex shape: the unit cube with one bottom corner moved by lift.
+    Mesh simple = m;
+    simple.positions[9] = 0; simple.positions[10] = 1;
+    const kergen::Kernel ks = kergen::compute_kernel(simple.view(), o);
+    ASSERT_TRUE(ks.ok()) << ks.message;
+    EXPECT_EQ(ks.type, kergen::KernelType::Polyhedron);
+    EXPECT_NEAR(ks.volume, ks.shape_volume, 1e-12);
+    // The split folds outward (the lower hull of the bottom corners): raised, the corner cuts a
+    // tetrahedron of volume lift / 6 from the cube; lowered, two triangles hang below the square
+    // and add |lift| / 3.
+    EXPECT_NEAR(ks.volume, lift > 0 ? 1.0 - lift / 6 : 1.0 - lift / 3, 1e-12);
+  }
 }
 
 // Class D, fixed: output coordinates were refined in double-double and accepted whenever the
