@@ -167,17 +167,23 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   }
   // A nearly flat kernel's volume is far below the rounding of its terms (a tetrahedron of volume
   // 1e-17 with unit edges came out negative): then it is summed again in double-double, from the
-  // local coordinates to ~1e-30.
+  // local coordinates to ~1e-30, about vertex 0 (the local origin, exactly). Every term is then
+  // the volume of a tetrahedron spanned by a kernel vertex and a face triangle, not negative in
+  // exact arithmetic (the kernel is convex), so a negative computed term is rounding and counts
+  // as 0: the sum is never negative. (A kernel smaller than the coordinates' resolution, e.g.
+  // three vertices within 1e-30 of each other, had volume -1e-68 against a true ~1e-83.)
   if (!(vol6 > 1e-6 * vol6_abs)) {
     using exact::ApproxDD;
     auto PD = [&](uint32_t v, int k) { return ApproxDD(local[3 * size_t(v) + k], local_lo[3 * size_t(v) + k], 0); };
     ApproxDD sum(0);
     for (size_t t = 0; t < out.triangles.size(); t += 3) {
       uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
+      if (a == 0 || b == 0 || d == 0) continue;  // (a face through vertex 0: volume 0)
       ApproxDD u[3], w[3], r[3];
-      for (int k = 0; k < 3; ++k) { u[k] = PD(b, k) - PD(a, k); w[k] = PD(d, k) - PD(a, k); r[k] = PD(a, k) - ApproxDD(c[k]); }
+      for (int k = 0; k < 3; ++k) { u[k] = PD(b, k) - PD(a, k); w[k] = PD(d, k) - PD(a, k); r[k] = PD(a, k); }
       const ApproxDD n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      sum = sum + (n[0] * r[0] + n[1] * r[1] + n[2] * r[2]);
+      const ApproxDD term = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+      if (term.hi + term.lo > 0) sum = sum + term;
     }
     vol6 = sum.hi + sum.lo;
   }

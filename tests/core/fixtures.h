@@ -201,8 +201,12 @@ inline RandomConvex random_convex(uint32_t seed, int n = 12) {
   for (int i = 0; i < n; ++i) ang.push_back(2 * pi * (i + 0.15 + 0.7 * U(rng)) / n);
   for (double t : ang) add_point(m, a * std::cos(t), b * std::sin(t), 0);
   double h1 = 0.5 + U(rng), h2 = 0.5 + U(rng);
-  uint32_t top = add_point(m, 0.2 * (U(rng) - 0.5), 0.2 * (U(rng) - 0.5), h1);
-  uint32_t bottom = add_point(m, 0.2 * (U(rng) - 0.5), 0.2 * (U(rng) - 0.5), -h2);
+  // (One draw per statement: argument evaluation order is unspecified and differs between g++
+  // and clang++, and the fuzzers, built with clang++, decode meshes from this fixture too.)
+  const double tx = 0.2 * (U(rng) - 0.5), ty = 0.2 * (U(rng) - 0.5);
+  const uint32_t top = add_point(m, tx, ty, h1);
+  const double bx = 0.2 * (U(rng) - 0.5), by = 0.2 * (U(rng) - 0.5);
+  const uint32_t bottom = add_point(m, bx, by, -h2);
   double area2 = 0;
   for (int i = 0; i < n; ++i) {
     uint32_t j = uint32_t((i + 1) % n);

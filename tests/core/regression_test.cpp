@@ -388,6 +388,21 @@ TEST(RegressionFuzzKernel, SelfIntersectingNonPlanarQuadCap) {
   }
 }
 
+// Class H, fixed: a kernel smaller than the resolution of its coordinates. A pentagonal pyramid
+// whose base corner 0 lies within rounding of the base edge 2-3 (scaled to 1e-6) has for kernel
+// a needle: three vertices within ~1e-30 of each other in double-double, and the apex. Its volume
+// (~1e-83 against a shape of 2e-19) came out -1.1e-68 or +1e-83 depending on the start vertex and
+// the LP seed (fuzz_kernel e189238e: "volume depends on the seed"); a flat bipyramid at 1e-69
+// came out -0 (718d1b25: "volume -0.000000"). The double-double volume is now summed about a
+// kernel vertex, whose terms are not negative in exact arithmetic, and negative rounded terms
+// count as 0. The fuzz check compares seeds' volumes to the coordinates' resolution.
+TEST(RegressionFuzzKernel, SubResolutionKernelVolume_e189238e) {
+  replay_kernel_input({0x09, 0x3d, 0x3d, 0x23, 0xff, 0x2a, 0x20, 0x2d, 0xff});
+}
+TEST(RegressionFuzzKernel, SubResolutionKernelVolume_718d1b25) {
+  replay_kernel_input({0x85, 0x1a, 0xc7, 0x3e, 0x65, 0xfc, 0xc0, 0x3e, 0x1f});
+}
+
 // Class D, fixed: output coordinates were refined in double-double and accepted whenever the
 // denominator was well determined; a numerator with heavy cancellation could leave no correct
 // digit (a kernel vertex 67511 units off for a 0.1-unit shape at offset 62500). The quotient's
