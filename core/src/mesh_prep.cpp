@@ -53,6 +53,24 @@ PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   return std::move(m);
 }
 
+// The axis along which the loop's Newell normal (its area vector, in double) is largest, and that
+// component (its sign: the loop's turn seen along the axis).
+int newell_axis(const std::vector<double>& pts, const uint32_t* loop, size_t k, double& component) {
+  double n[3] = {0, 0, 0};
+  for (size_t i = 0; i < k; ++i) {
+    const double* a = &pts[3 * size_t(loop[i])];
+    const double* b = &pts[3 * size_t(loop[(i + 1) % k])];
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
+  component = n[axis];
+  return axis;
+}
+
 // Triangles of a polygon that is not exactly planar (often: planar up to rounding, e.g. after a
 // rotation). Convex polygons get a fan from their first corner; non-convex ones are ear-clipped
 // in the projection along the dominant axis of the Newell normal, which keeps every triangle
@@ -64,19 +82,10 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   std::vector<std::array<uint32_t, 3>> out;
   out.reserve(k - 2);
   auto P = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
-  double n[3] = {0, 0, 0};
-  for (size_t i = 0; i < k; ++i) {
-    const double* a = P(loop[i]);
-    const double* b = P(loop[(i + 1) % k]);
-    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
-  int axis = 0;
-  for (int c = 1; c < 3; ++c)
-    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
+  double n_axis;
+  const int axis = newell_axis(pts, loop, k, n_axis);
   const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-  const double orient = n[axis] >= 0 ? 1 : -1;  // (u, w) is counter-clockwise when n[axis] > 0
+  const double orient = n_axis >= 0 ? 1 : -1;  // (u, w) is counter-clockwise when n[axis] > 0
   auto cross = [&](uint32_t a, uint32_t b, uint32_t c) {
     const double *pa = P(a), *pb = P(b), *pc = P(c);
     return orient * ((pb[u] - pa[u]) * (pc[w] - pa[w]) - (pb[w] - pa[w]) * (pc[u] - pa[u]));
@@ -321,17 +330,8 @@ int projected_area_sign(const std::vector<double>& pts, const uint32_t* loop, si
 // counterpart is the corner test in prepare_mesh.
 const char* split_folds_over(const std::vector<double>& pts, const uint32_t* loop, size_t k,
                              const std::vector<std::array<uint32_t, 3>>& tris, int shift) {
-  double n[3] = {0, 0, 0};
-  for (size_t t = 0; t < k; ++t) {
-    const double* a = &pts[3 * size_t(loop[t])];
-    const double* b = &pts[3 * size_t(loop[(t + 1) % k])];
-    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
-  int axis = 0;
-  for (int c = 1; c < 3; ++c)
-    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
+  double n_axis;
+  const int axis = newell_axis(pts, loop, k, n_axis);
   const int i = (axis + 1) % 3, j = (axis + 2) % 3;
   const int turn = projected_area_sign(pts, loop, k, i, j, shift);
   if (turn == 0) return "seen along its normal, its loop encloses no area";

@@ -327,25 +327,31 @@ TEST(RegressionFuzzKernel, NonConvexPolygonPlaneInChecker_b5992a37) {
 TEST(RegressionFuzzKernel, SelfIntersectingPolygonFace_74a871ac) { replay_kernel_input({0x37, 0x37, 0x37, 0x37, 0x37, 0x37, 0x37}); }
 // The same class by hand: a cube of quads whose bottom quad has one corner moved within its
 // plane across the opposite side (a bowtie); the sides next to it become non-planar and are split.
-TEST(RegressionFuzzKernel, SelfIntersectingQuadCap) {
+// The unit cube of quads with bottom corner 3, at (0, 1, 0), moved to (x, y, z): at (2, 0.5, z)
+// the bottom loop 0 3 2 1 crosses itself (a bowtie), planar when z = 0.
+Mesh cube_with_moved_corner(double x, double y, double z) {
   using kergen_test::add_face;
   using kergen_test::add_point;
   Mesh m;
-  add_point(m, 0, 0, 0); add_point(m, 1, 0, 0); add_point(m, 1, 1, 0); add_point(m, 2, 0.5, 0);  // (0, 1, 0) moved
+  add_point(m, 0, 0, 0); add_point(m, 1, 0, 0); add_point(m, 1, 1, 0); add_point(m, x, y, z);
   add_point(m, 0, 0, 1); add_point(m, 1, 0, 1); add_point(m, 1, 1, 1); add_point(m, 0, 1, 1);
-  add_face(m, {0, 3, 2, 1});  // bottom, seen from below: it crosses itself
+  add_face(m, {0, 3, 2, 1});  // bottom, seen from below
   add_face(m, {4, 5, 6, 7});
   add_face(m, {0, 1, 5, 4});
   add_face(m, {1, 2, 6, 5});
   add_face(m, {2, 3, 7, 6});
   add_face(m, {3, 0, 4, 7});
+  return m;
+}
+
+TEST(RegressionFuzzKernel, SelfIntersectingQuadCap) {
+  const Mesh m = cube_with_moved_corner(2, 0.5, 0);
   kergen::Options o;
   const kergen::Kernel k = kergen::compute_kernel(m.view(), o);
   EXPECT_EQ(k.error, kergen::Error::NonManifoldEdge) << kergen::error_name(k.error) << " " << k.message;
   EXPECT_NE(k.message.find("crosses itself"), std::string::npos) << k.message;
   // The unmoved cube is accepted: the check refuses only the crossing loop.
-  Mesh cube = m;
-  cube.positions[9] = 0; cube.positions[10] = 1;
+  const Mesh cube = cube_with_moved_corner(0, 1, 0);
   const kergen::Kernel kc = kergen::compute_kernel(cube.view(), o);
   ASSERT_TRUE(kc.ok()) << kc.message;
   EXPECT_NEAR(kc.volume, 1.0, 1e-12);
@@ -356,27 +362,16 @@ TEST(RegressionFuzzKernel, SelfIntersectingQuadCap) {
 // out EMPTY with a positive shape volume. It is now refused; a non-planar cap that does not cross
 // itself is still split and accepted.
 TEST(RegressionFuzzKernel, SelfIntersectingNonPlanarQuadCap) {
-  using kergen_test::add_face;
-  using kergen_test::add_point;
   kergen::Options o;
   for (double lift : {0.01, -0.01, 1e-9}) {
     SCOPED_TRACE("lift " + std::to_string(lift));
-    Mesh m;
-    add_point(m, 0, 0, 0); add_point(m, 1, 0, 0); add_point(m, 1, 1, 0); add_point(m, 2, 0.5, lift);
-    add_point(m, 0, 0, 1); add_point(m, 1, 0, 1); add_point(m, 1, 1, 1); add_point(m, 0, 1, 1);
-    add_face(m, {0, 3, 2, 1});  // bottom, seen from below: it crosses itself, and is not planar
-    add_face(m, {4, 5, 6, 7});
-    add_face(m, {0, 1, 5, 4});
-    add_face(m, {1, 2, 6, 5});
-    add_face(m, {2, 3, 7, 6});
-    add_face(m, {3, 0, 4, 7});
+    const Mesh m = cube_with_moved_corner(2, 0.5, lift);
     const kergen::Kernel k = kergen::compute_kernel(m.view(), o);
     EXPECT_EQ(k.error, kergen::Error::NonManifoldEdge) << kergen::error_name(k.error) << " " << k.message;
     EXPECT_NE(k.message.find("folds over itself"), std::string::npos) << k.message;
     // Corner 3 back at (0, 1) but still lifted: a simple, non-planar bottom, split and accepted.
     // Its kernel is the whole convex shape: the unit cube with one bottom corner moved by lift.
-    Mesh simple = m;
-    simple.positions[9] = 0; simple.positions[10] = 1;
+    const Mesh simple = cube_with_moved_corner(0, 1, lift);
     const kergen::Kernel ks = kergen::compute_kernel(simple.view(), o);
     ASSERT_TRUE(ks.ok()) << ks.message;
     EXPECT_EQ(ks.type, kergen::KernelType::Polyhedron);
