@@ -53,46 +53,78 @@ PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   return std::move(m);
 }
 
-// The axis along which the loop's Newell normal (its area vector, in double) is largest, and that
-// component (its sign: the loop's turn seen along the axis).
-int newell_axis(const std::vector<double>& pts, const uint32_t* loop, size_t k, double& component) {
-  double n[3] = {0, 0, 0};
-  for (size_t i = 0; i < k; ++i) {
-    const double* a = &pts[3 * size_t(loop[i])];
-    const double* b = &pts[3 * size_t(loop[(i + 1) % k])];
-    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+// Component c of the loop's Newell normal (its area vector, times 2), in double.
+double newell_component(const std::vector<double>& pts, const uint32_t* loop, size_t k, int c) {
+  const int i = (c + 1) % 3, j = (c + 2) % 3;
+  double sum = 0;
+  for (size_t t = 0; t < k; ++t) {
+    const double* a = &pts[3 * size_t(loop[t])];
+    const double* b = &pts[3 * size_t(loop[(t + 1) % k])];
+    sum += (a[i] - b[i]) * (a[j] + b[j]);
   }
-  int axis = 0;
-  for (int c = 1; c < 3; ++c)
-    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
-  component = n[axis];
-  return axis;
+  return sum;
 }
 
 // Triangles of a polygon that is not exactly planar (often: planar up to rounding, e.g. after a
 // rotation). Convex polygons get a fan from their first corner; non-convex ones are ear-clipped
-// in the projection along the dominant axis of the Newell normal, which keeps every triangle
-// oriented like the polygon (a fan would fold over a reflex corner and invert planes). Falls
-// back to a fan when no ear is found (self-overlapping input) or the polygon is large (over 128
-// corners). Then, up to 128 corners, inward folds are flipped outward where they can be.
+// in the projection along the dominant axis of the Newell normal (along_normal: along the Newell
+// normal itself), which keeps every triangle oriented like the polygon (a fan would fold over a
+// reflex corner and invert planes). Falls back to a fan when no ear is found (self-overlapping
+// input) or the polygon is large (over 128 corners). Then, up to 128 corners, inward folds are
+// flipped outward where they can be. ("Convex" and the ears are judged in the same projection.)
 std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k,
-                                                         int exact_shift) {
+                                                         int exact_shift, bool along_normal) {
   std::vector<std::array<uint32_t, 3>> out;
   out.reserve(k - 2);
   auto P = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
-  double n_axis;
-  const int axis = newell_axis(pts, loop, k, n_axis);
+  const double n[3] = {newell_component(pts, loop, k, 0), newell_component(pts, loop, k, 1), newell_component(pts, loop, k, 2)};
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
   const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-  const double orient = n_axis >= 0 ? 1 : -1;  // (u, w) is counter-clockwise when n[axis] > 0
+  const double orient = n[axis] >= 0 ? 1 : -1;  // (u, w) is counter-clockwise when n[axis] > 0
+  // The projection along n itself, for along_normal: the plane coordinates (p - o) . e1 and
+  // (p - o) . e2 with e1, e2, n / |n| orthonormal and right-handed (counter-clockwise is positive).
+  double e1[3], e2[3];
+  const double* o = P(loop[0]);
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  along_normal = along_normal && len > 0 && std::isfinite(len);
+  if (along_normal) {
+    const double nn[3] = {n[0] / len, n[1] / len, n[2] / len};
+    int least = 0;  // e1 = nn x (the axis of nn's smallest part): |e1| >= sqrt(2/3) before scaling
+    for (int c = 1; c < 3; ++c)
+      if (std::fabs(nn[c]) < std::fabs(nn[least])) least = c;
+    const int l1 = (least + 1) % 3, l2 = (least + 2) % 3;
+    e1[least] = 0;
+    e1[l1] = nn[l2];
+    e1[l2] = -nn[l1];
+    const double scale = 1 / std::sqrt(e1[l1] * e1[l1] + e1[l2] * e1[l2]);
+    for (int c = 0; c < 3; ++c) e1[c] *= scale;
+    for (int c = 0; c < 3; ++c) e2[c] = nn[(c + 1) % 3] * e1[(c + 2) % 3] - nn[(c + 2) % 3] * e1[(c + 1) % 3];
+  }
+  auto plane_xy = [&](uint32_t v, double& x, double& y) {
+    const double* p = P(v);
+    if (!along_normal) {
+      x = p[u];
+      y = p[w];
+      return;
+    }
+    const double d[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+    x = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
+    y = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
+  };
   auto cross = [&](uint32_t a, uint32_t b, uint32_t c) {
-    const double *pa = P(a), *pb = P(b), *pc = P(c);
-    return orient * ((pb[u] - pa[u]) * (pc[w] - pa[w]) - (pb[w] - pa[w]) * (pc[u] - pa[u]));
+    double ax, ay, bx, by, cx, cy;
+    plane_xy(a, ax, ay);
+    plane_xy(b, bx, by);
+    plane_xy(c, cx, cy);
+    return (along_normal ? 1 : orient) * ((bx - ax) * (cy - ay) - (by - ay) * (cx - ax));
   };
   auto sq = [&](uint32_t a, uint32_t b) {
-    const double *pa = P(a), *pb = P(b);
-    return (pb[u] - pa[u]) * (pb[u] - pa[u]) + (pb[w] - pa[w]) * (pb[w] - pa[w]);
+    double ax, ay, bx, by;
+    plane_xy(a, ax, ay);
+    plane_xy(b, bx, by);
+    return (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
   };
   std::vector<uint32_t> idx(loop, loop + k);
   // A convex polygon (every corner turns the same way in the projection) keeps the simple rule:
@@ -323,21 +355,31 @@ int projected_area_sign(const std::vector<double>& pts, const uint32_t* loop, si
 }
 
 // Why the split of a non-planar polygon would give a plane facing into the solid, or nullptr.
-// Seen along the dominant axis of the loop's Newell normal, every triangle of the split must turn
-// like the loop (or stand edge-on): the triangles' signed areas add up to the loop's, so one of
-// opposite sign means the loop crosses itself or turns back there (a bowtie, a fold), and that
-// triangle's normal points against the face's. Exact signs (projected_area_sign). The planar
-// counterpart is the corner test in prepare_mesh.
+// Every triangle of the split must face like the loop's area vector n (its Newell normal), or
+// stand edge-on to it: the triangles' area vectors add up to n, so one clearly against it means
+// the loop crosses itself or turns back there (a bowtie, a fold), and that triangle's plane faces
+// into the solid. Compared along n itself, not in a coordinate projection: a simple loop far from
+// planar may cross itself seen along a coordinate axis. The dot products are in double with an
+// error bound, so only a triangle certainly against n refuses the face. The planar counterpart
+// is the corner test in prepare_mesh.
 const char* split_folds_over(const std::vector<double>& pts, const uint32_t* loop, size_t k,
-                             const std::vector<std::array<uint32_t, 3>>& tris, int shift) {
-  double n_axis;
-  const int axis = newell_axis(pts, loop, k, n_axis);
-  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
-  const int turn = projected_area_sign(pts, loop, k, i, j, shift);
-  if (turn == 0) return "seen along its normal, its loop encloses no area";
-  for (const auto& tri : tris)
-    if (projected_area_sign(pts, tri.data(), 3, i, j, shift) == -turn)
-      return "seen along its normal, its loop crosses itself or turns back, and a triangle of its split would face inward";
+                             const std::vector<std::array<uint32_t, 3>>& tris) {
+  const double n[3] = {newell_component(pts, loop, k, 0), newell_component(pts, loop, k, 1), newell_component(pts, loop, k, 2)};
+  if (n[0] == 0 && n[1] == 0 && n[2] == 0) return "its loop encloses no area";
+  for (const auto& tri : tris) {
+    const double *a = &pts[3 * size_t(tri[0])], *b = &pts[3 * size_t(tri[1])], *c = &pts[3 * size_t(tri[2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double dot = 0, magnitude = 0;
+    for (int x = 0; x < 3; ++x) {
+      const int y = (x + 1) % 3, z = (x + 2) % 3;
+      const double p = u[y] * w[z], q = u[z] * w[y];
+      dot += (p - q) * n[x];
+      magnitude += (std::fabs(p) + std::fabs(q)) * std::fabs(n[x]);
+    }
+    // Differences, products, the subtraction and the sum: each off by a few eps of the magnitudes.
+    if (dot < -16 * exact::kEps * magnitude)
+      return "a triangle of its split faces against the loop's area vector (the loop crosses itself or turns back)";
+  }
   return nullptr;
 }
 
@@ -956,8 +998,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     renumber(f);
     bool any = false;
-    const auto tris = triangulate_polygon(m.points, loop, k, m.exact_shift);
-    if (const char* why = split_folds_over(m.points, loop, k, tris, m.exact_shift)) {
+    // Split in the coordinate projection along the Newell normal's largest axis first; a loop
+    // far from planar may cross itself in that projection though not seen along its normal, and
+    // is split again in the projection along the normal.
+    auto tris = triangulate_polygon(m.points, loop, k, m.exact_shift, false);
+    if (split_folds_over(m.points, loop, k, tris)) tris = triangulate_polygon(m.points, loop, k, m.exact_shift, true);
+    if (const char* why = split_folds_over(m.points, loop, k, tris)) {
       std::ostringstream msg;
       msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why
           << "; the surface is not embedded there";

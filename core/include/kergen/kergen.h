@@ -37,7 +37,7 @@ enum class Error : int {
   OpenMesh,                 // an edge used by one face only (a hole); see Options::allow_open
   NonManifoldEdge,          // an edge used by more than two faces, two vertices at one position
                             // (the surface touches itself), or a polygon face that crosses itself
-                            // (a non-planar one: that folds over itself seen along its normal)
+                            // (a non-planar one: that folds over itself)
   InconsistentOrientation,  // two faces traverse a shared edge in the same direction
   MultipleComponents,       // more than one connected piece (the kernel of such a shape is undefined)
   DegenerateInput,          // encloses no volume (flat, or only zero-area faces)
