@@ -65,13 +65,17 @@ double newell_component(const std::vector<double>& pts, const uint32_t* loop, si
   return sum;
 }
 
+// Polygons up to this many corners are ear-clipped when split (larger non-convex ones are fanned).
+constexpr size_t kLargestEarClipped = 4096;
+
 // Triangles of a polygon that is not exactly planar (often: planar up to rounding, e.g. after a
 // rotation). Convex polygons get a fan from their first corner; non-convex ones are ear-clipped
 // in the projection along the dominant axis of the Newell normal (along_normal: along the Newell
 // normal itself), which keeps every triangle oriented like the polygon (a fan would fold over a
 // reflex corner and invert planes). Falls back to a fan when no ear is found (self-overlapping
-// input) or the polygon is large (over 128 corners). Then, up to 128 corners, inward folds are
-// flipped outward where they can be. ("Convex" and the ears are judged in the same projection.)
+// input) or the polygon is large (over kLargestEarClipped corners; over 128, the first ear found
+// is clipped, not the best-shaped). Then, up to 128 corners, inward folds are flipped outward
+// where they can be. ("Convex" and the ears are judged in the same projection.)
 std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k,
                                                          int exact_shift, bool along_normal) {
   std::vector<std::array<uint32_t, 3>> out;
@@ -219,6 +223,47 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     if (best == r) break;
     out.push_back({idx[(best + r - 1) % r], idx[best], idx[(best + 1) % r]});
     idx.erase(idx.begin() + long(best));
+  }
+  // Larger polygons, up to kLargestEarClipped corners: the first ear met walking around the loop,
+  // with the same ear test (quadratic in the corners where the best-ear search is cubic), on
+  // plane coordinates computed once. A work budget bounds pathological loops; what is left is
+  // fanned, and the fold check judges the result.
+  if (k > 128 && k <= kLargestEarClipped) {
+    std::vector<double> xs(k), ys(k);
+    for (size_t t = 0; t < k; ++t) plane_xy(loop[t], xs[t], ys[t]);
+    const double sign = along_normal ? 1 : orient;
+    auto cr = [&](uint32_t a, uint32_t b, uint32_t c) {
+      return sign * ((xs[b] - xs[a]) * (ys[c] - ys[a]) - (ys[b] - ys[a]) * (xs[c] - xs[a]));
+    };
+    auto sq2 = [&](uint32_t a, uint32_t b) { return (xs[b] - xs[a]) * (xs[b] - xs[a]) + (ys[b] - ys[a]) * (ys[b] - ys[a]); };
+    std::vector<uint32_t> pos(k);  // positions in loop of the corners left
+    std::iota(pos.begin(), pos.end(), 0u);
+    size_t i = 0, budget = 8 * k * k;
+    while (pos.size() > 3 && budget > 0) {
+      const size_t r = pos.size();
+      bool clipped = false;
+      for (size_t tries = 0; tries < r && budget > 0 && !clipped; ++tries, i = (i + 1) % r) {
+        const uint32_t a = pos[(i + r - 1) % r], b = pos[i], c = pos[(i + 1) % r];
+        if (!(cr(a, b, c) > 0)) continue;  // reflex or flat corner
+        const double tol = -1e-9 * (sq2(a, b) + sq2(b, c) + sq2(c, a));
+        bool empty = true;
+        for (size_t j = 0; j < r && empty; ++j) {
+          const uint32_t q = pos[j];
+          if (loop[q] == loop[a] || loop[q] == loop[b] || loop[q] == loop[c]) continue;
+          if (cr(a, b, q) >= tol && cr(b, c, q) >= tol && cr(c, a, q) >= tol) empty = false;
+        }
+        budget -= std::min(budget, r);
+        if (!empty) continue;
+        out.push_back({loop[a], loop[b], loop[c]});
+        pos.erase(pos.begin() + long(i));
+        i = (i + r - 2) % (r - 1);  // the corner before the ear, whose own ear just changed
+        clipped = true;
+        break;
+      }
+      if (!clipped) break;
+    }
+    idx.clear();
+    for (uint32_t t : pos) idx.push_back(loop[t]);
   }
   for (size_t i = 1; i + 1 < idx.size(); ++i) out.push_back({idx[0], idx[i], idx[i + 1]});
   fold_outward();
@@ -1005,8 +1050,11 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     if (split_folds_over(m.points, loop, k, tris)) tris = triangulate_polygon(m.points, loop, k, m.exact_shift, true);
     if (const char* why = split_folds_over(m.points, loop, k, tris)) {
       std::ostringstream msg;
-      msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why
-          << "; the surface is not embedded there";
+      msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why;
+      if (k > kLargestEarClipped)
+        msg << " (over " << kLargestEarClipped << " corners it is split as a fan: split such a face before, if it is simple)";
+      else
+        msg << "; the surface is not embedded there";
       return fail(m, Error::NonManifoldEdge, msg.str());
     }
     {
