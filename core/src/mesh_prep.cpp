@@ -53,16 +53,17 @@ PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
   return std::move(m);
 }
 
-// Component c of the loop's Newell normal (its area vector, times 2), in double.
-double newell_component(const std::vector<double>& pts, const uint32_t* loop, size_t k, int c) {
-  const int i = (c + 1) % 3, j = (c + 2) % 3;
-  double sum = 0;
+// The loop's Newell normal (its area vector, times 2), in double.
+std::array<double, 3> newell_normal(const std::vector<double>& pts, const uint32_t* loop, size_t k) {
+  std::array<double, 3> n = {0, 0, 0};
   for (size_t t = 0; t < k; ++t) {
     const double* a = &pts[3 * size_t(loop[t])];
     const double* b = &pts[3 * size_t(loop[(t + 1) % k])];
-    sum += (a[i] - b[i]) * (a[j] + b[j]);
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
   }
-  return sum;
+  return n;
 }
 
 // Polygons up to this many corners are ear-clipped when split (larger non-convex ones are fanned).
@@ -70,18 +71,17 @@ constexpr size_t kLargestEarClipped = 4096;
 
 // Triangles of a polygon that is not exactly planar (often: planar up to rounding, e.g. after a
 // rotation). Convex polygons get a fan from their first corner; non-convex ones are ear-clipped
-// in the projection along the dominant axis of the Newell normal (along_normal: along the Newell
-// normal itself), which keeps every triangle oriented like the polygon (a fan would fold over a
+// in the projection along the dominant axis of n, the loop's Newell normal (along_normal: along
+// n itself), which keeps every triangle oriented like the polygon (a fan would fold over a
 // reflex corner and invert planes). Falls back to a fan when no ear is found (self-overlapping
 // input) or the polygon is large (over kLargestEarClipped corners; over 128, the first ear found
 // is clipped, not the best-shaped). Then, up to 128 corners, inward folds are flipped outward
 // where they can be. ("Convex" and the ears are judged in the same projection.)
 std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k,
-                                                         int exact_shift, bool along_normal) {
+                                                         const std::array<double, 3>& n, int exact_shift, bool along_normal) {
   std::vector<std::array<uint32_t, 3>> out;
   out.reserve(k - 2);
   auto P = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
-  const double n[3] = {newell_component(pts, loop, k, 0), newell_component(pts, loop, k, 1), newell_component(pts, loop, k, 2)};
   int axis = 0;
   for (int c = 1; c < 3; ++c)
     if (std::fabs(n[c]) > std::fabs(n[axis])) axis = c;
@@ -407,9 +407,8 @@ int projected_area_sign(const std::vector<double>& pts, const uint32_t* loop, si
 // planar may cross itself seen along a coordinate axis. The dot products are in double with an
 // error bound, so only a triangle certainly against n refuses the face. The planar counterpart
 // is the corner test in prepare_mesh.
-const char* split_folds_over(const std::vector<double>& pts, const uint32_t* loop, size_t k,
+const char* split_folds_over(const std::vector<double>& pts, const std::array<double, 3>& n,
                              const std::vector<std::array<uint32_t, 3>>& tris) {
-  const double n[3] = {newell_component(pts, loop, k, 0), newell_component(pts, loop, k, 1), newell_component(pts, loop, k, 2)};
   if (n[0] == 0 && n[1] == 0 && n[2] == 0) return "its loop encloses no area";
   for (const auto& tri : tris) {
     const double *a = &pts[3 * size_t(tri[0])], *b = &pts[3 * size_t(tri[1])], *c = &pts[3 * size_t(tri[2])];
@@ -1046,9 +1045,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // Split in the coordinate projection along the Newell normal's largest axis first; a loop
     // far from planar may cross itself in that projection though not seen along its normal, and
     // is split again in the projection along the normal.
-    auto tris = triangulate_polygon(m.points, loop, k, m.exact_shift, false);
-    if (split_folds_over(m.points, loop, k, tris)) tris = triangulate_polygon(m.points, loop, k, m.exact_shift, true);
-    if (const char* why = split_folds_over(m.points, loop, k, tris)) {
+    const std::array<double, 3> n = newell_normal(m.points, loop, k);
+    auto tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, false);
+    if (split_folds_over(m.points, n, tris)) tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, true);
+    if (const char* why = split_folds_over(m.points, n, tris)) {
       std::ostringstream msg;
       msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why;
       if (k > kLargestEarClipped)
