@@ -70,11 +70,15 @@ void check_support_test(const Mesh& m, const char* name, uint64_t seed, Tally& t
   for (int i = 0; i < 400; ++i) {
     const auto& v = ks.vertices[rng() % ks.vertices.size()].geom;
     double n[3] = {N(rng), N(rng), N(rng)};
-    const double offset = (rng() % 2 ? 1 : -1) * std::pow(10.0, -15.0 + double(rng() % 10));
+    const double sign = rng() % 2 ? 1 : -1;  // (one draw per statement: the same numbers under every compiler)
+    const double offset = sign * std::pow(10.0, -15.0 + double(rng() % 10));
     const double d = -(n[0] * v.x[0].v + n[1] * v.x[1].v + n[2] * v.x[2].v) + offset;
     tested.push_back(ps.add_explicit(n[0], n[1], n[2], d));
   }
-  for (int i = 0; i < 200; ++i) tested.push_back(ps.add_explicit(N(rng), N(rng), N(rng), 0.5 * N(rng)));
+  for (int i = 0; i < 200; ++i) {
+    const double a = N(rng), b = N(rng), c = N(rng), d = 0.5 * N(rng);
+    tested.push_back(ps.add_explicit(a, b, c, d));
+  }
 
   std::vector<double> nx, ny, nz, d, enx, eny, enz, ed;
   for (uint32_t l : tested) {
