@@ -1047,8 +1047,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // is split again in the projection along the normal.
     const std::array<double, 3> n = newell_normal(m.points, loop, k);
     auto tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, false);
-    if (split_folds_over(m.points, n, tris)) tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, true);
-    if (const char* why = split_folds_over(m.points, n, tris)) {
+    const char* why = split_folds_over(m.points, n, tris);
+    if (why) {
+      tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, true);
+      why = split_folds_over(m.points, n, tris);
+    }
+    if (why) {
       std::ostringstream msg;
       msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why;
       if (k > kLargestEarClipped)
