@@ -78,7 +78,7 @@ inline void check_inside_halfspaces(const kergen::MeshView& mesh, const kergen::
     // Plane normal: the polygon's area vector, the sum of its fan triangles' cross products. (One
     // fan triangle of a non-convex polygon may turn the other way: the largest one is not always
     // oriented like the polygon.) For a triangle it is the triangle's own normal.
-    long double best[3] = {0, 0, 0}, best_len = 0, best_scale = 0;
+    long double area[3] = {0, 0, 0}, area_len = 0, area_scale = 0;
     uint32_t base = loop[0];
     for (size_t i = 1; i + 1 < n; ++i) {
       long double u[3], w[3];
@@ -87,31 +87,31 @@ inline void check_inside_halfspaces(const kergen::MeshView& mesh, const kergen::
         w[c] = P(loop[i + 1], c) - P(base, c);
       }
       const long double nn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      for (int c = 0; c < 3; ++c) best[c] += nn[c];
+      for (int c = 0; c < 3; ++c) area[c] += nn[c];
       const long double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
       const long double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-      best_scale += lu * lw;  // bounds the sum's rounding with the tolerance below
+      area_scale += lu * lw;  // bounds the sum's rounding with the tolerance below
     }
-    best_len = std::sqrt(best[0] * best[0] + best[1] * best[1] + best[2] * best[2]);
-    if (best_len == 0) continue;
+    area_len = std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]);
+    if (area_len == 0) continue;
     const long double sign = flipped ? -1 : 1;
     for (size_t p = 0; p < np; ++p) {
       long double d = 0, lp = 0;
       for (int c = 0; c < 3; ++c) {
         long double dc = pts[3 * p + c] - P(base, c);
-        d += best[c] * dc;
+        d += area[c] * dc;
         lp += dc * dc;
       }
       d *= sign;
       lp = std::sqrt(lp);
       // Output rounding moves a vertex by ~2^-53 of the extent (1 here): 1e-9 is generous;
       // the second term bounds this check's own rounding for slivers.
-      const long double tol = 1e-9L * best_len + 1e-15L * best_scale * (lp + 1);
+      const long double tol = 1e-9L * area_len + 1e-15L * area_scale * (lp + 1);
       if (d > tol) {
         char buf[256];
         std::snprintf(buf, sizeof buf, "%s %zu outside face %zu: signed distance %.3Le (scaled by 2^%d), tolerance %.3Le",
-                      p < k.num_vertices() ? "kernel vertex" : "kernel point", p, f, (long double)(d / best_len), -ex,
-                      (long double)(tol / best_len));
+                      p < k.num_vertices() ? "kernel vertex" : "kernel point", p, f, (long double)(d / area_len), -ex,
+                      (long double)(tol / area_len));
         violated("kernel inside every face half-space", buf, __FILE__, __LINE__);
       }
     }
