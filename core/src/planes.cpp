@@ -362,6 +362,45 @@ void on_point_line(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef
 }
 }  // namespace
 
+namespace {
+// Rigorous bounds on |x| from an expansion's components (the triangle inequality; the sums'
+// roundings are covered by the factors 1 +- 2 (n + 1) eps).
+double magnitude_above(const Expansion& x) {
+  double s = 0;
+  for (size_t i = 0; i < x.size(); ++i) s += std::fabs(x.data()[i]);
+  return s * (1 + 2 * double(x.size() + 1) * exact::kEps);
+}
+double magnitude_below(const Expansion& x) {
+  const size_t n = x.size();
+  if (n == 0) return 0;
+  double rest = 0;  // the components below the largest
+  for (size_t i = 0; i + 1 < n; ++i) rest += std::fabs(x.data()[i]);
+  return (std::fabs(x.data()[n - 1]) - rest * (1 + 2 * double(n + 1) * exact::kEps)) * (1 - 2 * exact::kEps);
+}
+}  // namespace
+
+bool dd_coordinates(const ExactHomogeneous& h, int shift, exact::ApproxDD out[3]) {
+  // x = num / den = q + r + (num - (q + r) den) / den exactly, for any doubles q and r: q is the
+  // quotient of the estimates, r that of the remainder num - q den, and the last term is
+  // bounded by the components of the second remainder and of den.
+  const double den_below = magnitude_below(h.den);
+  if (!(den_below > 0)) return false;
+  const double den = h.den.estimate();
+  for (int k = 0; k < 3; ++k) {
+    const double q = h.num[k].estimate() / den;
+    const Expansion rest = h.num[k] - Expansion(q) * h.den;
+    const double r = rest.estimate() / den;
+    const Expansion rest2 = rest - Expansion(r) * h.den;
+    double hi, lo;
+    exact::eft::two_sum(q, r, hi, lo);
+    const double e = magnitude_above(rest2) / den_below * exact::kBoundScale;
+    if (!std::isfinite(hi) || !std::isfinite(e)) return false;
+    // Back from 2^shift units: exact unless a part becomes subnormal (the floor covers that).
+    out[k] = exact::ApproxDD(std::ldexp(hi, -shift), std::ldexp(lo, -shift), std::ldexp(e, -shift) + exact::kUnderflowFloor);
+  }
+  return true;
+}
+
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
     auto h = std::make_shared<ExactHomogeneous>();
@@ -609,9 +648,10 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   if (point != kNoPoint) return sign_at_point(ps, l, uint32_t(point));  // exact input coordinates
   // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached
   // per vertex).
+  const PlaneCoef<exact::ApproxDD> pl_dd = ps.dd(l);
   {
     const DDHomogeneous& h = dd_homogeneous(ps, v);
-    auto pl = ps.dd(l);
+    const auto& pl = pl_dd;
     int sf = (pl.n[0] * h.num[0] + pl.n[1] * h.num[1] + pl.n[2] * h.num[2] + pl.d * h.den).sign();
     if (sf != 2) return sf * h.den_sign;
   }
@@ -620,6 +660,15 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     if (sa != 2) return sa;
   }
   const ExactHomogeneous& h = exact_homogeneous(ps, v);
+  if (h.point_state == 0) h.point_state = dd_coordinates(h, ps.exact_shift(), h.point) ? 1 : -1;
+  if (h.point_state > 0) {
+    // The plane at the vertex's double-double coordinates (see ExactHomogeneous::point): decides
+    // all but values within ~2^-100 of the magnitudes, at a small part of the exact dot product.
+    const auto& pl = pl_dd;
+    const auto* x = h.point;
+    const int sf = (pl.n[0] * x[0] + pl.n[1] * x[1] + pl.n[2] * x[2] + pl.d).sign();
+    if (sf != 2) return sf;
+  }
   const auto& e = ps.exact(l);
   int sf = (e.n[0] * h.num[0] + e.n[1] * h.num[1] + e.n[2] * h.num[2] + e.d * h.den).sign();
   return sf * h.den.sign();

@@ -195,6 +195,13 @@ struct DDHomogeneous {
 };
 struct ExactHomogeneous {
   Expansion num[3], den;
+  // The coordinates num[k] / den as double-doubles with rigorous error bounds, in input units
+  // (dd_coordinates, on side()'s first need; point_state 1 = valid, -1 = not available, 0 = not
+  // computed yet): side() evaluates a plane there before the exact dot product. Where den is
+  // tiny (the vertex of nearly coplanar planes), the double-double homogeneous values leave no
+  // correct digit of a plane's value while these coordinates are still accurate to ~2^-100.
+  mutable exact::ApproxDD point[3];
+  mutable int point_state = 0;
 };
 
 // A point defined by three planes (Cramer's rule), or an input point (exact coordinates).
@@ -249,6 +256,15 @@ PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double*
 // relative (exact for input points); hi is then the coordinate rounded to nearest (certified on the
 // double-double path; the rare exact path rounds the exact quotient twice).
 void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], double lo[3]);
+// A vertex's homogeneous coordinates (see DDHomogeneous), computed on first use and cached in
+// the vertex (shared by its copies).
+const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v);
+const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v);
+
+// The coordinates of exact homogeneous ones (num / den in 2^shift units) as double-doubles in
+// input units, each within its error bound e of the exact quotient. False when den's components
+// do not bound it away from 0 or a value is not finite.
+bool dd_coordinates(const ExactHomogeneous& h, int shift, exact::ApproxDD out[3]);
 
 // ---- predicates (exact signs) ----------------------------------------------------------------
 // sign of det3(n_a, n_b, n_c)

@@ -192,4 +192,68 @@ TEST(Planes, ApproxPlaneBoundsContainTheExactPlane) {
   EXPECT_GT(tight, 1000u) << "bounds far looser than the actual errors";
 }
 
+// The double-double coordinates of an exactly computed vertex (ExactHomogeneous::point) and the
+// side stage that uses them, where the double-double homogeneous values cannot decide: vertices
+// of three nearly coplanar planes (triangles of one face of a turned, finely tessellated cube,
+// coplanar only up to rounding). Every bound must contain the exact quotient, every sign the
+// stage gives must be the exact one, and the stage must decide most of the signs it is given.
+TEST(Planes, DDCoordinatesOfNearlyCoplanarTriplesMatchExpansions) {
+  Mesh m = kergen_test::tessellated_cube(6);
+  const double R[3][3] = {{0.36, 0.48, -0.8}, {-0.8, 0.6, 0}, {0.48, 0.64, 0.6}};  // a rotation
+  for (size_t i = 0; i < m.positions.size(); i += 3) {
+    const double p[3] = {m.positions[i] - 0.3, m.positions[i + 1] - 0.2, m.positions[i + 2] - 0.1};
+    for (int r = 0; r < 3; ++r) m.positions[i + r] = R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
+  }
+  Planes p(m);
+  const PlaneSet& ps = *p.ps;
+  ASSERT_GT(ps.size(), 6u * 36) << "rounding should leave the triangles of a face on distinct planes";
+  std::mt19937 rng(11);
+  size_t vertices = 0, bounds_checked = 0, homogeneous_undecided = 0, decided = 0;
+  for (uint32_t a = 0; a + 2 < ps.size(); ++a) {
+    for (uint32_t b : {a + 1, a + 2}) {
+      const uint32_t c = uint32_t(rng() % ps.size());
+      if (c == a || c == b || exact_det_sign(ps, a, b, c) == 0) continue;
+      const VertexGeom v = make_vertex(ps, a, b, c, false);
+      const ExactHomogeneous& h = exact_homogeneous(ps, v);
+      exact::ApproxDD point[3];
+      ASSERT_TRUE(dd_coordinates(h, ps.exact_shift(), point)) << "vertex " << a << " " << b << " " << c;
+      ++vertices;
+      // x_k - e <= num_k / den <= x_k + e, checked in expansions (2^shift units).
+      const int den_sign = h.den.sign();
+      for (int k = 0; k < 3; ++k) {
+        const exact::ApproxDD& x = point[k];
+        for (int end : {-1, 1}) {
+          const Expansion bound = (Expansion(x.hi) + Expansion(x.lo)) + Expansion(end * x.e);
+          Expansion scaled;  // times 2^shift, component by component (exact)
+          for (size_t i = 0; i < bound.size(); ++i) scaled = scaled + Expansion(std::ldexp(bound.data()[i], ps.exact_shift()));
+          const int s = (h.num[k] - scaled * h.den).sign() * den_sign;  // sign of num / den - bound
+          ASSERT_TRUE(end < 0 ? s >= 0 : s <= 0) << "coordinate " << k << " of vertex " << a << " " << b << " " << c;
+          ++bounds_checked;
+        }
+      }
+      // ... and is about as tight as double-double allows (the vertices lie within ~10 of 0).
+      const double size = std::max({std::fabs(point[0].hi), std::fabs(point[1].hi), std::fabs(point[2].hi), 1.0});
+      for (int k = 0; k < 3; ++k) EXPECT_LE(point[k].e, 1e-28 * size) << "vertex " << a << " " << b << " " << c;
+      const Cramer ref(ps, a, b, c);
+      const DDHomogeneous& hd = dd_homogeneous(ps, v);
+      for (uint32_t l = a > 4 ? a - 4 : 0; l < std::min<uint32_t>(uint32_t(ps.size()), b + 5); ++l) {
+        if (l == a || l == b || l == c) continue;
+        const PlaneCoef<exact::ApproxDD> d = ps.dd(l);
+        const int expected = ref.side(ps, l);
+        ASSERT_EQ(side(ps, l, v), expected) << "plane " << l << " at vertex " << a << " " << b << " " << c;
+        if ((d.n[0] * hd.num[0] + d.n[1] * hd.num[1] + d.n[2] * hd.num[2] + d.d * hd.den).sign() != 2) continue;
+        ++homogeneous_undecided;
+        const int s = (d.n[0] * point[0] + d.n[1] * point[1] + d.n[2] * point[2] + d.d).sign();
+        if (s == 2) continue;
+        ASSERT_EQ(s, expected) << "plane " << l << " at vertex " << a << " " << b << " " << c;
+        ++decided;
+      }
+    }
+  }
+  std::printf("turned cube: %zu vertices, %zu coordinate bounds; %zu signs the homogeneous stage left, %zu decided\n",
+              vertices, bounds_checked, homogeneous_undecided, decided);
+  EXPECT_GT(homogeneous_undecided, 50u) << "the sample no longer reaches the stage";
+  EXPECT_GT(decided, homogeneous_undecided / 2) << "the stage decides too few of the signs it is given";
+}
+
 }  // namespace
