@@ -68,9 +68,6 @@ class Cutter {
                                            coord_error_);
     const double tie = 4 * delta, margin = 16 * delta;
     auto f = [&](uint32_t v) { return a * xyz_[3 * v] + b * xyz_[3 * v + 1] + c * xyz_[3 * v + 2] + d; };
-    auto neighbors = [&](uint32_t u, const auto& fn) {
-      for (uint32_t e : adj_[u]) fn(other(e, u));
-    };
     uint32_t cur = kNoPlane;
     double val = 0;
     for (uint32_t hint : hints) {
@@ -80,29 +77,51 @@ class Cutter {
       if (cur == kNoPlane || start_val > val) { cur = start; val = start_val; }
     }
     if (cur == kNoPlane) { cur = alive(0); val = f(cur); }
-    cur = climb_to_max(cur, val, f, neighbors, tie, vertices_.size(), climb_);
+    // To the maximum of f_h over the polytope: greedy ascent in double, then along edges on
+    // which f_h certainly rises (in double where the values differ by more than the tie, else
+    // by the exact sign of its rate). A vertex without such an edge is an exact maximum: the
+    // directions of its edges span a cone holding the whole polytope.
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (uint32_t e : adj_[cur]) {
+        const uint32_t w = other(e, cur);
+        const double fw = f(w);
+        if (fw > val) { cur = w; val = fw; moved = true; break; }
+      }
+    }
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (uint32_t e : adj_[cur]) {
+        const uint32_t w = other(e, cur);
+        const double fw = f(w);
+        if (fw < val - tie) continue;  // certainly lower: each value is within delta of exact
+        if (fw > val + tie || rate_sign(h, e, cur) > 0) { cur = w; val = fw; moved = true; break; }
+      }
+    }
     near = cur;
     if (val <= -margin) return true;  // strictly inside at every vertex: no change
+    const int top = side(ps_, h, vertices_[cur].geom);
+    if (top < 0) return true;
 
-    // Every vertex with f >= 0 is joined to the maximum by an ascending path, and `cur` too
-    // (f(cur) > -margin up to rounding), so a search over f >= -2 margin from cur meets them all.
+    // The vertices with f_h >= 0 induce a connected subgraph holding the maximum: a search
+    // through them from it finds them all, and gives each of their neighbours a state.
     region_.assign(1, cur);
-    state_[cur] = kInside;
     out_.clear();
     on_.clear();
-    for (size_t i = 0; i < region_.size(); ++i) {
-      const uint32_t v = region_[i];
-      const double fv = f(v);
-      const int s = fv <= -margin ? -1 : side(ps_, h, vertices_[v].geom);
+    auto classify = [&](uint32_t v, int s) {
       state_[v] = s > 0 ? kOutside : s == 0 ? kOn : kInside;
       if (s > 0) out_.push_back(v);
       if (s == 0) on_.push_back(v);
+    };
+    classify(cur, top);
+    for (size_t i = 0; i < region_.size(); ++i) {
+      const uint32_t v = region_[i];
+      if (state_[v] == kInside) continue;
       for (uint32_t e : adj_[v]) {
         const uint32_t w = other(e, v);
-        if (state_[w] == kUnseen && f(w) >= -2 * margin) {
-          state_[w] = kInside;
-          region_.push_back(w);
-        }
+        if (state_[w] != kUnseen) continue;
+        classify(w, f(w) <= -margin ? -1 : side(ps_, h, vertices_[w].geom));
+        region_.push_back(w);
       }
     }
     const bool ok = apply(h);
@@ -144,6 +163,14 @@ class Cutter {
   }
 
   uint32_t other(uint32_t e, uint32_t v) const { return edges_[e].a == v ? edges_[e].b : edges_[e].a; }
+
+  // Exact sign of the rate of f_h along edge e leaving its end v: the edge runs from a to b along
+  // sigma (n_p x n_q), and n_h . (n_p x n_q) = det3(n_h, n_p, n_q).
+  int rate_sign(uint32_t h, uint32_t e, uint32_t v) const {
+    const TracedEdge& te = edges_[e];
+    const int s = te.sigma * sign_det3_normals(ps_, h, te.p, te.q);
+    return te.a == v ? s : -s;
+  }
 
   bool apply(uint32_t h) {
     // The vertices and edges on h gain it (all that changes when h only touches).
@@ -270,7 +297,6 @@ class Cutter {
   std::vector<int8_t> state_;
   size_t alive_count_ = 0, traced_lines_ = 0;
   double max_abs_ = 0, coord_error_ = 0;  // over every vertex so far (upper bounds for the live ones)
-  ClimbScratch climb_;
   std::vector<uint32_t> region_, out_, on_, cut_points_;
   std::vector<std::pair<uint32_t, uint32_t>> by_plane_;
 };

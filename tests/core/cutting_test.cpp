@@ -147,6 +147,22 @@ TEST(Cutting, MatchesRetracingOnDegenerateShapes) {
   }
 }
 
+TEST(Cutting, MatchesRetracingOnTurnedFlatFaces) {
+  // Faces planar only up to rounding: each of their triangles' planes passes within rounding of
+  // most vertices of the kernel's facet there, so the cuts must find the vertices they remove by
+  // exact signs (a turned, finely tessellated cube; a turned prism over a 48-corner star, whose
+  // caps are split polygons).
+  std::vector<std::array<double, 2>> star;
+  for (int i = 0; i < 48; ++i) {
+    const double r = i % 2 ? 0.8 : 1.0, t = 2 * M_PI * i / 48;
+    star.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    check_cuts(kergen_test::turned(kergen_test::tessellated_cube(8)), "turned tessellated cube", seed);
+    check_cuts(kergen_test::turned(kergen_test::prism(star)), "turned star prism", seed);
+  }
+}
+
 // The unit cube traced over its planes and the box: the polytope the explicit cuts start from.
 struct TracedCube {
   static constexpr double kDir[3] = {0.31, -0.52, 0.79};

@@ -56,6 +56,18 @@ inline Mesh transformed(Mesh m, double scale, double tx, double ty, double tz) {
   return m;
 }
 
+// m turned by a fixed rotation about (0.3, 0.2, 0.1) (rows (0.36, 0.48, -0.8), (-0.8, 0.6, 0),
+// (0.48, 0.64, 0.6)): the coordinates are rounded, so planar faces become planar only up to
+// rounding, and the triangles of a tessellated face lie on distinct, nearly coplanar planes.
+inline Mesh turned(Mesh m) {
+  const double R[3][3] = {{0.36, 0.48, -0.8}, {-0.8, 0.6, 0}, {0.48, 0.64, 0.6}};
+  for (size_t i = 0; i < m.positions.size(); i += 3) {
+    const double p[3] = {m.positions[i] - 0.3, m.positions[i + 1] - 0.2, m.positions[i + 2] - 0.1};
+    for (int r = 0; r < 3; ++r) m.positions[i + r] = R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
+  }
+  return m;
+}
+
 inline Mesh flipped(Mesh m) {
   size_t off = 0;
   for (size_t f = 0; f < m.num_faces(); ++f) {

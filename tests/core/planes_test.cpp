@@ -198,13 +198,7 @@ TEST(Planes, ApproxPlaneBoundsContainTheExactPlane) {
 // coplanar only up to rounding). Every bound must contain the exact quotient, every sign the
 // stage gives must be the exact one, and the stage must decide most of the signs it is given.
 TEST(Planes, DDCoordinatesOfNearlyCoplanarTriplesMatchExpansions) {
-  Mesh m = kergen_test::tessellated_cube(6);
-  const double R[3][3] = {{0.36, 0.48, -0.8}, {-0.8, 0.6, 0}, {0.48, 0.64, 0.6}};  // a rotation
-  for (size_t i = 0; i < m.positions.size(); i += 3) {
-    const double p[3] = {m.positions[i] - 0.3, m.positions[i + 1] - 0.2, m.positions[i + 2] - 0.1};
-    for (int r = 0; r < 3; ++r) m.positions[i + r] = R[r][0] * p[0] + R[r][1] * p[1] + R[r][2] * p[2];
-  }
-  Planes p(m);
+  Planes p(kergen_test::turned(kergen_test::tessellated_cube(6)));
   const PlaneSet& ps = *p.ps;
   ASSERT_GT(ps.size(), 6u * 36) << "rounding should leave the triangles of a face on distinct planes";
   std::mt19937 rng(11);
