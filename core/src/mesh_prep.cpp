@@ -198,31 +198,57 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   }
   // The best-shaped ear first (area over squared edge lengths): a sliver's plane is poorly
   // determined by its points, so slivers are avoided whenever the polygon allows it.
+  // Each corner's ear is judged once and again only when it may have changed: when a neighbour
+  // is clipped (its triangle changes) or when the corner that blocked it is (the others only
+  // lose a corner, which cannot block an ear). Quadratic instead of cubic in the corners, with
+  // the same choices.
+  constexpr uint32_t kNoBlocker = 0xffffffffu;
+  std::vector<double> quality;     // per position in idx: the ear's quality, 0 if not an ear
+  std::vector<uint32_t> blocker;   // the corner inside the ear, or kNoBlocker
+  std::vector<char> stale;
+  auto judge = [&](size_t i) {
+    const size_t r = idx.size();
+    const uint32_t a = idx[(i + r - 1) % r], b = idx[i], c = idx[(i + 1) % r];
+    quality[i] = 0;
+    blocker[i] = kNoBlocker;
+    const double area2 = cross(a, b, c);
+    if (!(area2 > 0)) return;  // reflex or flat corner
+    // A corner on or within rounding distance of the ear's border blocks it too (a polygon
+    // that is non-planar by rounding has its collinear corners off by an ulp either way).
+    const double size2 = sq(a, b) + sq(b, c) + sq(c, a);
+    const double tol = -1e-9 * size2;
+    for (size_t j = 0; j < r; ++j) {
+      const uint32_t q = idx[j];
+      if (q == a || q == b || q == c) continue;
+      if (cross(a, b, q) >= tol && cross(b, c, q) >= tol && cross(c, a, q) >= tol) { blocker[i] = q; return; }
+    }
+    quality[i] = area2 / size2;
+  };
+  if (idx.size() > 3 && k <= 128) {
+    quality.assign(k, 0);
+    blocker.assign(k, kNoBlocker);
+    stale.assign(k, 1);
+  }
   while (idx.size() > 3 && k <= 128) {
     const size_t r = idx.size();
     size_t best = r;
     double best_quality = 0;
     for (size_t i = 0; i < r; ++i) {
-      uint32_t a = idx[(i + r - 1) % r], b = idx[i], c = idx[(i + 1) % r];
-      double area2 = cross(a, b, c);
-      if (!(area2 > 0)) continue;  // reflex or flat corner
-      // A corner on or within rounding distance of the ear's border blocks it too (a polygon
-      // that is non-planar by rounding has its collinear corners off by an ulp either way).
-      const double size2 = sq(a, b) + sq(b, c) + sq(c, a);
-      const double tol = -1e-9 * size2;
-      bool empty = true;
-      for (size_t j = 0; j < r && empty; ++j) {
-        uint32_t q = idx[j];
-        if (q == a || q == b || q == c) continue;
-        if (cross(a, b, q) >= tol && cross(b, c, q) >= tol && cross(c, a, q) >= tol) empty = false;
-      }
-      if (!empty) continue;
-      double quality = area2 / size2;
-      if (quality > best_quality) { best_quality = quality; best = i; }
+      if (stale[i]) { judge(i); stale[i] = 0; }
+      if (quality[i] > best_quality) { best_quality = quality[i]; best = i; }
     }
     if (best == r) break;
-    out.push_back({idx[(best + r - 1) % r], idx[best], idx[(best + 1) % r]});
+    const uint32_t clipped = idx[best];
+    out.push_back({idx[(best + r - 1) % r], clipped, idx[(best + 1) % r]});
     idx.erase(idx.begin() + long(best));
+    quality.erase(quality.begin() + long(best));
+    blocker.erase(blocker.begin() + long(best));
+    stale.erase(stale.begin() + long(best));
+    const size_t m = r - 1;
+    stale[(best + m - 1) % m] = 1;  // the neighbours
+    stale[best % m] = 1;
+    for (size_t i = 0; i < m; ++i)
+      if (blocker[i] == clipped) stale[i] = 1;
   }
   // Larger polygons, up to kLargestEarClipped corners: the first ear met walking around the loop,
   // with the same ear test (quadratic in the corners where the best-ear search is cubic), on
