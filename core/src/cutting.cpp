@@ -89,8 +89,12 @@ class Cutter {
         if (fw > val) { cur = w; val = fw; moved = true; break; }
       }
     }
+    // (Each step rises strictly, so the walk meets each vertex at most once; the count only
+    // guards against an inconsistent graph, which the caller then traces instead.)
+    size_t steps = 0;
     for (bool moved = true; moved;) {
       moved = false;
+      if (++steps > vertices_.size()) return false;
       for (uint32_t e : adj_[cur]) {
         const uint32_t w = other(e, cur);
         const double fw = f(w);
@@ -164,12 +168,36 @@ class Cutter {
 
   uint32_t other(uint32_t e, uint32_t v) const { return edges_[e].a == v ? edges_[e].b : edges_[e].a; }
 
-  // Exact sign of the rate of f_h along edge e leaving its end v: the edge runs from a to b along
-  // sigma (n_p x n_q), and n_h . (n_p x n_q) = det3(n_h, n_p, n_q).
+  // Exact sign of the rate of f_h along edge e leaving its end v. The edge runs from a to b along
+  // sigma (n_p x n_q), so the rate is sigma det3(n_h, n_p, n_q) (from a); it is also
+  // n_h . (w - v) for the other end w. Cheapest first: the determinant's double and
+  // double-double filters; where h is nearly parallel to the edge's planes (a face planar up to
+  // rounding) the determinant needs expansions, while n_h . (w - v) in double-double at the
+  // ends' coordinates (as known, then from their exact homogeneous coordinates, cached per
+  // vertex) usually decides.
   int rate_sign(uint32_t h, uint32_t e, uint32_t v) const {
     const TracedEdge& te = edges_[e];
-    const int s = te.sigma * sign_det3_normals(ps_, h, te.p, te.q);
-    return te.a == v ? s : -s;
+    const int orientation = te.a == v ? te.sigma : -te.sigma;
+    const int filtered = det3_normals(ps_.approx(h), ps_.approx(te.p), ps_.approx(te.q)).sign();
+    if (filtered != 2) return orientation * filtered;
+    const VertexGeom &gv = vertices_[v].geom, &gw = vertices_[other(e, v)].geom;
+    const PlaneCoef<exact::ApproxDD> n = ps_.dd(h);
+    auto rate = [&](const exact::ApproxDD* pv, const exact::ApproxDD* pw) {
+      return (n.n[0] * (pw[0] - pv[0]) + n.n[1] * (pw[1] - pv[1]) + n.n[2] * (pw[2] - pv[2])).sign();
+    };
+    const int dd = det3_normals(n, ps_.dd(te.p), ps_.dd(te.q)).sign();
+    if (dd != 2) return orientation * dd;
+    exact::ApproxDD pv[3], pw[3];
+    if (dd_point(ps_, gv, pv) && dd_point(ps_, gw, pw)) {
+      const int s = rate(pv, pw);
+      if (s != 2) return s;
+    }
+    const exact::ApproxDD *xv = exact_dd_point(ps_, gv), *xw = exact_dd_point(ps_, gw);
+    if (xv && xw) {
+      const int s = rate(xv, xw);
+      if (s != 2) return s;
+    }
+    return orientation * sign_det3_normals(ps_, h, te.p, te.q);
   }
 
   bool apply(uint32_t h) {

@@ -401,6 +401,28 @@ bool dd_coordinates(const ExactHomogeneous& h, int shift, exact::ApproxDD out[3]
   return true;
 }
 
+const exact::ApproxDD* exact_dd_point(const PlaneSet& ps, const VertexGeom& v) {
+  const ExactHomogeneous& h = exact_homogeneous(ps, v);
+  if (h.point_state == 0) h.point_state = dd_coordinates(h, ps.exact_shift(), h.point) ? 1 : -1;
+  return h.point_state > 0 ? h.point : nullptr;
+}
+
+bool dd_point(const PlaneSet& ps, const VertexGeom& v, exact::ApproxDD out[3]) {
+  if (v.mesh_point != kNoPoint) {
+    const double* p = ps.point(uint32_t(v.mesh_point));
+    for (int k = 0; k < 3; ++k) out[k] = exact::ApproxDD(p[k]);
+    return true;
+  }
+  if (v.exact && v.exact->point_state > 0) {
+    for (int k = 0; k < 3; ++k) out[k] = v.exact->point[k];
+    return true;
+  }
+  const DDHomogeneous& h = dd_homogeneous(ps, v);
+  if (!(std::fabs(h.den.hi) - std::fabs(h.den.lo) > 4 * h.den.e)) return false;
+  for (int k = 0; k < 3; ++k) out[k] = h.num[k] / h.den;
+  return true;
+}
+
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
     auto h = std::make_shared<ExactHomogeneous>();
@@ -659,16 +681,14 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
     const int sa = side_through_anchor(ps, l, v);
     if (sa != 2) return sa;
   }
-  const ExactHomogeneous& h = exact_homogeneous(ps, v);
-  if (h.point_state == 0) h.point_state = dd_coordinates(h, ps.exact_shift(), h.point) ? 1 : -1;
-  if (h.point_state > 0) {
+  if (const exact::ApproxDD* x = exact_dd_point(ps, v)) {
     // The plane at the vertex's double-double coordinates (see ExactHomogeneous::point): decides
     // all but values within ~2^-100 of the magnitudes, at a small part of the exact dot product.
     const auto& pl = pl_dd;
-    const auto* x = h.point;
     const int sf = (pl.n[0] * x[0] + pl.n[1] * x[1] + pl.n[2] * x[2] + pl.d).sign();
     if (sf != 2) return sf;
   }
+  const ExactHomogeneous& h = exact_homogeneous(ps, v);
   const auto& e = ps.exact(l);
   int sf = (e.n[0] * h.num[0] + e.n[1] * h.num[1] + e.n[2] * h.num[2] + e.d * h.den).sign();
   return sf * h.den.sign();

@@ -265,6 +265,13 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
 // input units, each within its error bound e of the exact quotient. False when den's components
 // do not bound it away from 0 or a value is not finite.
 bool dd_coordinates(const ExactHomogeneous& h, int shift, exact::ApproxDD out[3]);
+// A vertex's coordinates as double-doubles with rigorous error bounds, input units. dd_point:
+// exact for an input point, else from the exact homogeneous coordinates when they are known,
+// else the double-double quotient num / den (false when den is not certainly away from 0; the
+// bounds are loose where den is tiny). exact_dd_point: from the exact homogeneous coordinates
+// (computed if needed, cached), accurate to ~2^-100; nullptr when dd_coordinates fails.
+bool dd_point(const PlaneSet& ps, const VertexGeom& v, exact::ApproxDD out[3]);
+const exact::ApproxDD* exact_dd_point(const PlaneSet& ps, const VertexGeom& v);
 
 // ---- predicates (exact signs) ----------------------------------------------------------------
 // sign of det3(n_a, n_b, n_c)

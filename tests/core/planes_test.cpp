@@ -192,38 +192,49 @@ TEST(Planes, ApproxPlaneBoundsContainTheExactPlane) {
   EXPECT_GT(tight, 1000u) << "bounds far looser than the actual errors";
 }
 
-// The double-double coordinates of an exactly computed vertex (ExactHomogeneous::point) and the
-// side stage that uses them, where the double-double homogeneous values cannot decide: vertices
-// of three nearly coplanar planes (triangles of one face of a turned, finely tessellated cube,
-// coplanar only up to rounding). Every bound must contain the exact quotient, every sign the
-// stage gives must be the exact one, and the stage must decide most of the signs it is given.
+// The double-double coordinates of a vertex (dd_point's quotient, and those of the exact
+// homogeneous coordinates, ExactHomogeneous::point) and the side stage that uses the latter,
+// where the double-double homogeneous values cannot decide: vertices of three nearly coplanar
+// planes (triangles of one face of a turned, finely tessellated cube, coplanar only up to
+// rounding). Every bound must contain the exact quotient, every sign the stage gives must be
+// the exact one, and the stage must decide most of the signs it is given.
 TEST(Planes, DDCoordinatesOfNearlyCoplanarTriplesMatchExpansions) {
   Planes p(kergen_test::turned(kergen_test::tessellated_cube(6)));
   const PlaneSet& ps = *p.ps;
   ASSERT_GT(ps.size(), 6u * 36) << "rounding should leave the triangles of a face on distinct planes";
   std::mt19937 rng(11);
-  size_t vertices = 0, bounds_checked = 0, homogeneous_undecided = 0, decided = 0;
+  size_t vertices = 0, bounds_checked = 0, quotients_checked = 0, homogeneous_undecided = 0, decided = 0;
   for (uint32_t a = 0; a + 2 < ps.size(); ++a) {
     for (uint32_t b : {a + 1, a + 2}) {
       const uint32_t c = uint32_t(rng() % ps.size());
       if (c == a || c == b || exact_det_sign(ps, a, b, c) == 0) continue;
       const VertexGeom v = make_vertex(ps, a, b, c, false);
+      // dd_point before the exact coordinates exist (the double-double quotient), then
+      // dd_coordinates: each bound must contain the exact quotient.
+      exact::ApproxDD quotient[3];
+      const bool has_quotient = dd_point(ps, v, quotient);
       const ExactHomogeneous& h = exact_homogeneous(ps, v);
       exact::ApproxDD point[3];
       ASSERT_TRUE(dd_coordinates(h, ps.exact_shift(), point)) << "vertex " << a << " " << b << " " << c;
       ++vertices;
       // x_k - e <= num_k / den <= x_k + e, checked in expansions (2^shift units).
       const int den_sign = h.den.sign();
-      for (int k = 0; k < 3; ++k) {
-        const exact::ApproxDD& x = point[k];
+      auto contains = [&](const exact::ApproxDD& x, int k) {
         for (int end : {-1, 1}) {
           const Expansion bound = (Expansion(x.hi) + Expansion(x.lo)) + Expansion(end * x.e);
           Expansion scaled;  // times 2^shift, component by component (exact)
           for (size_t i = 0; i < bound.size(); ++i) scaled = scaled + Expansion(std::ldexp(bound.data()[i], ps.exact_shift()));
           const int s = (h.num[k] - scaled * h.den).sign() * den_sign;  // sign of num / den - bound
-          ASSERT_TRUE(end < 0 ? s >= 0 : s <= 0) << "coordinate " << k << " of vertex " << a << " " << b << " " << c;
-          ++bounds_checked;
+          if (end < 0 ? s < 0 : s > 0) return false;
         }
+        return true;
+      };
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(contains(point[k], k)) << "coordinate " << k << " of vertex " << a << " " << b << " " << c;
+        ++bounds_checked;
+        if (!has_quotient) continue;
+        ASSERT_TRUE(contains(quotient[k], k)) << "quotient " << k << " of vertex " << a << " " << b << " " << c;
+        ++quotients_checked;
       }
       // ... and is about as tight as double-double allows (the vertices lie within ~10 of 0).
       const double size = std::max({std::fabs(point[0].hi), std::fabs(point[1].hi), std::fabs(point[2].hi), 1.0});
@@ -244,8 +255,9 @@ TEST(Planes, DDCoordinatesOfNearlyCoplanarTriplesMatchExpansions) {
       }
     }
   }
-  std::printf("turned cube: %zu vertices, %zu coordinate bounds; %zu signs the homogeneous stage left, %zu decided\n",
-              vertices, bounds_checked, homogeneous_undecided, decided);
+  std::printf("turned cube: %zu vertices, %zu coordinate bounds, %zu quotient bounds; %zu signs the homogeneous stage left, %zu decided\n",
+              vertices, bounds_checked, quotients_checked, homogeneous_undecided, decided);
+  EXPECT_GT(quotients_checked, bounds_checked / 2);
   EXPECT_GT(homogeneous_undecided, 50u) << "the sample no longer reaches the stage";
   EXPECT_GT(decided, homogeneous_undecided / 2) << "the stage decides too few of the signs it is given";
 }
