@@ -154,7 +154,13 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   double c[3] = {0, 0, 0};
   for (uint32_t i = 0; i < V; ++i)
     for (int k = 0; k < 3; ++k) c[k] += P(i, k) / double(V);
-  double area = 0, vol6 = 0, vol6_abs = 0;
+  // The double pass's error, over eps: the rounding of the terms (vol6_abs) and the rounding of
+  // the local coordinates themselves (below eps max|local| = eps reach each), which the edge
+  // vectors u, w and the arm r inherit: a kernel far thinner than its distance from vertex 0
+  // (a needle under a far apex) has edges below that rounding, and terms of no correct digit.
+  double reach = 0;
+  for (size_t i = 0; i < 3 * V; ++i) reach = std::max(reach, std::fabs(local[i]));
+  double area = 0, vol6 = 0, vol6_abs = 0, coordinate_error = 0;
   for (size_t t = 0; t < out.triangles.size(); t += 3) {
     uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
     double u[3], w[3], r[3];
@@ -164,6 +170,9 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
     const double term = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
     vol6 += term;
     vol6_abs += std::fabs(n[0] * r[0]) + std::fabs(n[1] * r[1]) + std::fabs(n[2] * r[2]);
+    const double u1 = std::fabs(u[0]) + std::fabs(u[1]) + std::fabs(u[2]), w1 = std::fabs(w[0]) + std::fabs(w[1]) + std::fabs(w[2]);
+    const double r1 = std::fabs(r[0]) + std::fabs(r[1]) + std::fabs(r[2]), n1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+    coordinate_error += reach * (4 * (u1 + w1) * r1 + 2 * n1);
   }
   // A nearly flat kernel's volume is far below the rounding of its terms (a tetrahedron of volume
   // 1e-17 with unit edges came out negative): then it is summed again in double-double, from the
@@ -171,8 +180,10 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   // the volume of a tetrahedron spanned by a kernel vertex and a face triangle, not negative in
   // exact arithmetic (the kernel is convex), so a negative computed term is rounding and counts
   // as 0: the sum is never negative. (A kernel smaller than the coordinates' resolution, e.g.
-  // three vertices within 1e-30 of each other, had volume -1e-68 against a true ~1e-83.)
-  if (!(vol6 > 1e-6 * vol6_abs)) {
+  // three vertices within 1e-30 of each other, had volume -1e-68 against a true ~1e-83; a needle
+  // of base 1e-10 under an apex 1e6 away, whose terms cancel in no sum, had volume 1.4e-3
+  // against a true 3.1e-18 before the coordinates' rounding counted.)
+  if (!(vol6 > 1e-6 * (vol6_abs + coordinate_error))) {
     using exact::ApproxDD;
     auto PD = [&](uint32_t v, int k) { return ApproxDD(local[3 * size_t(v) + k], local_lo[3 * size_t(v) + k], 0); };
     ApproxDD sum(0);

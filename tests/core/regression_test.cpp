@@ -485,6 +485,40 @@ TEST(RegressionFuzzKernel, SubResolutionKernelVolume_718d1b25) {
   replay_kernel_input({0x85, 0x1a, 0xc7, 0x3e, 0x65, 0xfc, 0xc0, 0x3e, 0x1f});
 }
 
+// Class H, fixed: a needle above the coordinates' resolution. A heptagonal pyramid (base radius
+// 1e6 at z = 0, one corner moved so that the base is not convex, apex at z = 1000) has for
+// kernel a tetrahedron whose base triangle, 1e-10 across, lies 1e6 from the apex. Its volume came
+// out 1.4e-3 with one LP seed and something else with another (fuzz_kernel 65aa16cf: "volume
+// depends on the seed"): the double pass took differences of coordinates ~1e6 (local to the
+// apex) rounded to 1e-10, the base's own size, and its terms did not cancel, so the
+// double-double pass was not triggered. The trigger now counts the coordinates' rounding. The
+// exact volume, 3.0851055339770645e-18, is the tetrahedron of the kernel's vertices computed in
+// rational arithmetic from the face planes (all 56 plane triples, kept when inside all 8).
+TEST(RegressionFuzzKernel, NeedleKernelVolume_65aa16cf) {
+  replay_kernel_input({0x3a, 0x36, 0x36, 0x36, 0x27, 0x2b, 0x25, 0x36, 0x30, 0x36, 0x36, 0x36, 0x36, 0x36, 0x3a});
+  kergen::Mesh m;
+  const double base[7][2] = {{1000000, 0},
+                             {623489.80185873364, 781831.48246802983},
+                             {-222520.93395631434, 974927.91218182363},
+                             {200484.43395120942, -878379.69732492673},
+                             {-900968.86790241918, -433883.739117558},
+                             {-222520.93395631458, -974927.91218182363},
+                             {623489.80185873341, -781831.48246803007}};
+  for (const auto& p : base) kergen_test::add_point(m, p[0], p[1], 0);
+  kergen_test::add_point(m, 0, 0, 1000);
+  kergen_test::add_face(m, {6, 5, 4, 3, 2, 1, 0});
+  for (uint32_t i = 0; i < 7; ++i) kergen_test::add_face(m, {i, (i + 1) % 7, 7});
+  for (uint64_t seed : {1u, 2u, 3u, 0x1234567u}) {
+    kergen::Options o;
+    o.seed = seed;
+    const kergen::Kernel k = kergen::compute_kernel(m.view(), o);
+    ASSERT_TRUE(k.ok()) << k.message;
+    EXPECT_EQ(k.type, kergen::KernelType::Polyhedron);
+    EXPECT_EQ(k.num_vertices(), 4u);
+    EXPECT_NEAR(k.volume, 3.0851055339770645e-18, 1e-9 * 3.0851055339770645e-18) << "seed " << seed;
+  }
+}
+
 // Class D, fixed: output coordinates were refined in double-double and accepted whenever the
 // denominator was well determined; a numerator with heavy cancellation could leave no correct
 // digit (a kernel vertex 67511 units off for a 0.1-unit shape at offset 62500). The quotient's
