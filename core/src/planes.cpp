@@ -591,19 +591,22 @@ void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], 
     }
     if (accurate) return;
   }
-  // Too ill-conditioned for double-double: the exact quotient q ~ num / den, and the exact
-  // remainder num - q den for the low part (without it, the local coordinates of volume and area
-  // would lose every digit below the rounding of hi: a kernel far from the origin would get a
-  // volume that depends on which vertex went this way).
+  // Too ill-conditioned for double-double: the exact quotient, with the exact remainder for the
+  // low part (dd_coordinates, cached per vertex; without the low part, the local coordinates of
+  // volume and area would lose every digit below the rounding of hi: a kernel far from the origin
+  // would get a volume that depends on which vertex went this way).
+  if (const exact::ApproxDD* x = exact_dd_point(ps, v)) {
+    for (int k = 0; k < 3; ++k) {
+      hi[k] = x[k].hi;
+      lo[k] = x[k].lo;
+    }
+    return;
+  }
+  // (Not met with a valid vertex: dd_coordinates fails only for a zero or non-finite quotient.)
   const ExactHomogeneous& e = exact_homogeneous(ps, v);
-  const double den = e.den.estimate();
   for (int k = 0; k < 3; ++k) {
-    const double q = e.num[k].estimate() / den;
-    const double r = (e.num[k] - Expansion(q) * e.den).estimate() / den;
-    const double s = q + r;  // Dekker's fast two-sum (|r| <= |q| up to rounding): s + t = q + r
-    const double t = r - (s - q);
-    hi[k] = std::ldexp(s, -ps.exact_shift());
-    lo[k] = std::ldexp(t, -ps.exact_shift());
+    hi[k] = std::ldexp(e.num[k].estimate() / e.den.estimate(), -ps.exact_shift());
+    lo[k] = 0;
   }
 }
 
