@@ -202,10 +202,9 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   // is clipped (its triangle changes) or when the corner that blocked it is (the others only
   // lose a corner, which cannot block an ear). Quadratic instead of cubic in the corners, with
   // the same choices.
-  constexpr uint32_t kNoBlocker = 0xffffffffu;
+  constexpr uint32_t kNoBlocker = 0xffffffffu, kUnjudged = 0xfffffffeu;
   std::vector<double> quality;     // per position in idx: the ear's quality, 0 if not an ear
-  std::vector<uint32_t> blocker;   // the corner inside the ear, or kNoBlocker
-  std::vector<char> stale;
+  std::vector<uint32_t> blocker;   // the corner inside the ear, kNoBlocker, or kUnjudged
   auto judge = [&](size_t i) {
     const size_t r = idx.size();
     const uint32_t a = idx[(i + r - 1) % r], b = idx[i], c = idx[(i + 1) % r];
@@ -226,15 +225,14 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   };
   if (idx.size() > 3 && k <= 128) {
     quality.assign(k, 0);
-    blocker.assign(k, kNoBlocker);
-    stale.assign(k, 1);
+    blocker.assign(k, kUnjudged);
   }
   while (idx.size() > 3 && k <= 128) {
     const size_t r = idx.size();
     size_t best = r;
     double best_quality = 0;
     for (size_t i = 0; i < r; ++i) {
-      if (stale[i]) { judge(i); stale[i] = 0; }
+      if (blocker[i] == kUnjudged) judge(i);
       if (quality[i] > best_quality) { best_quality = quality[i]; best = i; }
     }
     if (best == r) break;
@@ -243,12 +241,11 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     idx.erase(idx.begin() + long(best));
     quality.erase(quality.begin() + long(best));
     blocker.erase(blocker.begin() + long(best));
-    stale.erase(stale.begin() + long(best));
     const size_t m = r - 1;
-    stale[(best + m - 1) % m] = 1;  // the neighbours
-    stale[best % m] = 1;
+    blocker[(best + m - 1) % m] = kUnjudged;  // the neighbours
+    blocker[best % m] = kUnjudged;
     for (size_t i = 0; i < m; ++i)
-      if (blocker[i] == clipped) stale[i] = 1;
+      if (blocker[i] == clipped) blocker[i] = kUnjudged;
   }
   // Larger polygons, up to kLargestEarClipped corners: the first ear met walking around the loop,
   // with the same ear test (quadratic in the corners where the best-ear search is cubic), on

@@ -196,8 +196,9 @@ struct DDHomogeneous {
 struct ExactHomogeneous {
   Expansion num[3], den;
   // The coordinates num[k] / den as double-doubles with rigorous error bounds, in input units
-  // (dd_coordinates, on side()'s first need; point_state 1 = valid, -1 = not available, 0 = not
-  // computed yet): side() evaluates a plane there before the exact dot product. Where den is
+  // (dd_coordinates, on first need through exact_dd_point; point_state 1 = valid, -1 = not
+  // available, 0 = not computed yet): side() evaluates a plane there before the exact dot
+  // product, the cuts' edge rates and the output coordinates use them too. Where den is
   // tiny (the vertex of nearly coplanar planes), the double-double homogeneous values leave no
   // correct digit of a plane's value while these coordinates are still accurate to ~2^-100.
   mutable exact::ApproxDD point[3];
