@@ -66,19 +66,120 @@ std::array<double, 3> newell_normal(const std::vector<double>& pts, const uint32
   return n;
 }
 
-// Polygons up to this many corners are ear-clipped when split (larger non-convex ones are fanned).
-constexpr size_t kLargestEarClipped = 4096;
+// Ear clipping of polygons over 128 corners (the first ear met) has a work budget: up to this
+// many corners, 8 k^2 with every ear test charged as a scan of the corners left (the budget of
+// the plain quadratic search it replaces, so the same polygons are split the same way); above,
+// kEarWorkPerCorner per corner (at most 8 kBudgetPerScan^2, the most a smaller polygon gets),
+// charged with the work actually done: steps of the walk, cells and corners looked at.
+constexpr size_t kBudgetPerScan = 4096;
+constexpr size_t kEarWorkPerCorner = 4096;
+
+// The corners of a polygon in a uniform grid over their box in its plane (about four cells per
+// corner, shaped like the box), listed per cell: the corners near a small ear are a few cells'
+// worth. A coordinate's cell is monotone in it, so a box's cells hold every corner in the box.
+class CornerGrid {
+ public:
+  CornerGrid(const std::vector<double>& xs, const std::vector<double>& ys) {
+    const size_t k = xs.size();
+    x0_ = *std::min_element(xs.begin(), xs.end());
+    y0_ = *std::min_element(ys.begin(), ys.end());
+    const double ex = *std::max_element(xs.begin(), xs.end()) - x0_, ey = *std::max_element(ys.begin(), ys.end()) - y0_;
+    const size_t cells = 4 * k;
+    if (ex > 0 && ey > 0) {
+      const double g = std::sqrt(double(cells) * (ex / ey));  // (ex / ey first: no overflow to inf * 0)
+      gx_ = g >= double(cells) ? cells : std::max<size_t>(1, size_t(g));
+      gy_ = std::max<size_t>(1, cells / gx_);
+    } else {
+      gx_ = ex > 0 ? cells : 1;
+      gy_ = ey > 0 ? cells : 1;
+    }
+    ix_ = ex > 0 ? double(gx_) / ex : 0;
+    iy_ = ey > 0 ? double(gy_) / ey : 0;
+    start_.assign(gx_ * gy_ + 1, 0);
+    std::vector<uint32_t> cell(k);
+    for (size_t t = 0; t < k; ++t) {
+      cell[t] = uint32_t(to_cell(ys[t], y0_, iy_, gy_) * gx_ + to_cell(xs[t], x0_, ix_, gx_));
+      ++start_[cell[t] + 1];
+    }
+    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    items_.resize(k);
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (size_t t = 0; t < k; ++t) items_[fill[cell[t]]++] = uint32_t(t);
+  }
+  // The cell ranges [x0, x1] and [y0, y1] covering box (xlo, xhi, ylo, yhi), and their count.
+  size_t cells_of(const double box[4], size_t range[4]) const {
+    range[0] = to_cell(box[0], x0_, ix_, gx_);
+    range[1] = to_cell(box[1], x0_, ix_, gx_);
+    range[2] = to_cell(box[2], y0_, iy_, gy_);
+    range[3] = to_cell(box[3], y0_, iy_, gy_);
+    return (range[1] - range[0] + 1) * (range[3] - range[2] + 1);
+  }
+  const uint32_t* items(size_t cx, size_t cy) const { return items_.data() + start_[cy * gx_ + cx]; }
+  size_t count(size_t cx, size_t cy) const { return start_[cy * gx_ + cx + 1] - start_[cy * gx_ + cx]; }
+
+ private:
+  // Monotone in v (rounded subtraction and multiplication by inv >= 0 are), clamped to [0, g).
+  static size_t to_cell(double v, double origin, double inv, size_t g) {
+    const double t = (v - origin) * inv;
+    if (!(t > 0)) return 0;  // (also NaN: 0 * inf for v at the origin)
+    if (t >= double(g - 1)) return g - 1;
+    return size_t(t);
+  }
+  double x0_, y0_, ix_, iy_;
+  size_t gx_, gy_;
+  std::vector<uint32_t> start_, items_;
+};
+
+// A box (xlo, xhi, ylo, yhi) holding every point q that the ear test accepts for the ear
+// (a, b, c) of positive area area2 = cr(a, b, c): cr(a, b, q), cr(b, c, q), cr(c, a, q) >= tol
+// as computed, tol <= 0. False when the ear is too thin for the bound (then every corner is
+// scanned). Why it holds: in exact arithmetic the accepted points form the triangle T' whose
+// sides lie -tol / |e| outside the ear's sides e, which is the ear scaled about its centroid by
+// 1 + 3 mu, mu = -tol / area2 (a side moves by 3 mu times the centroid's distance area2 / (3 |e|)):
+// its corner at b is b + mu (2b - a - c). A point at distance D from T' is beyond one of its
+// sides by at least D sin(angle / 2) >= D s / 2 (s the smallest sine of the ear's angles, which T'
+// shares), so its exact cr for that side is below tol by |e| D s / 2, while cr's rounding is below
+// 4.01 eps |e| |q - p| (p that side's first corner, |q - p| <= D + diameter of T'). The margin,
+// 1e-12 / s + 1e-6 of T's diameter plus 1e-14 of the coordinates' size for the rounding of the
+// corners computed here, keeps every point that the rounded test accepts inside the box with a
+// factor of 1000 to spare. Sines below 1e-10 and sides below 1e-80 (no subnormal products) are
+// refused.
+bool ear_search_box(const std::vector<double>& xs, const std::vector<double>& ys, uint32_t a, uint32_t b, uint32_t c,
+                    double tol, double area2, double box[4]) {
+  auto len = [&](uint32_t p, uint32_t q) { return std::sqrt((xs[q] - xs[p]) * (xs[q] - xs[p]) + (ys[q] - ys[p]) * (ys[q] - ys[p])); };
+  const double ab = len(a, b), bc = len(b, c), ca = len(c, a);
+  const double shortest = std::min(ab, std::min(bc, ca)), longest = std::max(ab, std::max(bc, ca));
+  if (!(shortest >= 1e-80)) return false;
+  const double s = std::min(area2 / (ab * ca), std::min(area2 / (ab * bc), area2 / (bc * ca)));
+  if (!(s >= 1e-10)) return false;
+  const double mu = -tol / area2, diameter = (1 + 3 * mu) * longest;
+  const double margin = diameter * (1e-12 / s + 1e-6) + 1e-14 * (std::fabs(xs[a]) + std::fabs(ys[a]) + 2 * diameter);
+  box[0] = box[2] = INFINITY;
+  box[1] = box[3] = -INFINITY;
+  const uint32_t ear[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    const uint32_t p = ear[i], q = ear[(i + 1) % 3], r = ear[(i + 2) % 3];
+    const double x = xs[p] + mu * ((xs[p] - xs[q]) + (xs[p] - xs[r])), y = ys[p] + mu * ((ys[p] - ys[q]) + (ys[p] - ys[r]));
+    box[0] = std::min(box[0], x - margin);
+    box[1] = std::max(box[1], x + margin);
+    box[2] = std::min(box[2], y - margin);
+    box[3] = std::max(box[3], y + margin);
+  }
+  return true;
+}
 
 // Triangles of a polygon that is not exactly planar (often: planar up to rounding, e.g. after a
 // rotation). Convex polygons get a fan from their first corner; non-convex ones are ear-clipped
 // in the projection along the dominant axis of n, the loop's Newell normal (along_normal: along
 // n itself), which keeps every triangle oriented like the polygon (a fan would fold over a
-// reflex corner and invert planes). Falls back to a fan when no ear is found (self-overlapping
-// input) or the polygon is large (over kLargestEarClipped corners; over 128, the first ear found
-// is clipped, not the best-shaped). Then, up to 128 corners, inward folds are flipped outward
-// where they can be. ("Convex" and the ears are judged in the same projection.)
+// reflex corner and invert planes): the best-shaped ear first up to 128 corners, the first ear
+// found above. What is left when no ear is found (self-overlapping input) or the work budget is
+// spent is fanned, and *gave_up says so. Then, up to 128 corners, inward folds are flipped
+// outward where they can be. ("Convex" and the ears are judged in the same projection.)
 std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k,
-                                                         const std::array<double, 3>& n, int exact_shift, bool along_normal) {
+                                                         const std::array<double, 3>& n, int exact_shift, bool along_normal,
+                                                         bool* gave_up) {
+  if (gave_up) *gave_up = false;
   std::vector<std::array<uint32_t, 3>> out;
   out.reserve(k - 2);
   auto P = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
@@ -247,11 +348,14 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     for (size_t i = 0; i < m; ++i)
       if (blocker[i] == clipped) blocker[i] = kUnjudged;
   }
-  // Larger polygons, up to kLargestEarClipped corners: the first ear met walking around the loop,
-  // with the same ear test (quadratic in the corners where the best-ear search is cubic), on
-  // plane coordinates computed once. A work budget bounds pathological loops; what is left is
-  // fanned, and the fold check judges the result.
-  if (k > 128 && k <= kLargestEarClipped) {
+  // Larger polygons: the first ear met walking around the loop, with the same ear test, on plane
+  // coordinates computed once. The corners that could block an ear are looked up in a grid of
+  // cells (ear_search_box gives a box that holds every corner the test can accept, so the answer
+  // is the one a scan of every corner gives) unless the ear is too thin for that box or the box
+  // spans more cells than corners are left: then every corner is scanned. A work budget bounds
+  // pathological loops (kBudgetPerScan); what is left is fanned (gave_up), and the fold check
+  // judges the result.
+  if (k > 128) {
     std::vector<double> xs(k), ys(k);
     for (size_t t = 0; t < k; ++t) plane_xy(loop[t], xs[t], ys[t]);
     const double sign = along_normal ? 1 : orient;
@@ -259,35 +363,69 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
       return sign * ((xs[b] - xs[a]) * (ys[c] - ys[a]) - (ys[b] - ys[a]) * (xs[c] - xs[a]));
     };
     auto sq2 = [&](uint32_t a, uint32_t b) { return (xs[b] - xs[a]) * (xs[b] - xs[a]) + (ys[b] - ys[a]) * (ys[b] - ys[a]); };
-    std::vector<uint32_t> pos(k);  // positions in loop of the corners left
-    std::iota(pos.begin(), pos.end(), 0u);
-    size_t i = 0, budget = 8 * k * k;
-    while (pos.size() > 3 && budget > 0) {
-      const size_t r = pos.size();
+    // The corners left, as a ring of positions in loop.
+    std::vector<uint32_t> next(k), prev(k);
+    std::vector<char> alive(k, 1);
+    for (size_t t = 0; t < k; ++t) {
+      next[t] = uint32_t((t + 1) % k);
+      prev[t] = uint32_t((t + k - 1) % k);
+    }
+    const CornerGrid grid(xs, ys);
+    const bool charge_scans = k <= kBudgetPerScan;
+    size_t budget = charge_scans ? 8 * k * k : std::min(kEarWorkPerCorner * k, 8 * kBudgetPerScan * kBudgetPerScan);
+    size_t r = k;      // corners left
+    uint32_t i = 0;    // the corner whose ear is tried next
+    while (r > 3 && budget > 0) {
       bool clipped = false;
-      for (size_t tries = 0; tries < r && budget > 0 && !clipped; ++tries, i = (i + 1) % r) {
-        const uint32_t a = pos[(i + r - 1) % r], b = pos[i], c = pos[(i + 1) % r];
+      for (size_t tries = 0; tries < r && budget > 0 && !clipped; ++tries, i = next[i]) {
+        const uint32_t a = prev[i], b = i, c = next[i];
+        if (!charge_scans) --budget;  // (a walk over reflex or flat corners is work too)
         if (!(cr(a, b, c) > 0)) continue;  // reflex or flat corner
         const double tol = -1e-9 * (sq2(a, b) + sq2(b, c) + sq2(c, a));
+        auto blocks = [&](uint32_t q) {
+          return loop[q] != loop[a] && loop[q] != loop[b] && loop[q] != loop[c] && cr(a, b, q) >= tol && cr(b, c, q) >= tol &&
+                 cr(c, a, q) >= tol;
+        };
         bool empty = true;
-        for (size_t j = 0; j < r && empty; ++j) {
-          const uint32_t q = pos[j];
-          if (loop[q] == loop[a] || loop[q] == loop[b] || loop[q] == loop[c]) continue;
-          if (cr(a, b, q) >= tol && cr(b, c, q) >= tol && cr(c, a, q) >= tol) empty = false;
+        size_t work = 1;
+        double box[4];
+        size_t cells[4];
+        if (ear_search_box(xs, ys, a, b, c, tol, cr(a, b, c), box) && grid.cells_of(box, cells) <= r) {
+          for (size_t cy = cells[2]; cy <= cells[3] && empty; ++cy)
+            for (size_t cx = cells[0]; cx <= cells[1] && empty; ++cx) {
+              const uint32_t* items = grid.items(cx, cy);
+              const size_t n = grid.count(cx, cy);
+              work += 1 + n;
+              for (size_t j = 0; j < n && empty; ++j)
+                if (alive[items[j]] && blocks(items[j])) empty = false;
+            }
+        } else {
+          for (uint32_t q = next[c]; q != a && empty; q = next[q], ++work)
+            if (blocks(q)) empty = false;
         }
-        budget -= std::min(budget, r);
+        budget -= std::min(budget, charge_scans ? r : work);
         if (!empty) continue;
         out.push_back({loop[a], loop[b], loop[c]});
-        pos.erase(pos.begin() + long(i));
-        i = (i + r - 2) % (r - 1);  // the corner before the ear, whose own ear just changed
+        alive[b] = 0;
+        next[a] = c;
+        prev[c] = a;
+        --r;
+        // Up to kBudgetPerScan corners the walk steps back to the corner before the ear, whose
+        // own ear just changed (the split kept from before); above, it goes on past the ear's
+        // far corner: stepping back fans out from one corner over a convex stretch, with ever
+        // longer ears whose boxes hold ever more corners, where going on clips every other
+        // corner in a round and the ears grow only round by round.
+        i = charge_scans ? a : next[c];
         clipped = true;
         break;
       }
       if (!clipped) break;
     }
     idx.clear();
-    for (uint32_t t : pos) idx.push_back(loop[t]);
+    for (uint32_t t = 0; t < k; ++t)
+      if (alive[t]) idx.push_back(loop[t]);
   }
+  if (gave_up) *gave_up = idx.size() > 3;
   for (size_t i = 1; i + 1 < idx.size(); ++i) out.push_back({idx[0], idx[i], idx[i + 1]});
   fold_outward();
   return out;
@@ -1069,17 +1207,19 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // far from planar may cross itself in that projection though not seen along its normal, and
     // is split again in the projection along the normal.
     const std::array<double, 3> n = newell_normal(m.points, loop, k);
-    auto tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, false);
+    bool gave_up = false;
+    auto tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, false, &gave_up);
     const char* why = split_folds_over(m.points, n, tris);
     if (why) {
-      tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, true);
+      tris = triangulate_polygon(m.points, loop, k, n, m.exact_shift, true, &gave_up);
       why = split_folds_over(m.points, n, tris);
     }
     if (why) {
       std::ostringstream msg;
       msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why;
-      if (k > kLargestEarClipped)
-        msg << " (over " << kLargestEarClipped << " corners it is split as a fan: split such a face before, if it is simple)";
+      if (gave_up)
+        msg << "; its ear clipping found no more ears (the loop overlaps itself) or spent its work budget, and the rest was"
+               " split as a fan (split such a face before, if it is simple)";
       else
         msg << "; the surface is not embedded there";
       return fail(m, Error::NonManifoldEdge, msg.str());

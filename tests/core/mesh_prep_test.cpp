@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "fixtures.h"
 #include "mesh_prep.h"
 
 namespace {
@@ -184,6 +188,79 @@ TEST(MeshPrep, RefusedMeshesHaveNoFaces) {
     PreparedMesh p = prepare_mesh(m.view(), Options{});
     EXPECT_NE(p.error, Error::Ok);
     EXPECT_TRUE(p.rep.empty());
+  }
+}
+
+// Non-planar polygons are ear-clipped; above 128 corners the corners that could block an ear are
+// looked up in a grid, and above 4096 corners (fanned before, which folds over a non-convex loop,
+// so the mesh was refused) the walk goes on past each ear. The split of each cap of a turned
+// prism must triangulate the cap: k - 2 triangles, each edge of the loop used once its own way and
+// every other edge once each way, and no triangle turned against the loop in the cap's plane
+// before the turn. (With the edges paired like that, the triangles' signed areas cover the loop's
+// inside exactly once, so none may be negative: a corner missed inside an ear shows as an overlap,
+// that is, a triangle turned over.) The caps: a star with random angles and radii (3000 corners,
+// where an ear test that never blocks fails), a gear and a spiral band (5000 corners; the spiral's
+// ears are often blocked by the next turn).
+TEST(MeshPrep, LargeNonConvexPolygonsAreEarClipped) {
+  std::mt19937 rng(5);
+  for (int shape = 0; shape < 3; ++shape) {
+    const uint32_t k = shape == 0 ? 3000 : 5000;
+    SCOPED_TRACE("shape " + std::to_string(shape) + ", corners " + std::to_string(k));
+    std::vector<std::array<double, 2>> poly;
+    if (shape == 0) {
+      std::vector<double> angles;
+      for (uint32_t i = 0; i < k; ++i) angles.push_back(std::uniform_real_distribution<double>(0, 2 * M_PI)(rng));
+      std::sort(angles.begin(), angles.end());
+      for (double a : angles) {
+        const double r = std::uniform_real_distribution<double>(0.2, 1.0)(rng);
+        poly.push_back({r * std::cos(a), r * std::sin(a)});
+      }
+    } else if (shape == 1) {
+      for (uint32_t i = 0; i < k; ++i) {
+        const double a = 2 * M_PI * double(i) / double(k), r = (i / 2) % 2 ? 0.8 : 1.0;
+        poly.push_back({r * std::cos(a), r * std::sin(a)});
+      }
+    } else {  // three turns of a band 2.5 wide between r = 1 + a (outside) and r = a - 1.5 (inside, at least 0.3)
+      const uint32_t half = k / 2;
+      for (uint32_t i = 0; i < k; ++i) {
+        const bool outside = i < half;
+        const double a = 3 * 2 * M_PI * double(outside ? i : k - 1 - i) / double(half - 1);
+        const double r = outside ? 1 + a : std::max(a - 1.5, 0.3);
+        poly.push_back({r * std::cos(a), r * std::sin(a)});
+      }
+    }
+    const Mesh m = kergen_test::turned(kergen_test::prism(poly));
+    PreparedMesh p = prepare_mesh(m.view(), Options{});
+    ASSERT_EQ(p.error, Error::Ok) << p.message;
+    for (uint32_t cap = 0; cap < 2; ++cap) {  // the bottom (ids < k, its loop turned clockwise) and the top
+      auto xy = [&](uint32_t v) { return poly[v % k]; };
+      const double orientation = cap ? 1 : -1;  // seen from +z before the turn
+      std::map<std::pair<uint32_t, uint32_t>, int> uses;
+      size_t triangles = 0, turned_over = 0;
+      for (size_t f = 0; f < p.num_faces(); ++f) {
+        if (p.loop_offsets[f + 1] - p.loop_offsets[f] != 3) continue;
+        const uint32_t* t = &p.loops[p.loop_offsets[f]];
+        if ((t[0] >= k) != bool(cap) || (t[1] >= k) != bool(cap) || (t[2] >= k) != bool(cap)) continue;
+        ++triangles;
+        for (int e = 0; e < 3; ++e) ++uses[{t[e], t[(e + 1) % 3]}];
+        const auto a = xy(t[0]), b = xy(t[1]), c = xy(t[2]);
+        const double cross = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if (orientation * cross < -1e-12) ++turned_over;
+      }
+      EXPECT_EQ(triangles, size_t(k - 2)) << "cap " << cap;
+      EXPECT_EQ(turned_over, 0u) << "cap " << cap;
+      size_t loop_edges = 0, unpaired = 0;
+      for (const auto& use : uses) {
+        const uint32_t u = use.first.first, v = use.first.second;
+        const bool loop_edge = cap ? v == k + (u - k + 1) % k : v == (u + k - 1) % k;
+        const auto back = uses.find({v, u});
+        const int back_uses = back == uses.end() ? 0 : back->second;
+        if (loop_edge) loop_edges += use.second == 1 && back_uses == 0;
+        else unpaired += use.second != 1 || back_uses != 1;
+      }
+      EXPECT_EQ(loop_edges, size_t(k)) << "cap " << cap;
+      EXPECT_EQ(unpaired, 0u) << "cap " << cap;
+    }
   }
 }
 

@@ -457,11 +457,12 @@ TEST(RegressionSplit, TiltedPleatedPrismKeepsItsKernel) {
 // The same for large caps: a polygon of more than 128 corners was split as a plain fan, which
 // folds over a non-convex loop. A tilted gear prism (teeth two corners wide, radii 1 and 0.8),
 // non-planar by rounding once turned, came out EMPTY for 130, 200 and 400 corners. Such polygons
-// are now ear-clipped up to 4096 corners. (The unrotated prism's kernel volume is the area of the
-// gear's 2D kernel, 0.11227957091406682 for 130 corners by clipping a square with every edge's
-// half-plane in double.)
+// are now ear-clipped; over 4096 corners they were still fanned and the mesh was refused (5000
+// corners: "folds over itself") until the ear test looked up its corners in a grid. (The
+// unrotated prism's kernel volume is the area of the gear's 2D kernel, 0.11227957091406682 for
+// 130 corners by clipping a square with every edge's half-plane in double.)
 TEST(RegressionSplit, TiltedGearPrismWithLargeCaps) {
-  for (int k : {130, 200, 400}) {
+  for (int k : {130, 200, 400, 5000}) {
     SCOPED_TRACE("corners " + std::to_string(k));
     std::vector<double> r, up(size_t(k), 0.0);
     for (int i = 0; i < k; ++i) r.push_back((i / 2) % 2 ? 0.8 : 1.0);
