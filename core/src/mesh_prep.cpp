@@ -371,6 +371,17 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
       prev[t] = uint32_t((t + k - 1) % k);
     }
     const CornerGrid grid(xs, ys);
+    // Above kBudgetPerScan corners, a corner is an ear's tip only when it turns by more than the
+    // rounding of the coordinates can (its area against 32 eps X times the ear's perimeter, X the
+    // coordinates' size): a run of corners collinear up to rounding (a subdivided edge, turned)
+    // otherwise gives ears of rounding size, whose planes may face anywhere.
+    double flat_below = 0;
+    if (k > kBudgetPerScan) {
+      double X = 0;
+      for (size_t t = 0; t < k; ++t)
+        for (int c = 0; c < 3; ++c) X = std::max(X, std::fabs(P(loop[t])[c]));
+      flat_below = 32 * exact::kEps * X;
+    }
     const bool charge_scans = k <= kBudgetPerScan;
     size_t budget = charge_scans ? 8 * k * k : std::min(kEarWorkPerCorner * k, 8 * kBudgetPerScan * kBudgetPerScan);
     size_t r = k;      // corners left
@@ -380,7 +391,9 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
       for (size_t tries = 0; tries < r && budget > 0 && !clipped; ++tries, i = next[i]) {
         const uint32_t a = prev[i], b = i, c = next[i];
         if (!charge_scans) --budget;  // (a walk over reflex or flat corners is work too)
-        if (!(cr(a, b, c) > 0)) continue;  // reflex or flat corner
+        const double area2 = cr(a, b, c);
+        if (!(area2 > 0)) continue;  // reflex or flat corner
+        if (!charge_scans && !(area2 > flat_below * (std::sqrt(sq2(a, b)) + std::sqrt(sq2(b, c)) + std::sqrt(sq2(c, a))))) continue;
         const double tol = -1e-9 * (sq2(a, b) + sq2(b, c) + sq2(c, a));
         auto blocks = [&](uint32_t q) {
           return loop[q] != loop[a] && loop[q] != loop[b] && loop[q] != loop[c] && cr(a, b, q) >= tol && cr(b, c, q) >= tol &&
@@ -390,7 +403,7 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
         size_t work = 1;
         double box[4];
         size_t cells[4];
-        if (ear_search_box(xs, ys, a, b, c, tol, cr(a, b, c), box) && grid.cells_of(box, cells) <= r) {
+        if (ear_search_box(xs, ys, a, b, c, tol, area2, box) && grid.cells_of(box, cells) <= r) {
           for (size_t cy = cells[2]; cy <= cells[3] && empty; ++cy)
             for (size_t cx = cells[0]; cx <= cells[1] && empty; ++cx) {
               const uint32_t* items = grid.items(cx, cy);

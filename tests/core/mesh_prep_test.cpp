@@ -200,11 +200,13 @@ TEST(MeshPrep, RefusedMeshesHaveNoFaces) {
 // inside exactly once, so none may be negative: a corner missed inside an ear shows as an overlap,
 // that is, a triangle turned over.) The caps: a star with random angles and radii (3000 corners,
 // where an ear test that never blocks fails), a gear and a spiral band (5000 corners; the spiral's
-// ears are often blocked by the next turn).
+// ears are often blocked by the next turn), and a star of 300 corners whose edges are cut into 20
+// (6000 corners collinear up to rounding once turned: their ears of rounding size faced against
+// the loop, and the mesh was refused, until such corners stopped being ears' tips).
 TEST(MeshPrep, LargeNonConvexPolygonsAreEarClipped) {
   std::mt19937 rng(5);
-  for (int shape = 0; shape < 3; ++shape) {
-    const uint32_t k = shape == 0 ? 3000 : 5000;
+  for (int shape = 0; shape < 4; ++shape) {
+    const uint32_t k = shape == 0 ? 3000 : shape == 3 ? 6000 : 5000;
     SCOPED_TRACE("shape " + std::to_string(shape) + ", corners " + std::to_string(k));
     std::vector<std::array<double, 2>> poly;
     if (shape == 0) {
@@ -219,6 +221,14 @@ TEST(MeshPrep, LargeNonConvexPolygonsAreEarClipped) {
       for (uint32_t i = 0; i < k; ++i) {
         const double a = 2 * M_PI * double(i) / double(k), r = (i / 2) % 2 ? 0.8 : 1.0;
         poly.push_back({r * std::cos(a), r * std::sin(a)});
+      }
+    } else if (shape == 3) {
+      for (uint32_t i = 0; i < k / 20; ++i) {
+        const double a0 = 2 * M_PI * i / double(k / 20), a1 = 2 * M_PI * (i + 1) / double(k / 20);
+        const double r0 = i % 3 ? 1.0 : 0.3, r1 = (i + 1) % 3 ? 1.0 : 0.3;
+        for (int t = 0; t < 20; ++t)
+          poly.push_back({r0 * std::cos(a0) + (r1 * std::cos(a1) - r0 * std::cos(a0)) * t / 20,
+                          r0 * std::sin(a0) + (r1 * std::sin(a1) - r0 * std::sin(a0)) * t / 20});
       }
     } else {  // three turns of a band 2.5 wide between r = 1 + a (outside) and r = a - 1.5 (inside, at least 0.3)
       const uint32_t half = k / 2;
