@@ -3,11 +3,16 @@
 //   turned_cube_N.off   the cube [-1, 1]^3, each face split into N x N squares of two triangles
 //   turned_gear_K.off   a prism over a K-corner gear (radii 1 and 0.8 alternating), height 1,
 //                       each cap one K-corner polygon, the sides quads
-// both turned by one fixed rotation, so that the coordinates are rounded: the triangles of a
-// face, and the caps' split triangles, lie on distinct, nearly coplanar planes. Their kernels:
-// the cube itself and the gear's inner polygon region x [0, 1], up to slivers of rounding size.
+//   turned_star_K.off   the same over a star polygon with K random angles and radii in [0.2, 1]
+//                       (a fixed seed: the same file on every machine)
+//   turned_spiral_K.off the same over three turns of a spiral band (K / 2 corners on each side)
+// all turned by one fixed rotation, so that the coordinates are rounded: the triangles of a
+// face, and the caps' split triangles, lie on distinct, nearly coplanar planes. The kernels of
+// the cube and the gear: the cube itself and the gear's inner polygon region x [0, 1], up to
+// slivers of rounding size. The large caps are for the validation's polygon split.
 //
-//   node bench/turned_meshes.mjs OUTDIR [N...] [--gear K...]     (default: cubes 16 64, gears 128 4096)
+//   node bench/turned_meshes.mjs OUTDIR [N...] [--gear K...] [--star K...] [--spiral K...]
+//        (default: cubes 16 64, gears 128 4096)
 //   build/bench/kergen_bench OUTDIR/*.off
 import fs from 'node:fs';
 import path from 'node:path';
@@ -57,14 +62,11 @@ function tessellatedCube(n) {
   return { points, faces };
 }
 
-function gearPrism(k) {
+// A prism over the polygon (counter-clockwise in the xy plane), height 1, turned.
+function turnedPrism(poly) {
+  const k = poly.length;
   const points = [];
-  for (const z of [0, 1]) {
-    for (let i = 0; i < k; i++) {
-      const r = i % 2 ? 0.8 : 1, t = (2 * Math.PI * i) / k;
-      points.push(turn([r * Math.cos(t), r * Math.sin(t), z]));
-    }
-  }
+  for (const z of [0, 1]) for (const [x, y] of poly) points.push(turn([x, y, z]));
   const bottom = [], top = [];
   for (let i = 0; i < k; i++) {
     bottom.push(k - 1 - i);
@@ -78,21 +80,63 @@ function gearPrism(k) {
   return { points, faces };
 }
 
+function gear(k) {
+  const poly = [];
+  for (let i = 0; i < k; i++) {
+    const r = i % 2 ? 0.8 : 1, t = (2 * Math.PI * i) / k;
+    poly.push([r * Math.cos(t), r * Math.sin(t)]);
+  }
+  return poly;
+}
+
+// mulberry32: a small seeded generator, so that the star is the same on every machine.
+function random(seed) {
+  return () => {
+    seed = (seed + 0x6d2b79f5) | 0;
+    let t = Math.imul(seed ^ (seed >>> 15), 1 | seed);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+
+function star(k) {
+  const next = random(k);
+  const angles = [];
+  for (let i = 0; i < k; i++) angles.push(2 * Math.PI * next());
+  angles.sort((a, b) => a - b);
+  return angles.map((t) => {
+    const r = 0.2 + 0.8 * next();
+    return [r * Math.cos(t), r * Math.sin(t)];
+  });
+}
+
+// Three turns between r = 1 + t outside and r = t - 1.5 (at least 0.3) inside.
+function spiral(k) {
+  const half = Math.floor(k / 2), outside = [], inside = [];
+  for (let i = 0; i < half; i++) {
+    const t = (3 * 2 * Math.PI * i) / (half - 1);
+    outside.push([(1 + t) * Math.cos(t), (1 + t) * Math.sin(t)]);
+    const r = Math.max(t - 1.5, 0.3);
+    inside.push([r * Math.cos(t), r * Math.sin(t)]);
+  }
+  return outside.concat(inside.reverse());
+}
+
 const args = process.argv.slice(2);
 if (args.length === 0 || args[0].startsWith('-')) {
   console.error('usage: node bench/turned_meshes.mjs OUTDIR [N...] [--gear K...]');
   process.exit(2);
 }
 const outDir = args[0];
-const cubes = [], gears = [];
+const cubes = [], polygons = { gear: [], star: [], spiral: [] };
 let list = cubes;
 for (const a of args.slice(1)) {
-  if (a === '--gear') { list = gears; continue; }
+  if (a.startsWith('--') && a.slice(2) in polygons) { list = polygons[a.slice(2)]; continue; }
   const v = parseInt(a, 10);
-  if (!(v >= 1)) { console.error(`not a size: ${a}`); process.exit(2); }
+  if (!(v >= 1) || String(v) !== a) { console.error(`not a size: ${a}`); process.exit(2); }
   list.push(v);
 }
-if (cubes.length === 0 && gears.length === 0) { cubes.push(16, 64); gears.push(128, 4096); }
+if (cubes.length === 0 && Object.values(polygons).every((l) => l.length === 0)) { cubes.push(16, 64); polygons.gear.push(128, 4096); }
 fs.mkdirSync(outDir, { recursive: true });
 for (const n of cubes) {
   const { points, faces } = tessellatedCube(n);
@@ -100,10 +144,14 @@ for (const n of cubes) {
   writeOff(file, points, faces);
   console.log(`${file}: ${faces.length} triangles`);
 }
-for (const k of gears) {
-  if (k < 4 || k % 2) { console.error(`a gear needs an even number of corners >= 4: ${k}`); process.exit(2); }
-  const { points, faces } = gearPrism(k);
-  const file = path.join(outDir, `turned_gear_${k}.off`);
-  writeOff(file, points, faces);
-  console.log(`${file}: ${faces.length} faces (caps of ${k} corners)`);
+const shapes = { gear, star, spiral };
+for (const [name, sizes] of Object.entries(polygons)) {
+  for (const k of sizes) {
+    if (name === 'gear' && (k < 4 || k % 2)) { console.error(`a gear needs an even number of corners >= 4: ${k}`); process.exit(2); }
+    if (name !== 'gear' && k < 8) { console.error(`a ${name} needs at least 8 corners: ${k}`); process.exit(2); }
+    const { points, faces } = turnedPrism(shapes[name](k));
+    const file = path.join(outDir, `turned_${name}_${k}.off`);
+    writeOff(file, points, faces);
+    console.log(`${file}: ${faces.length} faces (caps of ${points.length / 2} corners)`);
+  }
 }

@@ -114,6 +114,19 @@ class CornerGrid {
     range[3] = to_cell(box[3], y0_, iy_, gy_);
     return (range[1] - range[0] + 1) * (range[3] - range[2] + 1);
   }
+  // A band of y holding every corner of row cy (the rows' ends open; a little wider than the row
+  // for the rounding of the cell computation).
+  void row_band(size_t cy, double& lo, double& hi) const {
+    if (iy_ == 0) {
+      lo = -INFINITY;
+      hi = INFINITY;
+      return;
+    }
+    const double slack = 1e-14 * (std::fabs(y0_) + double(gy_) / iy_);
+    lo = cy == 0 ? -INFINITY : y0_ + (double(cy) - 0.01) / iy_ - slack;
+    hi = cy + 1 == gy_ ? INFINITY : y0_ + (double(cy) + 1.01) / iy_ + slack;
+  }
+  size_t column(double x) const { return to_cell(x, x0_, ix_, gx_); }
   const uint32_t* items(size_t cx, size_t cy) const { return items_.data() + start_[cy * gx_ + cx]; }
   size_t count(size_t cx, size_t cy) const { return start_[cy * gx_ + cx + 1] - start_[cy * gx_ + cx]; }
 
@@ -130,22 +143,27 @@ class CornerGrid {
   std::vector<uint32_t> start_, items_;
 };
 
-// A box (xlo, xhi, ylo, yhi) holding every point q that the ear test accepts for the ear
-// (a, b, c) of positive area area2 = cr(a, b, c): cr(a, b, q), cr(b, c, q), cr(c, a, q) >= tol
-// as computed, tol <= 0. False when the ear is too thin for the bound (then every corner is
-// scanned). Why it holds: in exact arithmetic the accepted points form the triangle T' whose
-// sides lie -tol / |e| outside the ear's sides e, which is the ear scaled about its centroid by
-// 1 + 3 mu, mu = -tol / area2 (a side moves by 3 mu times the centroid's distance area2 / (3 |e|)):
-// its corner at b is b + mu (2b - a - c). A point at distance D from T' is beyond one of its
-// sides by at least D sin(angle / 2) >= D s / 2 (s the smallest sine of the ear's angles, which T'
-// shares), so its exact cr for that side is below tol by |e| D s / 2, while cr's rounding is below
-// 4.01 eps |e| |q - p| (p that side's first corner, |q - p| <= D + diameter of T'). The margin,
-// 1e-12 / s + 1e-6 of T's diameter plus 1e-14 of the coordinates' size for the rounding of the
-// corners computed here, keeps every point that the rounded test accepts inside the box with a
-// factor of 1000 to spare. Sines below 1e-10 and sides below 1e-80 (no subnormal products) are
-// refused.
-bool ear_search_box(const std::vector<double>& xs, const std::vector<double>& ys, uint32_t a, uint32_t b, uint32_t c,
-                    double tol, double area2, double box[4]) {
+// A region holding every point q that the ear test accepts for the ear (a, b, c) of positive area
+// area2 = cr(a, b, c) (cr(a, b, q), cr(b, c, q), cr(c, a, q) >= tol as computed, tol <= 0): the
+// points within margin (in each coordinate) of the triangle corner[0..3), and its box. False when
+// the ear is too thin for the bound (then every corner is scanned). Why it holds: in exact
+// arithmetic the accepted points form the triangle T' whose sides lie -tol / |e| outside the ear's
+// sides e, which is the ear scaled about its centroid by 1 + 3 mu, mu = -tol / area2 (a side moves
+// by 3 mu times the centroid's distance area2 / (3 |e|)): its corner at b is b + mu (2b - a - c).
+// A point at distance D from T' is beyond one of its sides by at least D sin(angle / 2) >= D s / 2
+// (s the smallest sine of the ear's angles, which T' shares), so its exact cr for that side is
+// below tol by |e| D s / 2, while cr's rounding is below 4.01 eps |e| |q - p| (p that side's first
+// corner, |q - p| <= D + diameter of T'). The margin, 1e-12 / s + 1e-6 of T's diameter plus 1e-14
+// of the coordinates' size for the rounding of the corners computed here, keeps every point that
+// the rounded test accepts inside with a factor of 1000 to spare. Sines below 1e-10 and sides
+// below 1e-80 (no subnormal products) are refused.
+struct EarRegion {
+  double corner[3][2];
+  double margin;
+  double box[4];  // xlo, xhi, ylo, yhi
+};
+bool ear_region(const std::vector<double>& xs, const std::vector<double>& ys, uint32_t a, uint32_t b, uint32_t c, double tol,
+                double area2, EarRegion& region) {
   auto len = [&](uint32_t p, uint32_t q) { return std::sqrt((xs[q] - xs[p]) * (xs[q] - xs[p]) + (ys[q] - ys[p]) * (ys[q] - ys[p])); };
   const double ab = len(a, b), bc = len(b, c), ca = len(c, a);
   const double shortest = std::min(ab, std::min(bc, ca)), longest = std::max(ab, std::max(bc, ca));
@@ -154,17 +172,55 @@ bool ear_search_box(const std::vector<double>& xs, const std::vector<double>& ys
   if (!(s >= 1e-10)) return false;
   const double mu = -tol / area2, diameter = (1 + 3 * mu) * longest;
   const double margin = diameter * (1e-12 / s + 1e-6) + 1e-14 * (std::fabs(xs[a]) + std::fabs(ys[a]) + 2 * diameter);
+  region.margin = margin;
+  double* box = region.box;
   box[0] = box[2] = INFINITY;
   box[1] = box[3] = -INFINITY;
   const uint32_t ear[3] = {a, b, c};
   for (int i = 0; i < 3; ++i) {
     const uint32_t p = ear[i], q = ear[(i + 1) % 3], r = ear[(i + 2) % 3];
     const double x = xs[p] + mu * ((xs[p] - xs[q]) + (xs[p] - xs[r])), y = ys[p] + mu * ((ys[p] - ys[q]) + (ys[p] - ys[r]));
+    region.corner[i][0] = x;
+    region.corner[i][1] = y;
     box[0] = std::min(box[0], x - margin);
     box[1] = std::max(box[1], x + margin);
     box[2] = std::min(box[2], y - margin);
     box[3] = std::max(box[3], y + margin);
   }
+  return true;
+}
+
+// The range of x over the region's points with lo <= y <= hi, widened for rounding; false if
+// there are none. The triangle's part in the band widened by the margin is bounded by the parts
+// of its sides there: each side's is found from where it crosses the band's lines (well
+// conditioned unless the side is nearly level, which then counts whole where its y range meets
+// the band).
+bool region_x_range(const EarRegion& region, double lo, double hi, double& xlo, double& xhi) {
+  lo -= region.margin;
+  hi += region.margin;
+  xlo = INFINITY;
+  xhi = -INFINITY;
+  double size = 0;
+  for (int i = 0; i < 3; ++i) size = std::max(size, std::fabs(region.corner[i][0]) + std::fabs(region.corner[i][1]));
+  for (int i = 0; i < 3; ++i) {
+    const double *p = region.corner[i], *q = region.corner[(i + 1) % 3];
+    const double dx = q[0] - p[0], dy = q[1] - p[1];
+    if (std::max(p[1], q[1]) < lo || std::min(p[1], q[1]) > hi) continue;
+    double t0 = 0, t1 = 1;
+    if (std::fabs(dy) >= 1e-3 * std::fabs(dx)) {
+      const double ta = (lo - p[1]) / dy, tb = (hi - p[1]) / dy;
+      t0 = std::max(0.0, std::min(ta, tb));
+      t1 = std::min(1.0, std::max(ta, tb));
+      if (!(t0 <= t1)) continue;
+    }
+    const double x0 = p[0] + t0 * dx, x1 = p[0] + t1 * dx;
+    xlo = std::min(xlo, std::min(x0, x1));
+    xhi = std::max(xhi, std::max(x0, x1));
+  }
+  if (!(xlo <= xhi)) return false;
+  const double slack = region.margin + 1e-10 * size;
+  xlo -= slack;
+  xhi += slack;
   return true;
 }
 
@@ -348,11 +404,12 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     for (size_t i = 0; i < m; ++i)
       if (blocker[i] == clipped) blocker[i] = kUnjudged;
   }
-  // Larger polygons: the first ear met walking around the loop, with the same ear test, on plane
-  // coordinates computed once. The corners that could block an ear are looked up in a grid of
-  // cells (ear_search_box gives a box that holds every corner the test can accept, so the answer
-  // is the one a scan of every corner gives) unless the ear is too thin for that box or the box
-  // spans more cells than corners are left: then every corner is scanned. A work budget bounds
+  // Larger polygons: the first ear met walking around the loop (stepping back after each ear to
+  // the corner before it), with the same ear test, on plane coordinates computed once. The corners
+  // that could block an ear are looked up in a grid of cells, over the rows and columns that the
+  // region of ear_region reaches (it holds every corner the test can accept, so the answer is the
+  // one a scan of every corner gives), unless the ear is too thin for that region or it reaches
+  // more cells than corners are left: then every corner is scanned. A work budget bounds
   // pathological loops (kBudgetPerScan); what is left is fanned (gave_up), and the fold check
   // judges the result.
   if (k > 128) {
@@ -371,17 +428,7 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
       prev[t] = uint32_t((t + k - 1) % k);
     }
     const CornerGrid grid(xs, ys);
-    // Above kBudgetPerScan corners, a corner is an ear's tip only when it turns by more than the
-    // rounding of the coordinates can (its area against 32 eps X times the ear's perimeter, X the
-    // coordinates' size): a run of corners collinear up to rounding (a subdivided edge, turned)
-    // otherwise gives ears of rounding size, whose planes may face anywhere.
-    double flat_below = 0;
-    if (k > kBudgetPerScan) {
-      double X = 0;
-      for (size_t t = 0; t < k; ++t)
-        for (int c = 0; c < 3; ++c) X = std::max(X, std::fabs(P(loop[t])[c]));
-      flat_below = 32 * exact::kEps * X;
-    }
+    std::vector<std::array<size_t, 3>> rows;  // an ear's rows of cells: row, first and last column
     const bool charge_scans = k <= kBudgetPerScan;
     size_t budget = charge_scans ? 8 * k * k : std::min(kEarWorkPerCorner * k, 8 * kBudgetPerScan * kBudgetPerScan);
     size_t r = k;      // corners left
@@ -393,7 +440,6 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
         if (!charge_scans) --budget;  // (a walk over reflex or flat corners is work too)
         const double area2 = cr(a, b, c);
         if (!(area2 > 0)) continue;  // reflex or flat corner
-        if (!charge_scans && !(area2 > flat_below * (std::sqrt(sq2(a, b)) + std::sqrt(sq2(b, c)) + std::sqrt(sq2(c, a))))) continue;
         const double tol = -1e-9 * (sq2(a, b) + sq2(b, c) + sq2(c, a));
         auto blocks = [&](uint32_t q) {
           return loop[q] != loop[a] && loop[q] != loop[b] && loop[q] != loop[c] && cr(a, b, q) >= tol && cr(b, c, q) >= tol &&
@@ -401,13 +447,29 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
         };
         bool empty = true;
         size_t work = 1;
-        double box[4];
-        size_t cells[4];
-        if (ear_search_box(xs, ys, a, b, c, tol, area2, box) && grid.cells_of(box, cells) <= r) {
-          for (size_t cy = cells[2]; cy <= cells[3] && empty; ++cy)
-            for (size_t cx = cells[0]; cx <= cells[1] && empty; ++cx) {
-              const uint32_t* items = grid.items(cx, cy);
-              const size_t n = grid.count(cx, cy);
+        // The region's rows of cells, each cut to the columns the region reaches in it.
+        EarRegion region;
+        size_t box_cells[4], cells = 0;
+        bool use_grid = ear_region(xs, ys, a, b, c, tol, area2, region) && grid.cells_of(region.box, box_cells) <= 4 * r;
+        if (use_grid) {
+          rows.clear();
+          for (size_t cy = box_cells[2]; cy <= box_cells[3] && cells <= r; ++cy) {
+            double lo, hi, xlo, xhi;
+            grid.row_band(cy, lo, hi);
+            ++work;
+            if (!region_x_range(region, lo, hi, xlo, xhi)) continue;
+            const size_t c0 = std::max(box_cells[0], grid.column(xlo)), c1 = std::min(box_cells[1], grid.column(xhi));
+            if (c0 > c1) continue;
+            rows.push_back({cy, c0, c1});
+            cells += c1 - c0 + 1;
+          }
+          use_grid = cells <= r;
+        }
+        if (use_grid) {
+          for (size_t w = 0; w < rows.size() && empty; ++w)
+            for (size_t cx = rows[w][1]; cx <= rows[w][2] && empty; ++cx) {
+              const uint32_t* items = grid.items(cx, rows[w][0]);
+              const size_t n = grid.count(cx, rows[w][0]);
               work += 1 + n;
               for (size_t j = 0; j < n && empty; ++j)
                 if (alive[items[j]] && blocks(items[j])) empty = false;
@@ -423,12 +485,7 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
         next[a] = c;
         prev[c] = a;
         --r;
-        // Up to kBudgetPerScan corners the walk steps back to the corner before the ear, whose
-        // own ear just changed (the split kept from before); above, it goes on past the ear's
-        // far corner: stepping back fans out from one corner over a convex stretch, with ever
-        // longer ears whose boxes hold ever more corners, where going on clips every other
-        // corner in a round and the ears grow only round by round.
-        i = charge_scans ? a : next[c];
+        i = a;  // the corner before the ear, whose own ear just changed
         clipped = true;
         break;
       }

@@ -193,16 +193,17 @@ TEST(MeshPrep, RefusedMeshesHaveNoFaces) {
 
 // Non-planar polygons are ear-clipped; above 128 corners the corners that could block an ear are
 // looked up in a grid, and above 4096 corners (fanned before, which folds over a non-convex loop,
-// so the mesh was refused) the walk goes on past each ear. The split of each cap of a turned
+// so the mesh was refused) the budget counts the work done. The split of each cap of a turned
 // prism must triangulate the cap: k - 2 triangles, each edge of the loop used once its own way and
 // every other edge once each way, and no triangle turned against the loop in the cap's plane
 // before the turn. (With the edges paired like that, the triangles' signed areas cover the loop's
 // inside exactly once, so none may be negative: a corner missed inside an ear shows as an overlap,
 // that is, a triangle turned over.) The caps: a star with random angles and radii (3000 corners,
 // where an ear test that never blocks fails), a gear and a spiral band (5000 corners; the spiral's
-// ears are often blocked by the next turn), and a star of 300 corners whose edges are cut into 20
-// (6000 corners collinear up to rounding once turned: their ears of rounding size faced against
-// the loop, and the mesh was refused, until such corners stopped being ears' tips).
+// ears are often blocked by the next turn, and a grid that misses a column fails there), and a
+// star of 300 corners whose edges are cut into 20 (6000 corners collinear up to rounding once
+// turned: a walk that went on past each ear instead of stepping back got ears of rounding size
+// there that faced against the loop).
 TEST(MeshPrep, LargeNonConvexPolygonsAreEarClipped) {
   std::mt19937 rng(5);
   for (int shape = 0; shape < 4; ++shape) {
