@@ -156,9 +156,10 @@ function pushEvent(ev) {
 
 async function computeKernel(mesh, token) {
   const tView = performance.now();
-  viewer.setInput(mesh.positions, mesh.indices);
+  viewer.setInput(mesh.positions, mesh.indices, mesh.faceSizes);
   state.timing.view = performance.now() - tView;
-  setStat('stat-input-faces', `${mesh.indices.length / 3} triangles (${mesh.positions.length / 3} vertices)`, mesh.indices.length / 3);
+  const faces = mesh.faceSizes ? mesh.faceSizes.length : mesh.indices.length / 3;
+  setStat('stat-input-faces', `${faces} ${mesh.faceSizes ? 'faces' : 'triangles'} (${mesh.positions.length / 3} vertices)`, faces);
   setStatus('computing', 'Computing the kernel…', 'RUNNING');
   setBusy('Computing…');
   state.computing = true;
@@ -168,6 +169,7 @@ async function computeKernel(mesh, token) {
   try {
     // The package may transfer (detach) the arrays: give it copies, the viewer keeps the originals.
     result = await kw.compute(mesh.positions.slice(), mesh.indices.slice(), {
+      faceSizes: mesh.faceSizes?.slice(),
       onStep: (ev) => {
         if (token === state.token) pushEvent(ev);
       },

@@ -172,23 +172,56 @@ function isSoftwareGL() {
 
 // The mesh's unique edges as an indexed line geometry sharing the mesh's position attribute
 // (WireframeGeometry copies positions and dedupes with string keys: slow on large meshes).
-function wireframe(meshGeo, indices, nv) {
+// The input's edges: each face's loop once per edge (polygons without their drawing diagonals).
+function wireframe(meshGeo, indices, faceSizes, nv) {
   const seen = new Set();
   const lines = [];
-  for (let t = 0; t + 2 < indices.length; t += 3) {
-    for (let k = 0; k < 3; k++) {
-      const a = indices[t + k], b = indices[t + ((k + 1) % 3)];
+  const faces = faceSizes ?? { length: indices.length / 3 };
+  for (let f = 0, at = 0; f < faces.length; f++) {
+    const k = faceSizes ? faceSizes[f] : 3;
+    for (let j = 0; j < k; j++) {
+      const a = indices[at + j], b = indices[at + ((j + 1) % k)];
       const key = a < b ? a * nv + b : b * nv + a;
       if (!seen.has(key)) {
         seen.add(key);
         lines.push(a, b);
       }
     }
+    at += k;
   }
   const geo = new THREE.BufferGeometry();
   geo.setAttribute('position', meshGeo.getAttribute('position'));
   geo.setIndex(new THREE.BufferAttribute(Uint32Array.from(lines), 1));
   return geo;
+}
+
+// Triangles to draw the faces with (the kernel is computed on the polygons themselves): each
+// polygon is split by three.js's earcut in the projection along its largest normal axis (a fan
+// would fold over a non-convex one).
+function drawnTriangles(positions, indices, faceSizes) {
+  if (!faceSizes) return indices;
+  const out = [];
+  for (let f = 0, at = 0; f < faceSizes.length; at += faceSizes[f], f++) {
+    const k = faceSizes[f];
+    const loop = indices.subarray(at, at + k);
+    if (k === 3) {
+      out.push(loop[0], loop[1], loop[2]);
+      continue;
+    }
+    const n = [0, 0, 0];
+    for (let i = 0; i < k; i++) {
+      const a = 3 * loop[i], b = 3 * loop[(i + 1) % k];
+      for (let c = 0; c < 3; c++) {
+        const c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+        n[c] += (positions[a + c1] - positions[b + c1]) * (positions[a + c2] + positions[b + c2]);
+      }
+    }
+    const axis = Math.abs(n[0]) >= Math.abs(n[1]) && Math.abs(n[0]) >= Math.abs(n[2]) ? 0 : Math.abs(n[1]) >= Math.abs(n[2]) ? 1 : 2;
+    const u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const contour = Array.from(loop, (v) => new THREE.Vector2(positions[3 * v + u], positions[3 * v + w]));
+    for (const [p, q, r] of THREE.ShapeUtils.triangulateShape(contour, [])) out.push(loop[p], loop[q], loop[r]);
+  }
+  return Uint32Array.from(out);
 }
 
 export class Viewer {
@@ -263,7 +296,8 @@ export class Viewer {
 
   // Shows the input mesh; everything is drawn relative to its bounding-box centre (float32
   // rendering of far-from-origin models stays accurate).
-  setInput(positions, indices) {
+  // positions: xyz; indices: triangles, or polygon loops one after another with faceSizes.
+  setInput(positions, indices, faceSizes = undefined) {
     this.clearInput();
     const nv = positions.length / 3;
     const box = new THREE.Box3();
@@ -285,7 +319,7 @@ export class Viewer {
       for (let i = 0; i < 3 * nv; i++) pos[i] = positions[i] - center.getComponent(i % 3);
       const geo = new THREE.BufferGeometry();
       geo.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-      geo.setIndex(new THREE.BufferAttribute(indices, 1));
+      geo.setIndex(new THREE.BufferAttribute(drawnTriangles(positions, indices, faceSizes), 1));
       this.inputMaterial = new THREE.MeshStandardMaterial({
         color: 0xe3a04a, transparent: true, opacity: 0.22, depthWrite: false, side: THREE.DoubleSide,
         flatShading: true, roughness: 0.8,
@@ -293,7 +327,7 @@ export class Viewer {
       this.wireMaterial = new THREE.LineBasicMaterial({ color: 0x7a5a2a, transparent: true, opacity: 0.28, depthWrite: false });
       const mesh = new THREE.Mesh(geo, this.inputMaterial);
       mesh.renderOrder = 2;
-      const wire = new THREE.LineSegments(wireframe(geo, indices, nv), this.wireMaterial);
+      const wire = new THREE.LineSegments(wireframe(geo, indices, faceSizes, nv), this.wireMaterial);
       wire.renderOrder = 3;
       this.inputGroup.add(mesh, wire);
       this.applyTheme();

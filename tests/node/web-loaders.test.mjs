@@ -1,0 +1,131 @@
+// The web demo's OBJ and OFF readers (web/loaders.js) keep polygon faces and double precision, so
+// the demo computes the kernel of the file's own shape: an L prism whose caps are single
+// non-convex hexagons has the unit cube for kernel (volume 1), in every OBJ face form; and on
+// every OBJ/OFF fixture the demo's reader + the package give the native CLI's answer (same status
+// or error code, volume within 1e-9 relative).
+import { test, before } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { assertBuilt, nativeCli, sharedMeshes, sharedMeshesMissing } from './lib/env.mjs';
+
+let K, L;
+before(async () => {
+  assertBuilt();
+  K = await import('../../wasm/index.js');
+  await K.init();
+  L = await import('../../web/loaders.js');
+});
+
+// The L prism: base (0,0) (2,0) (2,1) (1,1) (1,2) (0,2), height 1; its kernel is [0,1]^2 x [0,1].
+const L_POINTS = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]].flatMap(([x, y]) => [[x, y, 0], [x, y, 1]]);
+const L_FACES = [[10, 8, 6, 4, 2, 0], [1, 3, 5, 7, 9, 11]];
+for (let i = 0; i < 6; i++) {
+  const j = (i + 1) % 6;
+  L_FACES.push([2 * i, 2 * j, 2 * j + 1, 2 * i + 1]);
+}
+
+function bytes(text) {
+  return new TextEncoder().encode(text).buffer;
+}
+
+function kernelOf(mesh) {
+  return K.computeKernelSync(mesh.positions, mesh.indices, mesh.faceSizes ? { faceSizes: mesh.faceSizes } : {});
+}
+
+test('OFF: non-convex polygon faces are kept (L prism: kernel volume 1)', () => {
+  const text = ['OFF', `${L_POINTS.length} ${L_FACES.length} 0`, ...L_POINTS.map((p) => p.join(' ')),
+    ...L_FACES.map((f) => `${f.length} ${f.join(' ')}`)].join('\n');
+  const mesh = L.parseMeshFile('l.off', bytes(text));
+  assert.deepEqual(Array.from(mesh.faceSizes), L_FACES.map((f) => f.length));
+  const k = kernelOf(mesh);
+  assert.equal(k.status, 'POLYHEDRON');
+  assert.ok(Math.abs(k.volume - 1) < 1e-12, `volume ${k.volume}`);
+  assert.equal(k.vertices.length / 3, 8);
+});
+
+test('OBJ: polygon faces in the forms i, i/t, i//n, i/t/n and negative, double precision, welded', () => {
+  const forms = [(i) => `${i + 1}`, (i) => `${i + 1}/1`, (i) => `${i + 1}//1`, (i) => `${i + 1}/1/1`, (i) => `${i - L_POINTS.length}`];
+  // Coordinates that float32 would round (0.1 + 2^-40 steps): the kernel must keep them.
+  const e = 2 ** -40;
+  const pts = L_POINTS.map(([x, y, z]) => [x + e, y, z]);
+  for (const [n, form] of forms.entries()) {
+    const lines = ['# L prism', 'mtllib none.mtl', 'o L', ...pts.map((p) => `v ${p.join(' ')}`), 'vt 0 0', 'vn 0 0 1', 'usemtl x', 's off'];
+    for (const f of L_FACES) lines.push(`f ${f.map(form).join(' ')}`);
+    const mesh = L.parseMeshFile('l.obj', bytes(lines.join('\n')));
+    assert.equal(mesh.positions[0], e, `form ${n}: coordinates in double precision`);
+    const k = kernelOf(mesh);
+    assert.equal(k.status, 'POLYHEDRON', `form ${n}`);
+    assert.ok(Math.abs(k.volume - 1) < 1e-12, `form ${n}: volume ${k.volume}`);
+  }
+  // The same faces as a soup (every face with its own vertices) are welded into the same mesh.
+  const soup = [], faces = [];
+  for (const f of L_FACES) {
+    faces.push(`f ${f.map((_, c) => soup.length + c + 1).join(' ')}`);
+    for (const v of f) soup.push(`v ${L_POINTS[v].join(' ')}`);
+  }
+  const welded = L.parseMeshFile('soup.obj', bytes([...soup, ...faces].join('\n')));
+  assert.equal(welded.positions.length / 3, 12);
+  assert.ok(Math.abs(kernelOf(welded).volume - 1) < 1e-12);
+});
+
+test('OBJ/OFF reader errors: code and line', () => {
+  const cases = [
+    ['f.obj', 'v 0 0 0\nv 1 0 0\nf 1 2', 'PARSE_ERROR', /line 3: a face needs at least 3 vertices/],
+    ['f.obj', 'v 0 0 0\nv x 0 0', 'PARSE_ERROR', /line 2: "x" is not a number/],
+    ['f.obj', 'v 0 0 0\nf 0 1 1', 'PARSE_ERROR', /line 2: vertex index 0/],
+    ['f.obj', 'v 0 0 0\nf -2 1 1', 'PARSE_ERROR', /line 2: vertex -2 counts back past the first vertex/],
+    ['f.obj', 'v 0 0 0\nf 1 1 99999999999', 'PARSE_ERROR', /too large/],
+    ['f.obj', 'v 0 0 0\nl 1 1', 'EMPTY_INPUT', /no faces/],
+    ['f.off', 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967296', 'PARSE_ERROR', /too large/],
+    ['f.off', 'OFF\n0 0 0\n', 'EMPTY_INPUT', /no vertices or no faces/],
+  ];
+  for (const [name, text, code, message] of cases) {
+    assert.throws(() => L.parseMeshFile(name, bytes(text)), (e) => e instanceof L.MeshParseError && e.code === code && message.test(e.message), text);
+  }
+  const utf16 = new Uint8Array([0xfe, 0xff, 0, 0x76]).buffer;
+  assert.throws(() => L.parseMeshFile('u.obj', utf16), /UTF-16 is not supported/);
+});
+
+function nativeResult(file) {
+  let out;
+  try {
+    out = execFileSync(nativeCli, ['--json', file], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+  } catch (err) {
+    out = err.stdout || '';
+  }
+  return JSON.parse(out);
+}
+
+test('every OBJ/OFF fixture: the demo reader + package give the native CLI answer', (t) => {
+  const missing = sharedMeshesMissing() || (fs.existsSync(nativeCli) ? '' : `${nativeCli} not built`);
+  if (missing) {
+    t.skip(missing);
+    return;
+  }
+  let compared = 0;
+  for (const dir of ['fixtures', 'fixtures/formats']) {
+    for (const name of fs.readdirSync(path.join(sharedMeshes, dir)).sort()) {
+      if (!/\.(obj|off)$/i.test(name)) continue;
+      const file = path.join(sharedMeshes, dir, name);
+      const native = nativeResult(file);
+      const bytesOfFile = fs.readFileSync(file);
+      let web;
+      try {
+        const k = kernelOf(L.parseMeshFile(name, bytesOfFile.buffer.slice(bytesOfFile.byteOffset, bytesOfFile.byteOffset + bytesOfFile.byteLength)));
+        web = { status: k.status, volume: k.volume };
+      } catch (e) {
+        web = { error: e.code };
+      }
+      if (native.ok) {
+        assert.equal(web.status, native.status, `${name}: ${JSON.stringify(web)}`);
+        assert.ok(Math.abs(web.volume - native.volume) <= 1e-9 * Math.max(1, Math.abs(native.volume)), `${name}: volume ${web.volume} vs ${native.volume}`);
+      } else {
+        assert.equal(web.error, native.error, `${name}: ${JSON.stringify(web)} vs native ${native.error}`);
+      }
+      compared++;
+    }
+  }
+  assert.ok(compared >= 40, `only ${compared} fixtures`);
+});
