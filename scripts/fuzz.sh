@@ -4,9 +4,10 @@
 #   bash scripts/fuzz.sh [SECONDS] [TARGET...]
 # Environment: KERGEN_FUZZ_JOBS=2 runs two targets at a time (default 1; the machine is shared),
 # KERGEN_FUZZ_BUILD (default build-fuzz), KERGEN_SHARED_MESHES (default ../shared/meshes).
-# Seed corpus: fuzz/corpus/<target>/ (gitignored), made at run time from the shared fixtures and
-# kept between runs (libFuzzer adds what it finds). Crash inputs and logs: fuzz/corpus/crashes/
-# (also gitignored); reproduce with build-fuzz/fuzz/<target> <file>.
+# Seed corpus: fuzz/corpus/<target>/ (gitignored), made at run time from the shared fixtures (and
+# turned prisms with large polygon caps from bench/turned_meshes.mjs) and kept between runs
+# (libFuzzer adds what it finds). Crash inputs and logs: fuzz/corpus/crashes/ (also gitignored);
+# reproduce with build-fuzz/fuzz/<target> <file>.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
@@ -25,13 +26,22 @@ cmake -S . -B "$BUILD" -DCMAKE_CXX_COMPILER=clang++ -DKERGEN_FUZZ=ON -DBUILD_TES
 cmake --build "$BUILD" -j2 --target "${TARGETS[@]}" fuzz_make_seeds >/dev/null
 
 mkdir -p fuzz/corpus fuzz/corpus/crashes
+# Seeds with large non-planar polygon faces (turned prisms over 150- to 300-corner gear, star and
+# spiral caps) for the validation's polygon split, when node is there to write them.
+GENERATED=()
+if command -v node >/dev/null; then
+  GEN_DIR=$(mktemp -d)
+  trap 'rm -rf "$GEN_DIR"' EXIT
+  node bench/turned_meshes.mjs "$GEN_DIR" --gear 150 --star 200 --spiral 300 >/dev/null
+  GENERATED=("$GEN_DIR"/*.off)
+fi
 if [ -d "$SHARED/fixtures" ]; then
   shopt -s nullglob
-  "$BUILD/fuzz/fuzz_make_seeds" fuzz/corpus "$SHARED"/fixtures/*.{off,obj,stl} "$SHARED"/fixtures/formats/* "$SHARED"/fixtures/bad/*.stl
+  "$BUILD/fuzz/fuzz_make_seeds" fuzz/corpus "$SHARED"/fixtures/*.{off,obj,stl} "$SHARED"/fixtures/formats/* "$SHARED"/fixtures/bad/*.stl "${GENERATED[@]}"
   shopt -u nullglob
 else
   echo "fuzz: $SHARED/fixtures not found: fuzzing without the shared seed meshes" >&2
-  "$BUILD/fuzz/fuzz_make_seeds" fuzz/corpus
+  "$BUILD/fuzz/fuzz_make_seeds" fuzz/corpus "${GENERATED[@]}"
 fi
 
 run_one() {
