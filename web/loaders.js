@@ -1,19 +1,17 @@
 // Mesh files → { positions: Float64Array (xyz), indices: Uint32Array, faceSizes?: Uint32Array }.
 //
-// STL (ascii and binary) is read with three.js's loader and welded by exact coordinate equality —
-// the same rule as the project's native reader — so the welded mesh is closed exactly when the
-// file is. (BufferGeometryUtils.mergeVertices hashes coordinates rounded to a fixed absolute grid,
-// 1e-4 by default, which merges distinct vertices of small-scale models; an exact key cannot.)
-// OBJ and OFF are read by the small parsers below, in double precision, with their polygon faces
-// kept: indices then holds the loops one after another and faceSizes their lengths (absent when
-// every face is a triangle), which is how the package takes polygons. (three.js's OBJLoader would
-// round coordinates to float32 and split every polygon as a fan from its first corner, which
-// folds over a non-convex polygon and gives the kernel of another shape.) OBJ vertices are welded
-// by exact coordinate equality too, as the triangle soups that three.js's loader produced were.
-// Indices are not range-checked here: the kernel package validates the mesh and reports
-// INDEX_OUT_OF_RANGE, OPEN_MESH, … itself.
-
-import { STLLoader } from 'three/examples/jsm/loaders/STLLoader.js';
+// Small readers of ours that follow the native ones (core/src/io.cpp), so that the page computes
+// the kernel of the same mesh as the CLI: coordinates in double precision (ascii STL, OBJ, OFF;
+// binary STL stores float32, which converts exactly), OBJ and OFF polygon faces kept as polygons
+// (indices holds the loops one after another and faceSizes their lengths, absent when every face
+// is a triangle: how the package takes polygons), STL corners welded by exact coordinate equality
+// (a triangle soup welded so is closed exactly when the file is; a rounded grid, as
+// BufferGeometryUtils.mergeVertices uses, merges distinct vertices of small models). three.js's
+// loaders, used before, rounded every coordinate to float32 and split polygons as fans from their
+// first corner, which fold over a non-convex polygon and give the kernel of another shape. OBJ
+// vertices are welded too, as the triangle soups three.js's OBJ loader produced were. Indices are
+// not range-checked here: the kernel package validates the mesh and reports INDEX_OUT_OF_RANGE,
+// OPEN_MESH, … itself.
 
 export class MeshParseError extends Error {
   // code: PARSE_ERROR, or EMPTY_INPUT for a file without faces (the native readers' codes)
@@ -31,26 +29,6 @@ export function extensionOf(name) {
   return m ? m[1].toLowerCase() : '';
 }
 
-// Welds a triangle soup (xyz per corner, 9 values per triangle) by exact coordinate equality.
-export function weldExact(corners) {
-  const n = corners.length / 3;
-  const map = new Map();
-  const positions = [];
-  const indices = new Uint32Array(n);
-  for (let i = 0; i < n; i++) {
-    const x = corners[3 * i], y = corners[3 * i + 1], z = corners[3 * i + 2];
-    const key = `${x},${y},${z}`; // Number → string round-trips exactly (and -0 prints as 0)
-    let id = map.get(key);
-    if (id === undefined) {
-      id = positions.length / 3;
-      map.set(key, id);
-      positions.push(x, y, z);
-    }
-    indices[i] = id;
-  }
-  return { positions: Float64Array.from(positions), indices };
-}
-
 // UTF-8 text (a byte order mark dropped); UTF-16 is refused with its reason, as the native
 // readers do, instead of reading as a file without faces.
 function decodeText(buffer) {
@@ -61,34 +39,139 @@ function decodeText(buffer) {
   return new TextDecoder().decode(buffer);
 }
 
-export function parseSTL(buffer) {
-  let geometry;
-  try {
-    geometry = new STLLoader().parse(buffer);
-  } catch (e) {
-    throw new MeshParseError(`not a readable STL file (${e.message})`);
+// Welds corners (xyz each) by exact coordinate equality into positions + one index per corner.
+class Welder {
+  constructor() {
+    this.map = new Map();
+    this.positions = [];
   }
-  const pos = geometry.getAttribute('position');
-  if (!pos || pos.count < 3) throw new MeshParseError('no triangles found in the STL file');
-  return weldExact(pos.array);
+  add(x, y, z) {
+    const key = `${x},${y},${z}`; // Number → string round-trips exactly (and -0 prints as 0)
+    let id = this.map.get(key);
+    if (id === undefined) {
+      id = this.positions.length / 3;
+      this.map.set(key, id);
+      this.positions.push(x, y, z);
+    }
+    return id;
+  }
 }
 
-// Text lines without comments, split into tokens; calls visit(tokens, lineNumber) for each
-// non-empty one.
+// STL: binary when its size is 84 + 50 × the header's triangle count, else ascii if it starts with
+// "solid" (many binary files start their header with "solid" too), as the native reader decides.
+export function parseSTL(buffer) {
+  const bytes = new Uint8Array(buffer.buffer ?? buffer, buffer.byteOffset ?? 0, buffer.byteLength);
+  if (bytes.length === 0) throw new MeshParseError('empty file', 'EMPTY_INPUT');
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const declared = bytes.length >= 84 ? view.getUint32(80, true) : -1;
+  const badSize = () =>
+    new MeshParseError(`byte 80: binary STL header declares ${declared} triangles (${84 + 50 * declared} bytes) but the file has ` +
+      `${bytes.length} bytes (room for ${Math.floor((bytes.length - 84) / 50)} triangles)`);
+  if (declared >= 0 && 84 + 50 * declared === bytes.length) {
+    if (declared === 0) throw new MeshParseError('no triangles', 'EMPTY_INPUT');
+    const welder = new Welder();
+    const indices = new Uint32Array(3 * declared);
+    for (let t = 0; t < declared; t++) {
+      for (let c = 0; c < 3; c++) {
+        const at = 84 + 50 * t + 12 + 12 * c;
+        const x = view.getFloat32(at, true), y = view.getFloat32(at + 4, true), z = view.getFloat32(at + 8, true);
+        if (!Number.isFinite(x + y + z)) throw new MeshParseError(`byte ${at}: non-finite coordinate in triangle ${t} (vertex ${c})`);
+        indices[3 * t + c] = welder.add(x, y, z);
+      }
+    }
+    return { positions: Float64Array.from(welder.positions), indices };
+  }
+  const text = new TextDecoder().decode(bytes);
+  if (/^\s*solid(\s|$)/i.test(text)) {
+    try {
+      return parseAsciiSTL(text);
+    } catch (e) {
+      // A NUL byte means binary data whose header happens to start with "solid": the real
+      // problem is then its triangle count, not its "text".
+      if (e.code === 'PARSE_ERROR' && declared >= 0 && bytes.includes(0)) throw badSize();
+      throw e;
+    }
+  }
+  if (declared < 0) throw new MeshParseError(`byte 0: not an STL file: ${bytes.length} bytes is shorter than a binary STL header (84 bytes) and the text does not start with 'solid'`);
+  throw badSize();
+}
+
+function parseAsciiSTL(text) {
+  const welder = new Welder();
+  const indices = [];
+  let state = 'outside', corners = [];
+  let lastLine = 0;
+  const expectEnd = (t, n, keyword, line) => {
+    if (t.length > n) throw new MeshParseError(`line ${line}: unexpected "${t[n].slice(0, 20)}" after '${keyword}'`);
+  };
+  eachLine(text, null, (t, line) => {
+    lastLine = line;
+    const word = t[0].toLowerCase();
+    const unexpected = (what) => {
+      throw new MeshParseError(`line ${line}: expected ${what}, found "${t[0].slice(0, 20)}"`);
+    };
+    if (state === 'outside') {
+      if (word !== 'solid') unexpected("'solid'");
+      state = 'solid'; // the rest of the line is the solid's name
+    } else if (state === 'solid') {
+      if (word === 'endsolid') state = 'outside';
+      else if (word === 'facet') {
+        if ((t[1] ?? '').toLowerCase() !== 'normal') throw new MeshParseError(`line ${line}: expected 'facet normal nx ny nz'`);
+        for (let k = 2; k < 5; k++) {
+          if (t[k] === undefined) throw new MeshParseError(`line ${line}: facet normal needs 3 components`);
+          // (some exporters write nan for degenerate facets' normals: harmless, nobody reads them)
+          if (!/^[+-]?(inf|infinity|nan(\(.*\))?)$/i.test(t[k])) parseNumber(t[k], line);
+        }
+        expectEnd(t, 5, 'facet normal', line);
+        state = 'facet';
+      } else unexpected("'facet' or 'endsolid'");
+    } else if (state === 'facet') {
+      if (word !== 'outer' || (t[1] ?? '').toLowerCase() !== 'loop') throw new MeshParseError(`line ${line}: expected 'outer loop', found "${t[0].slice(0, 20)}"`);
+      expectEnd(t, 2, 'outer loop', line);
+      state = 'loop';
+      corners = [];
+    } else if (state === 'loop') {
+      if (word === 'vertex') {
+        if (corners.length === 3) throw new MeshParseError(`line ${line}: facet has more than 3 vertices`);
+        if (t.length < 4) throw new MeshParseError(`line ${line}: vertex needs 3 coordinates, found ${t.length - 1}`);
+        const xyz = [1, 2, 3].map((k) => parseNumber(t[k], line));
+        expectEnd(t, 4, 'vertex x y z', line);
+        corners.push(welder.add(xyz[0], xyz[1], xyz[2]));
+      } else if (word === 'endloop') {
+        if (corners.length !== 3) throw new MeshParseError(`line ${line}: facet has ${corners.length} vertices (3 needed)`);
+        expectEnd(t, 1, 'endloop', line);
+        state = 'after';
+      } else unexpected("'vertex' or 'endloop'");
+    } else {
+      if (word !== 'endfacet') unexpected("'endfacet'");
+      expectEnd(t, 1, 'endfacet', line);
+      indices.push(...corners);
+      state = 'solid';
+    }
+  });
+  // A missing final "endsolid" is tolerated (common in hand-written files); a cut facet is not.
+  if (state !== 'outside' && state !== 'solid') throw new MeshParseError(`line ${lastLine}: unexpected end of file inside a facet`);
+  if (indices.length === 0) throw new MeshParseError('no facets', 'EMPTY_INPUT');
+  return { positions: Float64Array.from(welder.positions), indices: Uint32Array.from(indices) };
+}
+
+// Text lines without comments (comment: the character that starts one, or null), split into
+// tokens; calls visit(tokens, lineNumber) for each non-empty one.
 function eachLine(text, comment, visit) {
   const lines = text.split(/\r\n|\n|\r/);
   for (let i = 0; i < lines.length; i++) {
-    const cut = lines[i].indexOf(comment);
+    const cut = comment ? lines[i].indexOf(comment) : -1;
     const body = (cut >= 0 ? lines[i].slice(0, cut) : lines[i]).trim();
     if (body) visit(body.split(/\s+/), i + 1);
   }
 }
 
-function parseCoordinate(token, line) {
-  const v = Number(token);
-  // (NaN and infinities are read as such: the package reports NON_FINITE_COORDINATE)
-  if (Number.isNaN(v) && !/^[+-]?nan$/i.test(token)) throw new MeshParseError(`line ${line}: "${token.slice(0, 20)}" is not a number`);
-  return v;
+// A coordinate as the native readers take it: [+-]digits[.digits][e[+-]digits] (or .digits);
+// inf, infinity and nan are refused as non-finite, anything else as not a number.
+function parseNumber(token, line) {
+  if (token !== undefined && /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(token)) return Number(token);
+  if (token !== undefined && /^[+-]?(inf|infinity|nan(\(.*\))?)$/i.test(token)) throw new MeshParseError(`line ${line}: non-finite coordinate "${token.slice(0, 20)}"`);
+  throw new MeshParseError(`line ${line}: invalid number "${String(token).slice(0, 20)}"`);
 }
 
 // The faces' loops and sizes as typed arrays; faceSizes only when some face is not a triangle.
@@ -107,7 +190,7 @@ export function parseOBJ(buffer) {
   eachLine(decodeText(buffer), '#', (t, line) => {
     if (t[0] === 'v') {
       if (t.length < 4) throw new MeshParseError(`line ${line}: a vertex needs 3 coordinates`);
-      for (let k = 1; k <= 3; k++) xyz.push(parseCoordinate(t[k], line));
+      for (let k = 1; k <= 3; k++) xyz.push(parseNumber(t[k], line));
     } else if (t[0] === 'f') {
       if (t.length < 4) throw new MeshParseError(`line ${line}: a face needs at least 3 vertices (found ${t.length - 1})`);
       const nv = xyz.length / 3;
@@ -161,7 +244,7 @@ export function parseOFF(buffer) {
     throw new MeshParseError(line ? `line ${line}: ${why}` : why);
   };
   let rec = next();
-  if (!rec) fail(0, 'the file is empty');
+  if (!rec) throw new MeshParseError('the file is empty', 'EMPTY_INPUT');
   if (/^[A-Z0-9]*OFF$/i.test(rec.tokens[0])) {
     rec.tokens.shift();
     if (rec.tokens.length === 0) rec = next();
@@ -171,17 +254,14 @@ export function parseOFF(buffer) {
   if (!rec || rec.tokens.length < 2) fail(rec?.line ?? 0, 'expected the counts "vertices faces edges"');
   const nv = Number(rec.tokens[0]), nf = Number(rec.tokens[1]);
   if (!Number.isInteger(nv) || !Number.isInteger(nf) || nv < 0 || nf < 0) fail(rec.line, 'invalid vertex/face counts');
-  const positions = new Float64Array(3 * nv);
+  const xyz = []; // (grown as read: a header's counts are not trusted for an allocation)
   for (let i = 0; i < nv; i++) {
     const r = next();
     if (!r) fail(0, `the file ends after ${i} of ${nv} vertices`);
     if (r.tokens.length < 3) fail(r.line, 'a vertex needs 3 coordinates');
-    for (let k = 0; k < 3; k++) {
-      const v = Number(r.tokens[k]);
-      if (Number.isNaN(v) && !/^nan$/i.test(r.tokens[k])) fail(r.line, `"${r.tokens[k].slice(0, 20)}" is not a number`);
-      positions[3 * i + k] = v;
-    }
+    for (let k = 0; k < 3; k++) xyz.push(parseNumber(r.tokens[k], r.line));
   }
+  const positions = Float64Array.from(xyz);
   const loops = [], sizes = [];
   for (let f = 0; f < nf; f++) {
     const r = next();

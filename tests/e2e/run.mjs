@@ -446,7 +446,7 @@ async function main() {
     const fileCases = [
       ['OFF (double precision)', 'dented-cube.off', 'dented-cube', writeOFF, 1e-9],
       ['binary STL (float32, welded)', 'plus-prism.stl', 'plus-prism', writeBinarySTL, 1e-6],
-      ['ascii STL (welded)', 'star-prism.stl', 'star-prism', writeAsciiSTL, 1e-6],
+      ['ascii STL (double precision, welded)', 'star-prism.stl', 'star-prism', writeAsciiSTL, 1e-9],
       ['OBJ (double precision)', 'gear.obj', 'gear', writeOBJ, 1e-9],
     ];
     for (const [label, fname, id, writer, tol] of fileCases) {
@@ -524,7 +524,7 @@ async function main() {
       ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'INDEX_OUT_OF_RANGE', /index|vertex/i],
       ['open cube (one face missing)', 'open-cube.off', (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)), 'OPEN_MESH', /open/i],
       ['two cubes sharing an edge', 'edge-cubes.off', writeEdgeSharingCubes, 'NON_MANIFOLD_EDGE', /manifold/i],
-      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n8 6 0\n0 0 zero\n'), 'PARSE_ERROR', /not a number/i],
+      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n8 6 0\n0 0 zero\n'), 'PARSE_ERROR', /line 3: invalid number "zero"/i],
       ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /STL/],
       ['unsupported extension', 'mesh.ply', (f) => fs.writeFileSync(f, 'ply\n'), 'PARSE_ERROR', /unsupported/i],
     ];

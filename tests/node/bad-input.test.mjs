@@ -1,6 +1,6 @@
 // The bad-input table (tests/bad_inputs.json, shared with tests/core/bad_input_test.cpp) through
 // the npm package: every 'mesh' row goes to computeKernel, every file row marked "npm" goes
-// through the web demo's loader (web/loaders.js: three.js STLLoader + exact welding, what the
+// through the web demo's loader (web/loaders.js: its STL reader with exact welding, what the
 // browser does) and then computeKernel. Errors must be KergenError instances with the row's code
 // and message fragment; successes must match the row's status / volume / warning. (Rows the
 // native readers reject as malformed files have no npm counterpart: the package takes arrays.)

@@ -1,8 +1,9 @@
-// The web demo's OBJ and OFF readers (web/loaders.js) keep polygon faces and double precision, so
-// the demo computes the kernel of the file's own shape: an L prism whose caps are single
-// non-convex hexagons has the unit cube for kernel (volume 1), in every OBJ face form; and on
-// every OBJ/OFF fixture the demo's reader + the package give the native CLI's answer (same status
-// or error code, volume within 1e-9 relative).
+// The web demo's readers (web/loaders.js) follow the native ones: OBJ and OFF keep polygon faces,
+// ascii STL, OBJ and OFF keep double precision, so the demo computes the kernel of the file's own
+// shape: an L prism whose caps are single non-convex hexagons has the unit cube for kernel
+// (volume 1), in OFF and in every OBJ face form; and on every OBJ/OFF/STL fixture (the bad ones
+// too) the demo's reader + the package give the native CLI's answer (same status or error code,
+// volume within 1e-9 relative).
 import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -70,10 +71,27 @@ test('OBJ: polygon faces in the forms i, i/t, i//n, i/t/n and negative, double p
   assert.ok(Math.abs(kernelOf(welded).volume - 1) < 1e-12);
 });
 
+test('STL: ascii in double precision and welded, binary float32 values welded', () => {
+  const e = 2 ** -40;
+  const tri = [[0, 0, 0], [1 + e, 0, 0], [0, 1, 0]];
+  const ascii = ['solid t', ...[0, 1].flatMap(() => ['facet normal 0 0 1', 'outer loop', ...tri.map((p) => `vertex ${p.join(' ')}`), 'endloop', 'endfacet']), 'endsolid t'];
+  const a = L.parseMeshFile('t.stl', bytes(ascii.join('\n')));
+  assert.equal(a.positions.length / 3, 3, 'two copies of one triangle weld to 3 vertices');
+  assert.equal(a.positions[3], 1 + e);
+  assert.deepEqual(Array.from(a.indices), [0, 1, 2, 0, 1, 2]);
+  const bin = new DataView(new ArrayBuffer(84 + 50));
+  bin.setUint32(80, 1, true);
+  tri.forEach((p, c) => p.forEach((x, k) => bin.setFloat32(84 + 12 + 12 * c + 4 * k, x, true)));
+  const b = L.parseMeshFile('t.stl', bin.buffer);
+  assert.equal(b.positions[3], Math.fround(1 + e));
+  assert.throws(() => L.parseMeshFile('t.stl', bytes('solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 x\n')), /line 4: invalid number "x"/);
+});
+
 test('OBJ/OFF reader errors: code and line', () => {
   const cases = [
     ['f.obj', 'v 0 0 0\nv 1 0 0\nf 1 2', 'PARSE_ERROR', /line 3: a face needs at least 3 vertices/],
-    ['f.obj', 'v 0 0 0\nv x 0 0', 'PARSE_ERROR', /line 2: "x" is not a number/],
+    ['f.obj', 'v 0 0 0\nv x 0 0', 'PARSE_ERROR', /line 2: invalid number "x"/],
+    ['f.obj', 'v 0 0 nan', 'PARSE_ERROR', /line 1: non-finite coordinate "nan"/],
     ['f.obj', 'v 0 0 0\nf 0 1 1', 'PARSE_ERROR', /line 2: vertex index 0/],
     ['f.obj', 'v 0 0 0\nf -2 1 1', 'PARSE_ERROR', /line 2: vertex -2 counts back past the first vertex/],
     ['f.obj', 'v 0 0 0\nf 1 1 99999999999', 'PARSE_ERROR', /too large/],
@@ -98,16 +116,16 @@ function nativeResult(file) {
   return JSON.parse(out);
 }
 
-test('every OBJ/OFF fixture: the demo reader + package give the native CLI answer', (t) => {
+test('every OBJ/OFF/STL fixture: the demo reader + package give the native CLI answer', (t) => {
   const missing = sharedMeshesMissing() || (fs.existsSync(nativeCli) ? '' : `${nativeCli} not built`);
   if (missing) {
     t.skip(missing);
     return;
   }
   let compared = 0;
-  for (const dir of ['fixtures', 'fixtures/formats']) {
+  for (const dir of ['fixtures', 'fixtures/formats', 'fixtures/bad']) {
     for (const name of fs.readdirSync(path.join(sharedMeshes, dir)).sort()) {
-      if (!/\.(obj|off)$/i.test(name)) continue;
+      if (!/\.(obj|off|stl)$/i.test(name)) continue;
       const file = path.join(sharedMeshes, dir, name);
       const native = nativeResult(file);
       const bytesOfFile = fs.readFileSync(file);
@@ -127,5 +145,5 @@ test('every OBJ/OFF fixture: the demo reader + package give the native CLI answe
       compared++;
     }
   }
-  assert.ok(compared >= 40, `only ${compared} fixtures`);
+  assert.ok(compared >= 55, `only ${compared} fixtures`);
 });

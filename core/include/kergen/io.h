@@ -1,4 +1,5 @@
-// kergen/io.h — mesh files in and out (native side; the browser uses three.js loaders).
+// kergen/io.h — mesh files in and out (native side; the browser demo has JavaScript readers that
+// follow these, web/loaders.js).
 //
 // Readers: OFF, OBJ (polygons, negative/relative indices, `v/vt/vn` forms, comments, groups,
 // materials and other records ignored), STL ascii and binary (told apart by content, not by the
