@@ -39,21 +39,61 @@ function decodeText(buffer) {
   return new TextDecoder().decode(buffer);
 }
 
-// Welds corners (xyz each) by exact coordinate equality into positions + one index per corner.
+// Welds corners (xyz each, finite) by exact coordinate equality (-0 equals 0) into positions and
+// one id per corner: an open-addressing hash table over the coordinates' bits.
 class Welder {
   constructor() {
-    this.map = new Map();
-    this.positions = [];
+    this.xyz = new Float64Array(3 * 1024);
+    this.count = 0;
+    this.slots = new Int32Array(2048).fill(-1);
+    this.bits = new Float64Array(1);
+    this.words = new Uint32Array(this.bits.buffer);
+  }
+  hash(x, y, z) {
+    let h = 0x811c9dc5;
+    for (const v of [x, y, z]) {
+      this.bits[0] = v;
+      h = Math.imul(h ^ this.words[0], 0x9e3779b1);
+      h = Math.imul(h ^ this.words[1], 0x85ebca77);
+    }
+    return (h ^ (h >>> 15)) >>> 0;
   }
   add(x, y, z) {
-    const key = `${x},${y},${z}`; // Number → string round-trips exactly (and -0 prints as 0)
-    let id = this.map.get(key);
-    if (id === undefined) {
-      id = this.positions.length / 3;
-      this.map.set(key, id);
-      this.positions.push(x, y, z);
+    x += 0; // (-0 + 0 = +0: equal coordinates hash alike)
+    y += 0;
+    z += 0;
+    const xyz = this.xyz, slots = this.slots, mask = slots.length - 1;
+    for (let i = this.hash(x, y, z) & mask; ; i = (i + 1) & mask) {
+      const id = slots[i];
+      if (id < 0) {
+        slots[i] = this.count;
+        break;
+      }
+      if (xyz[3 * id] === x && xyz[3 * id + 1] === y && xyz[3 * id + 2] === z) return id;
     }
+    if (3 * this.count + 3 > this.xyz.length) {
+      const grown = new Float64Array(2 * this.xyz.length);
+      grown.set(this.xyz);
+      this.xyz = grown;
+    }
+    this.xyz[3 * this.count] = x;
+    this.xyz[3 * this.count + 1] = y;
+    this.xyz[3 * this.count + 2] = z;
+    const id = this.count++;
+    if (2 * this.count > slots.length) this.rehash();
     return id;
+  }
+  rehash() {
+    const slots = new Int32Array(2 * this.slots.length).fill(-1), mask = slots.length - 1;
+    for (let id = 0; id < this.count; id++) {
+      let i = this.hash(this.xyz[3 * id], this.xyz[3 * id + 1], this.xyz[3 * id + 2]) & mask;
+      while (slots[i] >= 0) i = (i + 1) & mask;
+      slots[i] = id;
+    }
+    this.slots = slots;
+  }
+  get positions() {
+    return this.xyz.slice(0, 3 * this.count);
   }
 }
 
@@ -79,7 +119,7 @@ export function parseSTL(buffer) {
         indices[3 * t + c] = welder.add(x, y, z);
       }
     }
-    return { positions: Float64Array.from(welder.positions), indices };
+    return { positions: welder.positions, indices };
   }
   const text = new TextDecoder().decode(bytes);
   if (/^\s*solid(\s|$)/i.test(text)) {
@@ -99,60 +139,65 @@ export function parseSTL(buffer) {
 function parseAsciiSTL(text) {
   const welder = new Welder();
   const indices = [];
-  let state = 'outside', corners = [];
+  let state = 'outside', count = 0, c0 = 0, c1 = 0, c2 = 0;
   let lastLine = 0;
-  const expectEnd = (t, n, keyword, line) => {
-    if (t.length > n) throw new MeshParseError(`line ${line}: unexpected "${t[n].slice(0, 20)}" after '${keyword}'`);
+  const fail = (line, why) => {
+    throw new MeshParseError(`line ${line}: ${why}`);
   };
+  const expectEnd = (t, n, keyword, line) => {
+    if (t.length > n) fail(line, `unexpected "${t[n].slice(0, 20)}" after '${keyword}'`);
+  };
+  const unexpected = (t, line, what) => fail(line, `expected ${what}, found "${t[0].slice(0, 20)}"`);
   eachLine(text, null, (t, line) => {
     lastLine = line;
-    const word = t[0].toLowerCase();
-    const unexpected = (what) => {
-      throw new MeshParseError(`line ${line}: expected ${what}, found "${t[0].slice(0, 20)}"`);
-    };
-    if (state === 'outside') {
-      if (word !== 'solid') unexpected("'solid'");
-      state = 'solid'; // the rest of the line is the solid's name
+    // (the usual spelling first: lower-case keywords)
+    const word = t[0] === 'vertex' || t[0] === 'facet' || t[0] === 'endfacet' || t[0] === 'outer' || t[0] === 'endloop' ? t[0] : t[0].toLowerCase();
+    if (state === 'loop') {
+      if (word === 'vertex') {
+        if (count === 3) fail(line, 'facet has more than 3 vertices');
+        if (t.length < 4) fail(line, `vertex needs 3 coordinates, found ${t.length - 1}`);
+        const id = welder.add(parseNumber(t[1], line), parseNumber(t[2], line), parseNumber(t[3], line));
+        expectEnd(t, 4, 'vertex x y z', line);
+        if (count === 0) c0 = id;
+        else if (count === 1) c1 = id;
+        else c2 = id;
+        ++count;
+      } else if (word === 'endloop') {
+        if (count !== 3) fail(line, `facet has ${count} vertices (3 needed)`);
+        expectEnd(t, 1, 'endloop', line);
+        state = 'after';
+      } else unexpected(t, line, "'vertex' or 'endloop'");
     } else if (state === 'solid') {
-      if (word === 'endsolid') state = 'outside';
-      else if (word === 'facet') {
-        if ((t[1] ?? '').toLowerCase() !== 'normal') throw new MeshParseError(`line ${line}: expected 'facet normal nx ny nz'`);
+      if (word === 'facet') {
+        if ((t[1] ?? '').toLowerCase() !== 'normal') fail(line, "expected 'facet normal nx ny nz'");
         for (let k = 2; k < 5; k++) {
-          if (t[k] === undefined) throw new MeshParseError(`line ${line}: facet normal needs 3 components`);
+          if (t[k] === undefined) fail(line, 'facet normal needs 3 components');
           // (some exporters write nan for degenerate facets' normals: harmless, nobody reads them)
           if (!/^[+-]?(inf|infinity|nan(\(.*\))?)$/i.test(t[k])) parseNumber(t[k], line);
         }
         expectEnd(t, 5, 'facet normal', line);
         state = 'facet';
-      } else unexpected("'facet' or 'endsolid'");
+      } else if (word === 'endsolid') state = 'outside';
+      else unexpected(t, line, "'facet' or 'endsolid'");
     } else if (state === 'facet') {
-      if (word !== 'outer' || (t[1] ?? '').toLowerCase() !== 'loop') throw new MeshParseError(`line ${line}: expected 'outer loop', found "${t[0].slice(0, 20)}"`);
+      if (word !== 'outer' || (t[1] ?? '').toLowerCase() !== 'loop') fail(line, `expected 'outer loop', found "${t[0].slice(0, 20)}"`);
       expectEnd(t, 2, 'outer loop', line);
       state = 'loop';
-      corners = [];
-    } else if (state === 'loop') {
-      if (word === 'vertex') {
-        if (corners.length === 3) throw new MeshParseError(`line ${line}: facet has more than 3 vertices`);
-        if (t.length < 4) throw new MeshParseError(`line ${line}: vertex needs 3 coordinates, found ${t.length - 1}`);
-        const xyz = [1, 2, 3].map((k) => parseNumber(t[k], line));
-        expectEnd(t, 4, 'vertex x y z', line);
-        corners.push(welder.add(xyz[0], xyz[1], xyz[2]));
-      } else if (word === 'endloop') {
-        if (corners.length !== 3) throw new MeshParseError(`line ${line}: facet has ${corners.length} vertices (3 needed)`);
-        expectEnd(t, 1, 'endloop', line);
-        state = 'after';
-      } else unexpected("'vertex' or 'endloop'");
-    } else {
-      if (word !== 'endfacet') unexpected("'endfacet'");
+      count = 0;
+    } else if (state === 'after') {
+      if (word !== 'endfacet') unexpected(t, line, "'endfacet'");
       expectEnd(t, 1, 'endfacet', line);
-      indices.push(...corners);
+      indices.push(c0, c1, c2);
       state = 'solid';
+    } else {
+      if (word !== 'solid') unexpected(t, line, "'solid'");
+      state = 'solid'; // the rest of the line is the solid's name
     }
   });
   // A missing final "endsolid" is tolerated (common in hand-written files); a cut facet is not.
-  if (state !== 'outside' && state !== 'solid') throw new MeshParseError(`line ${lastLine}: unexpected end of file inside a facet`);
+  if (state !== 'outside' && state !== 'solid') fail(lastLine, 'unexpected end of file inside a facet');
   if (indices.length === 0) throw new MeshParseError('no facets', 'EMPTY_INPUT');
-  return { positions: Float64Array.from(welder.positions), indices: Uint32Array.from(indices) };
+  return { positions: welder.positions, indices: Uint32Array.from(indices) };
 }
 
 // Text lines without comments (comment: the character that starts one, or null), split into
@@ -167,10 +212,18 @@ function eachLine(text, comment, visit) {
 }
 
 // A coordinate as the native readers take it: [+-]digits[.digits][e[+-]digits] (or .digits);
-// inf, infinity and nan are refused as non-finite, anything else as not a number.
+// inf, infinity, nan and overflowing numbers are refused as non-finite, anything else as not a
+// number. (Fast path: Number() agrees on every finite token but hex, binary and octal ones.)
 function parseNumber(token, line) {
-  if (token !== undefined && /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(token)) return Number(token);
-  if (token !== undefined && /^[+-]?(inf|infinity|nan(\(.*\))?)$/i.test(token)) throw new MeshParseError(`line ${line}: non-finite coordinate "${token.slice(0, 20)}"`);
+  if (token !== undefined) {
+    const v = Number(token);
+    const second = token.charCodeAt(1) | 32; // (lower case)
+    if (Number.isFinite(v) && second !== 120 && second !== 98 && second !== 111) return v; // x, b, o
+    if (/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(token) && Number.isFinite(v)) return v;
+    if (/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(token) || /^[+-]?(inf|infinity|nan(\(.*\))?)$/i.test(token)) {
+      throw new MeshParseError(`line ${line}: non-finite coordinate "${token.slice(0, 20)}"`);
+    }
+  }
   throw new MeshParseError(`line ${line}: invalid number "${String(token).slice(0, 20)}"`);
 }
 
@@ -210,20 +263,11 @@ export function parseOBJ(buffer) {
   // Weld by exact coordinate equality (references past the last vertex are left for the package
   // to report).
   const nv = xyz.length / 3;
-  const map = new Map(), weldedOf = new Uint32Array(nv), positions = [];
-  for (let v = 0; v < nv; v++) {
-    const key = `${xyz[3 * v]},${xyz[3 * v + 1]},${xyz[3 * v + 2]}`;
-    let id = map.get(key);
-    if (id === undefined) {
-      id = positions.length / 3;
-      map.set(key, id);
-      positions.push(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-    }
-    weldedOf[v] = id;
-  }
-  const welded = positions.length / 3;
+  const welder = new Welder(), weldedOf = new Uint32Array(nv);
+  for (let v = 0; v < nv; v++) weldedOf[v] = welder.add(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  const welded = welder.count;
   for (let i = 0; i < loops.length; i++) loops[i] = loops[i] < nv ? weldedOf[loops[i]] : welded + (loops[i] - nv);
-  return polygonMesh(Float64Array.from(positions), loops, sizes);
+  return polygonMesh(welder.positions, loops, sizes);
 }
 
 // OFF: optional header word (OFF, COFF, NOFF, STOFF, …), counts "V F E", V vertex lines (x y z,
