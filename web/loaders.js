@@ -9,9 +9,10 @@
 // BufferGeometryUtils.mergeVertices uses, merges distinct vertices of small models). three.js's
 // loaders, used before, rounded every coordinate to float32 and split polygons as fans from their
 // first corner, which fold over a non-convex polygon and give the kernel of another shape. OBJ
-// vertices are welded too, as the triangle soups three.js's OBJ loader produced were. Indices are
-// not range-checked here: the kernel package validates the mesh and reports INDEX_OUT_OF_RANGE,
-// OPEN_MESH, … itself.
+// vertices are welded too, as the triangle soups three.js's OBJ loader produced were. What a
+// reader refuses, and with which code (PARSE_ERROR, EMPTY_INPUT), is what the CLI's reader
+// refuses: the same line and token rules, the same number grammar, indices range-checked; the
+// kernel package then validates the mesh itself (OPEN_MESH, NON_MANIFOLD_EDGE, …).
 
 export class MeshParseError extends Error {
   // code: PARSE_ERROR, or EMPTY_INPUT for a file without faces (the native readers' codes)
@@ -122,7 +123,7 @@ export function parseSTL(buffer) {
     return { positions: welder.positions, indices };
   }
   const text = new TextDecoder().decode(bytes);
-  if (/^\s*solid(\s|$)/i.test(text)) {
+  if (/^[ \t\r\v\f\n]*solid([ \t\r\v\f\n]|$)/i.test(text)) {
     try {
       return parseAsciiSTL(text);
     } catch (e) {
@@ -172,8 +173,9 @@ function parseAsciiSTL(text) {
         if ((t[1] ?? '').toLowerCase() !== 'normal') fail(line, "expected 'facet normal nx ny nz'");
         for (let k = 2; k < 5; k++) {
           if (t[k] === undefined) fail(line, 'facet normal needs 3 components');
-          // (some exporters write nan for degenerate facets' normals: harmless, nobody reads them)
-          if (!/^[+-]?(inf|infinity|nan(\(.*\))?)$/i.test(t[k])) parseNumber(t[k], line);
+          // (some exporters write nan for degenerate facets' normals: harmless, nobody reads them;
+        // a non-finite component is accepted as the CLI accepts it)
+          if (numberStatus(t[k]) === 'invalid') fail(line, `invalid number "${t[k].slice(0, 20)}"`);
         }
         expectEnd(t, 5, 'facet normal', line);
         state = 'facet';
@@ -200,30 +202,53 @@ function parseAsciiSTL(text) {
   return { positions: welder.positions, indices: Uint32Array.from(indices) };
 }
 
-// Text lines without comments (comment: the character that starts one, or null), split into
-// tokens; calls visit(tokens, lineNumber) for each non-empty one.
+// The native readers' lines and tokens: lines end at '\n' only (a '\r' is a blank, so "\r\n" files
+// read alike and a file of lone '\r's is one line, as in the CLI), tokens are separated by the
+// blanks space, '\t', '\r', '\v' and '\f' (not by other Unicode spaces, which the CLI reads as
+// part of a token). comment: the character that starts a comment, or null.
+const BLANKS = /[ \t\r\v\f]+/;
+function tokensOf(line, comment) {
+  const cut = comment ? line.indexOf(comment) : -1;
+  const tokens = (cut >= 0 ? line.slice(0, cut) : line).split(BLANKS);
+  if (tokens.length && tokens[tokens.length - 1] === '') tokens.pop();
+  if (tokens.length && tokens[0] === '') tokens.shift();
+  return tokens;
+}
+// Calls visit(tokens, lineNumber) for each line with a token.
 function eachLine(text, comment, visit) {
-  const lines = text.split(/\r\n|\n|\r/);
+  const lines = text.split('\n');
   for (let i = 0; i < lines.length; i++) {
-    const cut = comment ? lines[i].indexOf(comment) : -1;
-    const body = (cut >= 0 ? lines[i].slice(0, cut) : lines[i]).trim();
-    if (body) visit(body.split(/\s+/), i + 1);
+    const tokens = tokensOf(lines[i], comment);
+    if (tokens.length) visit(tokens, i + 1);
   }
 }
 
-// A coordinate as the native readers take it: [+-]digits[.digits][e[+-]digits] (or .digits);
-// inf, infinity, nan and overflowing numbers are refused as non-finite, anything else as not a
-// number. (Fast path: Number() agrees on every finite token but hex, binary and octal ones.)
+// The native readers' integers: [+]digits or -digits (no other sign, no decimal point).
+const INTEGER = /^(\+?\d+|-\d+)$/;
+
+// A number as the native readers take it: [+-](digits[.digits] | .digits)[(e|E)[+-]digits]; inf,
+// infinity, nan, nan(…) and numbers too large for a double are non-finite, anything else is not
+// a number. 'ok', 'nonfinite' or 'invalid'. (Fast path: Number() agrees on every finite token
+// that starts with a sign, a digit or '.' and ends with a digit or '.', but hex, binary and octal
+// ones; those ends keep it from trimming spaces such as U+00A0, which the CLI reads as part of
+// the token.)
+const DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
+const NON_FINITE = /^[+-]?(inf|infinity|nan|nan\(.*\))$/i;
+function numberStatus(token) {
+  const first = token.charCodeAt(0), last = token.charCodeAt(token.length - 1);
+  const second = token.charCodeAt(1) | 32; // (lower case)
+  const v = Number(token);
+  if (Number.isFinite(v) && ((first >= 48 && first <= 57) || first === 43 || first === 45 || first === 46) &&
+      ((last >= 48 && last <= 57) || last === 46) && second !== 120 && second !== 98 && second !== 111) return 'ok'; // x, b, o
+  if (DECIMAL.test(token)) return Number.isFinite(v) ? 'ok' : 'nonfinite';
+  return NON_FINITE.test(token) ? 'nonfinite' : 'invalid';
+}
+
+// A coordinate: a finite number, else a MeshParseError naming the line.
 function parseNumber(token, line) {
-  if (token !== undefined) {
-    const v = Number(token);
-    const second = token.charCodeAt(1) | 32; // (lower case)
-    if (Number.isFinite(v) && second !== 120 && second !== 98 && second !== 111) return v; // x, b, o
-    if (/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(token) && Number.isFinite(v)) return v;
-    if (/^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(token) || /^[+-]?(inf|infinity|nan(\(.*\))?)$/i.test(token)) {
-      throw new MeshParseError(`line ${line}: non-finite coordinate "${token.slice(0, 20)}"`);
-    }
-  }
+  const status = token === undefined ? 'invalid' : numberStatus(token);
+  if (status === 'ok') return Number(token);
+  if (status === 'nonfinite') throw new MeshParseError(`line ${line}: non-finite coordinate "${token.slice(0, 20)}"`);
   throw new MeshParseError(`line ${line}: invalid number "${String(token).slice(0, 20)}"`);
 }
 
@@ -234,95 +259,126 @@ function polygonMesh(positions, loops, sizes) {
   return mesh;
 }
 
-// OBJ: "v x y z [w]" and "f a b c …" with a, b, c in the forms i, i/t, i//n, i/t/n (1-based, or
-// negative: counted back from the last vertex so far); '#' starts a comment; other records
-// (vt, vn, g, o, s, usemtl, mtllib, l, p, …) are ignored.
+// OBJ: "v x y z [w]" and "f a b c …" (or "fo") with a, b, c in the forms i, i/t, i//n, i/t/n
+// (1-based, or negative: counted back from the last vertex so far; t and n integers or empty); a
+// positive index may refer to a vertex defined further down, and is checked at the end; '#'
+// starts a comment; other records (vt, vn, g, o, s, usemtl, mtllib, l, p, …) are ignored.
 export function parseOBJ(buffer) {
   const xyz = [];
   const loops = [], sizes = [];
+  let largest = 0, largestLine = 0, pointsAndLines = 0;
+  const fail = (line, why) => {
+    throw new MeshParseError(`line ${line}: ${why}`);
+  };
   eachLine(decodeText(buffer), '#', (t, line) => {
     if (t[0] === 'v') {
-      if (t.length < 4) throw new MeshParseError(`line ${line}: a vertex needs 3 coordinates`);
+      if (t.length < 4) fail(line, `vertex needs 3 coordinates, found ${t.length - 1}`);
       for (let k = 1; k <= 3; k++) xyz.push(parseNumber(t[k], line));
-    } else if (t[0] === 'f') {
-      if (t.length < 4) throw new MeshParseError(`line ${line}: a face needs at least 3 vertices (found ${t.length - 1})`);
+    } else if (t[0] === 'f' || t[0] === 'fo') {
       const nv = xyz.length / 3;
       for (let k = 1; k < t.length; k++) {
-        const ref = t[k].split('/')[0];
-        if (!/^[+-]?\d+$/.test(ref)) throw new MeshParseError(`line ${line}: "${t[k].slice(0, 20)}" is not a vertex reference`);
-        const i = Number(ref);
-        if (i === 0) throw new MeshParseError(`line ${line}: vertex index 0 (OBJ counts from 1)`);
-        if (i > 0xffffffff) throw new MeshParseError(`line ${line}: vertex index ${ref.slice(0, 20)} is too large`);
-        if (i < 0 && nv + i < 0) throw new MeshParseError(`line ${line}: vertex ${i} counts back past the first vertex`);
-        loops.push(i > 0 ? i - 1 : nv + i);
+        const parts = t[k].split('/');
+        const bad = () => fail(line, `invalid face vertex "${t[k].slice(0, 20)}"`);
+        if (parts.length > 3 || !INTEGER.test(parts[0])) bad();
+        for (let p = 1; p < parts.length; p++) if (parts[p] !== '' && !INTEGER.test(parts[p])) bad();
+        const i = Number(parts[0]);
+        if (i === 0) fail(line, 'vertex index 0 (OBJ indices start at 1)');
+        if (i < 0) {
+          if (-i > nv) fail(line, `relative vertex index ${parts[0]} points before the first vertex (${nv} vertices so far)`);
+          loops.push(nv + i);
+        } else {
+          if (i > 0xffffffff) fail(line, `vertex index ${parts[0].slice(0, 20)} out of range`);
+          if (i > largest) {
+            largest = i;
+            largestLine = line;
+          }
+          loops.push(i - 1);
+        }
       }
+      if (t.length < 4) fail(line, `face has ${t.length - 1} vertices (at least 3 needed)`);
       sizes.push(t.length - 1);
+    } else if (t[0] === 'l' || t[0] === 'p') {
+      pointsAndLines++;
     }
   });
-  if (sizes.length === 0) throw new MeshParseError('no faces found in the OBJ file (only points or lines?)', 'EMPTY_INPUT');
-  // Weld by exact coordinate equality (references past the last vertex are left for the package
-  // to report).
   const nv = xyz.length / 3;
+  if (largest > nv) fail(largestLine, `vertex index ${largest} out of range (the file has ${nv} vertices)`);
+  if (sizes.length === 0) {
+    throw new MeshParseError(pointsAndLines ? 'no faces (only points/lines)' : nv ? 'no faces' : 'no vertices and no faces', 'EMPTY_INPUT');
+  }
+  // Weld by exact coordinate equality.
   const welder = new Welder(), weldedOf = new Uint32Array(nv);
   for (let v = 0; v < nv; v++) weldedOf[v] = welder.add(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-  const welded = welder.count;
-  for (let i = 0; i < loops.length; i++) loops[i] = loops[i] < nv ? weldedOf[loops[i]] : welded + (loops[i] - nv);
+  for (let i = 0; i < loops.length; i++) loops[i] = weldedOf[loops[i]];
   return polygonMesh(welder.positions, loops, sizes);
 }
 
-// OFF: optional header word (OFF, COFF, NOFF, STOFF, …), counts "V F E", V vertex lines (x y z,
-// extra values such as colours ignored), F face lines "n i1 … in" (colours ignored); '#' starts a
-// comment. Polygons are kept (faceSizes).
+// OFF: the header word [ST][C][N]OFF (texture coordinates, colours and normals after xyz are
+// ignored; 4OFF, nOFF and binary OFF are refused), the counts "V F [E]" on its line or the next,
+// V vertex lines (x y z, then anything), F face lines "n i1 … in" (then anything, e.g. a colour);
+// '#' starts a comment. Polygons are kept (faceSizes).
 export function parseOFF(buffer) {
-  const lines = decodeText(buffer).split(/\r\n|\n|\r/);
+  const lines = decodeText(buffer).split('\n');
   let li = 0;
   const next = () => {
     while (li < lines.length) {
-      const raw = lines[li++];
-      const text = raw.replace(/#.*/, '').trim();
-      if (text) return { tokens: text.split(/\s+/), line: li };
+      const tokens = tokensOf(lines[li++], '#');
+      if (tokens.length) return { tokens, line: li };
     }
     return null;
   };
   const fail = (line, why) => {
-    throw new MeshParseError(line ? `line ${line}: ${why}` : why);
+    throw new MeshParseError(`line ${line}: ${why}`);
   };
   let rec = next();
-  if (!rec) throw new MeshParseError('the file is empty', 'EMPTY_INPUT');
-  if (/^[A-Z0-9]*OFF$/i.test(rec.tokens[0])) {
-    rec.tokens.shift();
-    if (rec.tokens.length === 0) rec = next();
-  } else if (!/^\d+$/.test(rec.tokens[0])) {
-    fail(rec.line, `expected an OFF header, found "${rec.tokens[0].slice(0, 20)}"`);
+  if (!rec) throw new MeshParseError('empty file', 'EMPTY_INPUT');
+  const keyword = rec.tokens[0];
+  const kind = /^(ST)?C?N?([4n]?)OFF$/.exec(keyword);
+  if (!kind) fail(rec.line, `expected an OFF header, found "${keyword.slice(0, 20)}"`);
+  if (kind[2]) fail(rec.line, '4D / n-dimensional OFF is not supported');
+  let at = 1;
+  if (rec.tokens.length === 1) {
+    const headerLine = rec.line;
+    rec = next();
+    if (!rec) fail(headerLine, 'missing vertex/face counts');
+    at = 0;
+  } else if (rec.tokens[1].toLowerCase() === 'binary') {
+    fail(rec.line, 'binary OFF is not supported');
   }
-  if (!rec || rec.tokens.length < 2) fail(rec?.line ?? 0, 'expected the counts "vertices faces edges"');
-  const nv = Number(rec.tokens[0]), nf = Number(rec.tokens[1]);
-  if (!Number.isInteger(nv) || !Number.isInteger(nf) || nv < 0 || nf < 0) fail(rec.line, 'invalid vertex/face counts');
-  const xyz = []; // (grown as read: a header's counts are not trusted for an allocation)
+  const count = (what) => {
+    const token = rec.tokens[at++];
+    if (token === undefined) fail(rec.line, `missing ${what} count`);
+    if (!INTEGER.test(token) || token[0] === '-') fail(rec.line, `invalid ${what} count "${token.slice(0, 20)}"`);
+    return Number(token);
+  };
+  const nv = count('vertex'), nf = count('face');
+  // (Arrays grow as read: a header's counts are not trusted for an allocation.)
+  const xyz = [];
   for (let i = 0; i < nv; i++) {
     const r = next();
-    if (!r) fail(0, `the file ends after ${i} of ${nv} vertices`);
-    if (r.tokens.length < 3) fail(r.line, 'a vertex needs 3 coordinates');
+    if (!r) fail(lines.length, `unexpected end of file: ${i} of ${nv} vertices read`);
+    if (r.tokens.length < 3) fail(r.line, `vertex needs 3 coordinates, found ${r.tokens.length}`);
     for (let k = 0; k < 3; k++) xyz.push(parseNumber(r.tokens[k], r.line));
   }
-  const positions = Float64Array.from(xyz);
   const loops = [], sizes = [];
   for (let f = 0; f < nf; f++) {
     const r = next();
-    if (!r) fail(0, `the file ends after ${f} of ${nf} faces`);
-    const n = Number(r.tokens[0]);
-    if (!Number.isInteger(n) || n < 3) fail(r.line, `a face needs at least 3 vertices (found "${r.tokens[0]}")`);
-    if (r.tokens.length < n + 1) fail(r.line, `face lists ${r.tokens.length - 1} of ${n} vertex indices`);
+    if (!r) fail(lines.length, `unexpected end of file: ${f} of ${nf} faces read`);
+    const t = r.tokens;
+    if (!INTEGER.test(t[0]) || t[0][0] === '-') fail(r.line, `invalid face size "${t[0].slice(0, 20)}"`);
+    const n = Number(t[0]);
+    if (n < 3) fail(r.line, `face has ${n} vertices (at least 3 needed)`);
     for (let k = 1; k <= n; k++) {
-      const t = r.tokens[k];
-      if (!/^\d+$/.test(t)) fail(r.line, `"${t.slice(0, 20)}" is not a vertex index`);
-      if (Number(t) > 0xffffffff) fail(r.line, `vertex index ${t.slice(0, 20)} is too large`);
-      loops.push(Number(t));
+      if (k >= t.length) fail(r.line, `face declares ${n} vertices but the line has only ${k - 1}`);
+      if (!INTEGER.test(t[k])) fail(r.line, `invalid vertex index "${t[k].slice(0, 20)}"`);
+      const i = Number(t[k]);
+      if (i < 0 || i >= nv) fail(r.line, `vertex index ${t[k].slice(0, 20)} out of range (the file has ${nv} vertices)`);
+      loops.push(i);
     }
     sizes.push(n);
   }
-  if (nv === 0 || nf === 0) throw new MeshParseError('the file has no vertices or no faces', 'EMPTY_INPUT');
-  return polygonMesh(positions, loops, sizes);
+  if (nf === 0) throw new MeshParseError(nv === 0 ? 'no vertices and no faces' : 'no faces', 'EMPTY_INPUT');
+  return polygonMesh(Float64Array.from(xyz), loops, sizes);
 }
 
 export function parseMeshFile(name, buffer) {

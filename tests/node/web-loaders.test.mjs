@@ -8,6 +8,7 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
+import os from 'node:os';
 import { execFileSync } from 'node:child_process';
 import { assertBuilt, nativeCli, sharedMeshes, sharedMeshesMissing } from './lib/env.mjs';
 
@@ -89,15 +90,15 @@ test('STL: ascii in double precision and welded, binary float32 values welded', 
 
 test('OBJ/OFF reader errors: code and line', () => {
   const cases = [
-    ['f.obj', 'v 0 0 0\nv 1 0 0\nf 1 2', 'PARSE_ERROR', /line 3: a face needs at least 3 vertices/],
+    ['f.obj', 'v 0 0 0\nv 1 0 0\nf 1 2', 'PARSE_ERROR', /line 3: face has 2 vertices \(at least 3 needed\)/],
     ['f.obj', 'v 0 0 0\nv x 0 0', 'PARSE_ERROR', /line 2: invalid number "x"/],
     ['f.obj', 'v 0 0 nan', 'PARSE_ERROR', /line 1: non-finite coordinate "nan"/],
     ['f.obj', 'v 0 0 0\nf 0 1 1', 'PARSE_ERROR', /line 2: vertex index 0/],
-    ['f.obj', 'v 0 0 0\nf -2 1 1', 'PARSE_ERROR', /line 2: vertex -2 counts back past the first vertex/],
-    ['f.obj', 'v 0 0 0\nf 1 1 99999999999', 'PARSE_ERROR', /too large/],
-    ['f.obj', 'v 0 0 0\nl 1 1', 'EMPTY_INPUT', /no faces/],
-    ['f.off', 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967296', 'PARSE_ERROR', /too large/],
-    ['f.off', 'OFF\n0 0 0\n', 'EMPTY_INPUT', /no vertices or no faces/],
+    ['f.obj', 'v 0 0 0\nf -2 1 1', 'PARSE_ERROR', /line 2: relative vertex index -2 points before the first vertex \(1 vertices so far\)/],
+    ['f.obj', 'v 0 0 0\nf 1 1 99999999999', 'PARSE_ERROR', /line 2: vertex index 99999999999 out of range/],
+    ['f.obj', 'v 0 0 0\nl 1 1', 'EMPTY_INPUT', /no faces \(only points\/lines\)/],
+    ['f.off', 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967296', 'PARSE_ERROR', /line 6: vertex index 4294967296 out of range \(the file has 3 vertices\)/],
+    ['f.off', 'OFF\n0 0 0\n', 'EMPTY_INPUT', /no vertices and no faces/],
   ];
   for (const [name, text, code, message] of cases) {
     assert.throws(() => L.parseMeshFile(name, bytes(text)), (e) => e instanceof L.MeshParseError && e.code === code && message.test(e.message), text);
@@ -146,4 +147,78 @@ test('every OBJ/OFF/STL fixture: the demo reader + package give the native CLI a
     }
   }
   assert.ok(compared >= 55, `only ${compared} fixtures`);
+});
+
+// Texts on the edges of the readers' grammar: each case's expected outcome follows the native
+// reader's rules (io.cpp), and the CLI is asked too when it is built. Before the readers followed
+// those rules, an OBJ index past the last vertex, a count "4.0", a lower-case header, lone '\r'
+// line ends or a U+00A0 inside a number gave the demo another answer than the CLI.
+test('grammar edge cases: the same outcome as the native reader', (t) => {
+  const tetV = ['0 0 0', '1 0 0', '0 1 0', '0 0 1'];
+  const tetF = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+  const obj = (opts = {}) => {
+    const v = tetV.map((p) => `v ${p}`);
+    const f = tetF.map((face, i) => `${opts.keyword?.(i) ?? 'f'} ${face.map((x) => (opts.ref ?? ((j) => String(j + 1)))(x, i)).join(' ')}`);
+    return (opts.facesFirst ? [...f, ...v] : [...v, ...f]).join(opts.eol ?? '\n') + '\n';
+  };
+  const off = (opts = {}) => {
+    const head = opts.head ?? ['OFF', '4 4 0'];
+    const v = tetV.map((p) => p + (opts.vertexTail ?? ''));
+    const f = tetF.map((face) => `3 ${face.map(opts.ref ?? String).join(' ')}${opts.faceTail ?? ''}`);
+    return [...head, ...v, ...f].join(opts.eol ?? '\n') + '\n';
+  };
+  const stl = (normal = '0 0 0') => {
+    const p = tetV.map((s) => s.split(' '));
+    return ['solid t', ...tetF.flatMap((face) => [`facet normal ${normal}`, 'outer loop', ...face.map((i) => `vertex ${p[i].join(' ')}`), 'endloop', 'endfacet']), 'endsolid t'].join('\n');
+  };
+  const cases = [
+    ['obj: a face index past the last vertex', 'obj', obj({ ref: (j, i) => String(i === 3 ? 9 : j + 1) }), 'PARSE_ERROR'],
+    ['obj: faces before their vertices', 'obj', obj({ facesFirst: true }), 'POLYHEDRON'],
+    ['obj: "fo" faces', 'obj', obj({ keyword: () => 'fo' }), 'POLYHEDRON'],
+    ['obj: i// and i/t/ forms', 'obj', obj({ ref: (j, i) => `${j + 1}${i % 2 ? '//' : '/1/'}` }), 'POLYHEDRON'],
+    ['obj: four parts', 'obj', obj({ ref: (j) => `${j + 1}/1/1/1` }), 'PARSE_ERROR'],
+    ['obj: a texture part that is no integer', 'obj', obj({ ref: (j) => `${j + 1}/x` }), 'PARSE_ERROR'],
+    ['obj: "+1" indices', 'obj', obj({ ref: (j) => `+${j + 1}` }), 'POLYHEDRON'],
+    ['obj: "F" is not a face record', 'obj', obj({ keyword: (i) => (i === 0 ? 'F' : 'f') }), 'OPEN_MESH'],
+    ['obj: U+00A0 inside a number', 'obj', obj().replace('v 1 0 0', 'v 1\u00a0 0 0'), 'PARSE_ERROR'],
+    ['obj: CRLF line ends', 'obj', obj({ eol: '\r\n' }), 'POLYHEDRON'],
+    ['obj: lone CR line ends (one line)', 'obj', obj({ eol: '\r' }), 'EMPTY_INPUT'],
+    ['off: lower-case header', 'off', off({ head: ['off', '4 4 0'] }), 'PARSE_ERROR'],
+    ['off: no header', 'off', off({ head: ['4 4 0'] }), 'PARSE_ERROR'],
+    ['off: 4OFF', 'off', off({ head: ['4OFF', '4 4 0'] }), 'PARSE_ERROR'],
+    ['off: OFF BINARY', 'off', off({ head: ['OFF BINARY', '4 4 0'] }), 'PARSE_ERROR'],
+    ['off: a count "4.0"', 'off', off({ head: ['OFF', '4.0 4 0'] }), 'PARSE_ERROR'],
+    ['off: counts on the header line, no edge count', 'off', off({ head: ['OFF 4 4'] }), 'POLYHEDRON'],
+    ['off: STCNOFF with values after xyz and colours after faces', 'off', off({ head: ['STCNOFF', '4 4 0'], vertexTail: ' 0.5 0.5 1 0 0 1 0.2 0.3', faceTail: ' 255 0 0' }), 'POLYHEDRON'],
+    ['off: "+1" indices', 'off', off({ ref: (j) => `+${j}` }), 'POLYHEDRON'],
+    ['off: an index past the last vertex', 'off', off({ ref: (j) => String(j === 3 ? 4 : j) }), 'PARSE_ERROR'],
+    ['off: CRLF line ends', 'off', off({ eol: '\r\n' }), 'POLYHEDRON'],
+    ['off: lone CR line ends (one line)', 'off', off({ eol: '\r' }), 'PARSE_ERROR'],
+    ['stl: an overflowing facet normal (ignored, as nan)', 'stl', stl('1e400 0 nan'), 'POLYHEDRON'],
+    ['stl: a facet normal that is no number', 'stl', stl('1 0 x'), 'PARSE_ERROR'],
+    ['stl: "solid" followed by U+00A0 (not ascii STL)', 'stl', stl().replace('solid t', 'solid\u00a0t'), 'PARSE_ERROR'],
+  ];
+  const cli = fs.existsSync(nativeCli) ? nativeCli : null;
+  const dir = cli ? fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-grammar-')) : null;
+  try {
+    for (const [what, ext, text, expected] of cases) {
+      let web;
+      try {
+        const k = kernelOf(L.parseMeshFile(`case.${ext}`, bytes(text)));
+        web = k.status;
+      } catch (e) {
+        web = e.code;
+      }
+      assert.equal(web, expected, `${what}: demo reader + package`);
+      if (cli) {
+        const file = path.join(dir, `case.${ext}`);
+        fs.writeFileSync(file, text);
+        const native = nativeResult(file);
+        assert.equal(native.ok ? native.status : native.error, expected, `${what}: native CLI`);
+      }
+    }
+  } finally {
+    if (dir) fs.rmSync(dir, { recursive: true, force: true });
+  }
+  if (!cli) t.diagnostic(`${nativeCli} not built: the expected outcomes were checked against the demo reader only`);
 });
