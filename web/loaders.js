@@ -9,8 +9,8 @@
 // BufferGeometryUtils.mergeVertices uses, merges distinct vertices of small models). three.js's
 // loaders, used before, rounded every coordinate to float32 and split polygons as fans from their
 // first corner, which fold over a non-convex polygon and give the kernel of another shape. OBJ
-// vertices are welded too, as the triangle soups three.js's OBJ loader produced were. What a
-// reader refuses, and with which code (PARSE_ERROR, EMPTY_INPUT), is what the CLI's reader
+// and OFF vertices are kept as given (the CLI refuses two at one position, and so does the page).
+// What a reader refuses, and with which code (PARSE_ERROR, EMPTY_INPUT), is what the CLI's reader
 // refuses: the same line and token rules, the same number grammar, indices range-checked; the
 // kernel package then validates the mesh itself (OPEN_MESH, NON_MANIFOLD_EDGE, …).
 
@@ -306,11 +306,9 @@ export function parseOBJ(buffer) {
   if (sizes.length === 0) {
     throw new MeshParseError(pointsAndLines ? 'no faces (only points/lines)' : nv ? 'no faces' : 'no vertices and no faces', 'EMPTY_INPUT');
   }
-  // Weld by exact coordinate equality.
-  const welder = new Welder(), weldedOf = new Uint32Array(nv);
-  for (let v = 0; v < nv; v++) weldedOf[v] = welder.add(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-  for (let i = 0; i < loops.length; i++) loops[i] = weldedOf[loops[i]];
-  return polygonMesh(welder.positions, loops, sizes);
+  // Vertices are kept as the file gives them (not welded): two at one position are the CLI's
+  // NON_MANIFOLD_EDGE ("weld them, or separate the pieces") here too.
+  return polygonMesh(Float64Array.from(xyz), loops, sizes);
 }
 
 // OFF: the header word [ST][C][N]OFF (texture coordinates, colours and normals after xyz are

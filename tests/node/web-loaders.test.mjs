@@ -47,7 +47,7 @@ test('OFF: non-convex polygon faces are kept (L prism: kernel volume 1)', () => 
   assert.equal(k.vertices.length / 3, 8);
 });
 
-test('OBJ: polygon faces in the forms i, i/t, i//n, i/t/n and negative, double precision, welded', () => {
+test('OBJ: polygon faces in the forms i, i/t, i//n, i/t/n and negative, double precision, not welded', () => {
   const forms = [(i) => `${i + 1}`, (i) => `${i + 1}/1`, (i) => `${i + 1}//1`, (i) => `${i + 1}/1/1`, (i) => `${i - L_POINTS.length}`];
   // Coordinates that float32 would round (0.1 + 2^-40 steps): the kernel must keep them.
   const e = 2 ** -40;
@@ -61,15 +61,16 @@ test('OBJ: polygon faces in the forms i, i/t, i//n, i/t/n and negative, double p
     assert.equal(k.status, 'POLYHEDRON', `form ${n}`);
     assert.ok(Math.abs(k.volume - 1) < 1e-12, `form ${n}: volume ${k.volume}`);
   }
-  // The same faces as a soup (every face with its own vertices) are welded into the same mesh.
+  // The same faces as a soup (every face with its own vertices) are not welded: to the CLI such a
+  // file is open (each edge of one face only), and so it is to the page.
   const soup = [], faces = [];
   for (const f of L_FACES) {
     faces.push(`f ${f.map((_, c) => soup.length + c + 1).join(' ')}`);
     for (const v of f) soup.push(`v ${L_POINTS[v].join(' ')}`);
   }
-  const welded = L.parseMeshFile('soup.obj', bytes([...soup, ...faces].join('\n')));
-  assert.equal(welded.positions.length / 3, 12);
-  assert.ok(Math.abs(kernelOf(welded).volume - 1) < 1e-12);
+  const unwelded = L.parseMeshFile('soup.obj', bytes([...soup, ...faces].join('\n')));
+  assert.equal(unwelded.positions.length / 3, soup.length);
+  assert.throws(() => kernelOf(unwelded), (e) => e.code === 'OPEN_MESH');
 });
 
 test('STL: ascii in double precision and welded, binary float32 values welded', () => {
@@ -221,4 +222,90 @@ test('grammar edge cases: the same outcome as the native reader', (t) => {
     if (dir) fs.rmSync(dir, { recursive: true, force: true });
   }
   if (!cli) t.diagnostic(`${nativeCli} not built: the expected outcomes were checked against the demo reader only`);
+});
+
+// Differential check: OBJ, OFF and ascii STL texts of a cube with random oddities (number forms,
+// headers, keywords, index forms, blanks, line ends, then a few random character edits), each read
+// by the demo reader + package and by the CLI: the same status or error code, and the same
+// volume. Seeded, so a failure names a case that can be replayed.
+test('random odd texts: the demo reader + package give the CLI outcome', (t) => {
+  if (!fs.existsSync(nativeCli)) {
+    t.skip(`${nativeCli} not built`);
+    return;
+  }
+  let state = 0x5eed;
+  const rnd = () => {
+    state = (state + 0x6d2b79f5) | 0;
+    let x = Math.imul(state ^ (state >>> 15), 1 | state);
+    x = (x + Math.imul(x ^ (x >>> 7), 61 | x)) ^ x;
+    return ((x ^ (x >>> 14)) >>> 0) / 4294967296;
+  };
+  const odd = 0.03;
+  const pick = (usual, oddities) => (rnd() < odd ? oddities[Math.floor(rnd() * oddities.length)] : usual);
+  const P = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]];
+  const Q = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
+  const num = (v) => pick(String(v), [`${v}.`, `${v}.0`, `${v}e0`, `${v}E+0`, `+${v}`, `0${v}`, `-${v}`, `.${v}`, `${v}e`, `${v}.0.0`,
+    `0x${v}`, 'Infinity', 'inf', 'nan', `${v},0`, `${v}f`, `${v}\u00a0`, `${v}#c`, '1e400', '1e-400', `${v}/`, '.', '-']);
+  const sp = () => pick(' ', ['\t', '  ', ' \t ', '\v', '\f', '\u00a0']);
+  const nl = () => pick('\n', ['\r\n', '\r', ' \n', '\t\n', ' # c\n', '#\n']);
+  const idx = (i, base) => pick(String(i + base), [`${i + base}.0`, `+${i + base}`, '9', '-1', 'a', `${i + base}e0`, `${i + base}/1`, `${i + base}//1/1`]);
+  const texts = {
+    off: () => {
+      let s = pick('OFF', ['off', 'COFF', 'NOFF', 'STCNOFF', '4OFF', 'OFF BINARY', '# c\nOFF', 'OFFX', '']);
+      s += nl() + pick('8 6 0', ['8 6', '8 6 0 0', '9 6 0', '8 7 0', '8 5 0', '-8 6 0', '8.0 6 0', '+8 6 0']) + nl();
+      for (const p of P) s += p.map(num).join(sp()) + pick('', [' 0.5 0.5 0.5', ' x']) + nl();
+      for (const f of Q) s += pick('4', ['3', '5', '4.0', '+4', 'x']) + sp() + f.map((i) => idx(i, 0)).join(sp()) + pick('', [' 255 0 0']) + nl();
+      return s;
+    },
+    obj: () => {
+      let s = pick('', ['o cube\n', 'g g\n', 's off\n', 'mtllib a.mtl\n']);
+      for (const p of P) s += pick('v', ['V', 'vn', 'vt', 'v\t']) + sp() + p.map(num).join(sp()) + pick('', [' 1', ' 0.5 0.5 0.5']) + nl();
+      for (const f of Q) s += pick('f', ['F', 'fo', 'l', 'p']) + sp() + f.map((i) => idx(i, 1)).join(sp()) + nl();
+      return s + pick('', ['f 1 2\n', 'f\n', 'v 1 2\n', 'l 1 2\n']);
+    },
+    stl: () => {
+      let s = pick('solid cube', ['solid', 'SOLID x', 'solidx', 'solid\u00a0x']) + nl();
+      for (const f of Q) {
+        for (const tri of [[f[0], f[1], f[2]], [f[0], f[2], f[3]]]) {
+          s += pick('facet normal', ['facet  normal', 'facet', 'FACET NORMAL']) + sp() + [0, 0, 0].map(num).join(sp()) + nl();
+          s += pick('outer loop', ['outerloop', 'outer loop x']) + nl();
+          for (const i of tri) s += pick('vertex', ['VERTEX', 'vert']) + sp() + P[i].map(num).join(sp()) + nl();
+          s += pick('endloop', ['end loop']) + nl() + pick('endfacet', ['endfacet x']) + nl();
+        }
+      }
+      return s + pick('endsolid cube', ['', 'endsolid\nsolid b\nendsolid b']) + nl();
+    },
+  };
+  const edits = ' \t\r\v\f\n\u00a0#/-+.eE0179xfvOFnaNI';
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-odd-'));
+  const outcomes = {};
+  try {
+    for (let c = 0; c < 1500; c++) {
+      const ext = ['off', 'obj', 'stl'][c % 3];
+      let text = texts[ext]();
+      if (rnd() < 0.3) {
+        const at = Math.floor(rnd() * text.length), op = rnd(), ch = edits[Math.floor(rnd() * edits.length)];
+        text = text.slice(0, at) + (op < 0.4 ? ch + text[at] : op < 0.7 ? '' : ch) + text.slice(at + 1);
+      }
+      const file = path.join(dir, `case.${ext}`);
+      fs.writeFileSync(file, text);
+      const native = nativeResult(file);
+      let web;
+      try {
+        const k = kernelOf(L.parseMeshFile(`case.${ext}`, bytes(text)));
+        web = { outcome: k.status, volume: k.volume };
+      } catch (e) {
+        web = { outcome: e.code };
+      }
+      const expected = native.ok ? native.status : native.error;
+      outcomes[expected] = (outcomes[expected] ?? 0) + 1;
+      assert.equal(web.outcome, expected, `case ${c} (${ext}): ${JSON.stringify(text.slice(0, 400))}: ${native.message ?? ''}`);
+      if (native.ok) assert.ok(Math.abs(web.volume - native.volume) <= 1e-9 * Math.max(1, Math.abs(native.volume)), `case ${c}: volume`);
+    }
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+  // The mix must exercise both sides: files the readers refuse and files they take.
+  assert.ok((outcomes.PARSE_ERROR ?? 0) > 100 && (outcomes.POLYHEDRON ?? 0) > 100, JSON.stringify(outcomes));
+  t.diagnostic(JSON.stringify(outcomes));
 });
