@@ -174,7 +174,7 @@ function parseAsciiSTL(text) {
         for (let k = 2; k < 5; k++) {
           if (t[k] === undefined) fail(line, 'facet normal needs 3 components');
           // (some exporters write nan for degenerate facets' normals: harmless, nobody reads them;
-        // a non-finite component is accepted as the CLI accepts it)
+          // a non-finite component is accepted as the CLI accepts it)
           if (numberStatus(t[k]) === 'invalid') fail(line, `invalid number "${t[k].slice(0, 20)}"`);
         }
         expectEnd(t, 5, 'facet normal', line);
@@ -317,6 +317,7 @@ export function parseOBJ(buffer) {
 // '#' starts a comment. Polygons are kept (faceSizes).
 export function parseOFF(buffer) {
   const lines = decodeText(buffer).split('\n');
+  const lastLine = lines.length - (lines[lines.length - 1] === '' ? 1 : 0); // (the CLI's count at the end)
   let li = 0;
   const next = () => {
     while (li < lines.length) {
@@ -354,14 +355,14 @@ export function parseOFF(buffer) {
   const xyz = [];
   for (let i = 0; i < nv; i++) {
     const r = next();
-    if (!r) fail(lines.length, `unexpected end of file: ${i} of ${nv} vertices read`);
+    if (!r) fail(lastLine, `unexpected end of file: ${i} of ${nv} vertices read`);
     if (r.tokens.length < 3) fail(r.line, `vertex needs 3 coordinates, found ${r.tokens.length}`);
     for (let k = 0; k < 3; k++) xyz.push(parseNumber(r.tokens[k], r.line));
   }
   const loops = [], sizes = [];
   for (let f = 0; f < nf; f++) {
     const r = next();
-    if (!r) fail(lines.length, `unexpected end of file: ${f} of ${nf} faces read`);
+    if (!r) fail(lastLine, `unexpected end of file: ${f} of ${nf} faces read`);
     const t = r.tokens;
     if (!INTEGER.test(t[0]) || t[0][0] === '-') fail(r.line, `invalid face size "${t[0].slice(0, 20)}"`);
     const n = Number(t[0]);
