@@ -23,6 +23,11 @@ export class MeshParseError extends Error {
   }
 }
 
+// A reader's refusal at a line (the native readers' "<file>:<line>: <reason>", without the file).
+function fail(line, why) {
+  throw new MeshParseError(`line ${line}: ${why}`);
+}
+
 export const SUPPORTED_EXTENSIONS = ['stl', 'obj', 'off'];
 
 export function extensionOf(name) {
@@ -142,9 +147,6 @@ function parseAsciiSTL(text) {
   const indices = [];
   let state = 'outside', count = 0, c0 = 0, c1 = 0, c2 = 0;
   let lastLine = 0;
-  const fail = (line, why) => {
-    throw new MeshParseError(`line ${line}: ${why}`);
-  };
   const expectEnd = (t, n, keyword, line) => {
     if (t.length > n) fail(line, `unexpected "${t[n].slice(0, 20)}" after '${keyword}'`);
   };
@@ -223,8 +225,10 @@ function eachLine(text, comment, visit) {
   }
 }
 
-// The native readers' integers: [+]digits or -digits (no other sign, no decimal point).
+// The native readers' integers: [+]digits or -digits (no other sign, no decimal point); counts
+// and sizes, which must not be negative: [+]digits.
 const INTEGER = /^(\+?\d+|-\d+)$/;
+const COUNT = /^\+?\d+$/;
 
 // A number as the native readers take it: [+-](digits[.digits] | .digits)[(e|E)[+-]digits]; inf,
 // infinity, nan, nan(…) and numbers too large for a double are non-finite, anything else is not
@@ -248,8 +252,8 @@ function numberStatus(token) {
 function parseNumber(token, line) {
   const status = token === undefined ? 'invalid' : numberStatus(token);
   if (status === 'ok') return Number(token);
-  if (status === 'nonfinite') throw new MeshParseError(`line ${line}: non-finite coordinate "${token.slice(0, 20)}"`);
-  throw new MeshParseError(`line ${line}: invalid number "${String(token).slice(0, 20)}"`);
+  if (status === 'nonfinite') fail(line, `non-finite coordinate "${token.slice(0, 20)}"`);
+  fail(line, `invalid number "${String(token).slice(0, 20)}"`);
 }
 
 // The faces' loops and sizes as typed arrays; faceSizes only when some face is not a triangle.
@@ -267,9 +271,6 @@ export function parseOBJ(buffer) {
   const xyz = [];
   const loops = [], sizes = [];
   let largest = 0, largestLine = 0, pointsAndLines = 0;
-  const fail = (line, why) => {
-    throw new MeshParseError(`line ${line}: ${why}`);
-  };
   eachLine(decodeText(buffer), '#', (t, line) => {
     if (t[0] === 'v') {
       if (t.length < 4) fail(line, `vertex needs 3 coordinates, found ${t.length - 1}`);
@@ -326,9 +327,6 @@ export function parseOFF(buffer) {
     }
     return null;
   };
-  const fail = (line, why) => {
-    throw new MeshParseError(`line ${line}: ${why}`);
-  };
   let rec = next();
   if (!rec) throw new MeshParseError('empty file', 'EMPTY_INPUT');
   const keyword = rec.tokens[0];
@@ -347,7 +345,7 @@ export function parseOFF(buffer) {
   const count = (what) => {
     const token = rec.tokens[at++];
     if (token === undefined) fail(rec.line, `missing ${what} count`);
-    if (!INTEGER.test(token) || token[0] === '-') fail(rec.line, `invalid ${what} count "${token.slice(0, 20)}"`);
+    if (!COUNT.test(token)) fail(rec.line, `invalid ${what} count "${token.slice(0, 20)}"`);
     return Number(token);
   };
   const nv = count('vertex'), nf = count('face');
@@ -364,7 +362,7 @@ export function parseOFF(buffer) {
     const r = next();
     if (!r) fail(lastLine, `unexpected end of file: ${f} of ${nf} faces read`);
     const t = r.tokens;
-    if (!INTEGER.test(t[0]) || t[0][0] === '-') fail(r.line, `invalid face size "${t[0].slice(0, 20)}"`);
+    if (!COUNT.test(t[0])) fail(r.line, `invalid face size "${t[0].slice(0, 20)}"`);
     const n = Number(t[0]);
     if (n < 3) fail(r.line, `face has ${n} vertices (at least 3 needed)`);
     for (let k = 1; k <= n; k++) {

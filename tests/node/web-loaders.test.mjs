@@ -108,14 +108,32 @@ test('OBJ/OFF reader errors: code and line', () => {
   assert.throws(() => L.parseMeshFile('u.obj', utf16), /UTF-16 is not supported/);
 });
 
-function nativeResult(file) {
+// A file's outcome: the kernel's status (and volume), or the error code. From the native CLI:
+function nativeOutcome(file) {
   let out;
   try {
     out = execFileSync(nativeCli, ['--json', file], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
   } catch (err) {
     out = err.stdout || '';
   }
-  return JSON.parse(out);
+  const r = JSON.parse(out);
+  return r.ok ? { outcome: r.status, volume: r.volume } : { outcome: r.error, message: r.message };
+}
+// and from the demo reader + package (buffer: the file's bytes).
+function webOutcome(name, buffer) {
+  try {
+    const k = kernelOf(L.parseMeshFile(name, buffer));
+    return { outcome: k.status, volume: k.volume };
+  } catch (e) {
+    return { outcome: e.code, message: e.message };
+  }
+}
+// The same status or error code, and the same volume to 1e-9 relative.
+function assertSameOutcome(web, native, label) {
+  assert.equal(web.outcome, native.outcome, `${label}: demo ${JSON.stringify(web)}, CLI ${JSON.stringify(native)}`);
+  if (native.volume !== undefined) {
+    assert.ok(Math.abs(web.volume - native.volume) <= 1e-9 * Math.max(1, Math.abs(native.volume)), `${label}: volume ${web.volume} vs ${native.volume}`);
+  }
 }
 
 test('every OBJ/OFF/STL fixture: the demo reader + package give the native CLI answer', (t) => {
@@ -129,21 +147,9 @@ test('every OBJ/OFF/STL fixture: the demo reader + package give the native CLI a
     for (const name of fs.readdirSync(path.join(sharedMeshes, dir)).sort()) {
       if (!/\.(obj|off|stl)$/i.test(name)) continue;
       const file = path.join(sharedMeshes, dir, name);
-      const native = nativeResult(file);
       const bytesOfFile = fs.readFileSync(file);
-      let web;
-      try {
-        const k = kernelOf(L.parseMeshFile(name, bytesOfFile.buffer.slice(bytesOfFile.byteOffset, bytesOfFile.byteOffset + bytesOfFile.byteLength)));
-        web = { status: k.status, volume: k.volume };
-      } catch (e) {
-        web = { error: e.code };
-      }
-      if (native.ok) {
-        assert.equal(web.status, native.status, `${name}: ${JSON.stringify(web)}`);
-        assert.ok(Math.abs(web.volume - native.volume) <= 1e-9 * Math.max(1, Math.abs(native.volume)), `${name}: volume ${web.volume} vs ${native.volume}`);
-      } else {
-        assert.equal(web.error, native.error, `${name}: ${JSON.stringify(web)} vs native ${native.error}`);
-      }
+      const buffer = bytesOfFile.buffer.slice(bytesOfFile.byteOffset, bytesOfFile.byteOffset + bytesOfFile.byteLength);
+      assertSameOutcome(webOutcome(name, buffer), nativeOutcome(file), name);
       compared++;
     }
   }
@@ -203,19 +209,11 @@ test('grammar edge cases: the same outcome as the native reader', (t) => {
   const dir = cli ? fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-grammar-')) : null;
   try {
     for (const [what, ext, text, expected] of cases) {
-      let web;
-      try {
-        const k = kernelOf(L.parseMeshFile(`case.${ext}`, bytes(text)));
-        web = k.status;
-      } catch (e) {
-        web = e.code;
-      }
-      assert.equal(web, expected, `${what}: demo reader + package`);
+      assert.equal(webOutcome(`case.${ext}`, bytes(text)).outcome, expected, `${what}: demo reader + package`);
       if (cli) {
         const file = path.join(dir, `case.${ext}`);
         fs.writeFileSync(file, text);
-        const native = nativeResult(file);
-        assert.equal(native.ok ? native.status : native.error, expected, `${what}: native CLI`);
+        assert.equal(nativeOutcome(file).outcome, expected, `${what}: native CLI`);
       }
     }
   } finally {
@@ -289,18 +287,9 @@ test('random odd texts: the demo reader + package give the CLI outcome', (t) => 
       }
       const file = path.join(dir, `case.${ext}`);
       fs.writeFileSync(file, text);
-      const native = nativeResult(file);
-      let web;
-      try {
-        const k = kernelOf(L.parseMeshFile(`case.${ext}`, bytes(text)));
-        web = { outcome: k.status, volume: k.volume };
-      } catch (e) {
-        web = { outcome: e.code };
-      }
-      const expected = native.ok ? native.status : native.error;
-      outcomes[expected] = (outcomes[expected] ?? 0) + 1;
-      assert.equal(web.outcome, expected, `case ${c} (${ext}): ${JSON.stringify(text.slice(0, 400))}: ${native.message ?? ''}`);
-      if (native.ok) assert.ok(Math.abs(web.volume - native.volume) <= 1e-9 * Math.max(1, Math.abs(native.volume)), `case ${c}: volume`);
+      const native = nativeOutcome(file);
+      outcomes[native.outcome] = (outcomes[native.outcome] ?? 0) + 1;
+      assertSameOutcome(webOutcome(`case.${ext}`, bytes(text)), native, `case ${c} (${ext}) ${JSON.stringify(text.slice(0, 400))}`);
     }
   } finally {
     fs.rmSync(dir, { recursive: true, force: true });
