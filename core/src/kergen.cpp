@@ -50,7 +50,22 @@ const char* kernel_type_name(KernelType t) {
   return "UNKNOWN";
 }
 
+const char* progress_phase_name(Progress::Phase p) {
+  switch (p) {
+    case Progress::Phase::Validating: return "validating";
+    case Progress::Phase::Planes: return "planes";
+    case Progress::Phase::Lp: return "lp";
+    case Progress::Phase::Tracing: return "tracing";
+    case Progress::Phase::Assembling: return "assembling";
+  }
+  return "unknown";
+}
+
 namespace {
+
+void report(const Options& options, Progress::Phase phase, size_t count) {
+  if (options.on_progress) options.on_progress(Progress{phase, count});
+}
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -162,6 +177,7 @@ void face_planes(const PreparedMesh& mesh, uint32_t first, size_t n, FacePlanes&
 
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
+  report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
   s.mesh = prepare_mesh(mesh, options);
   stats.input_vertices = mesh.num_vertices;
   stats.input_faces = s.mesh.input_faces;
@@ -178,6 +194,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   std::vector<uint32_t> kept_faces;
   bool culled = false;
   const size_t nf = s.mesh.num_faces();
+  report(options, Progress::Phase::Planes, nf);
   if (s.mesh.boundary_edges == 0 && nf > kFaceCullingMinFaces) {
     t = Clock::now();
     std::vector<uint32_t> sample;
@@ -229,6 +246,7 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_planes += ms_since(t);
 
   t = Clock::now();
+  report(options, Progress::Phase::Lp, stats.distinct_planes);
   double dir[3] = {kDefaultDirection[0], kDefaultDirection[1], kDefaultDirection[2]};
   if (options.has_from) {
     double len = 0;
@@ -316,6 +334,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(hi[k], unscale_exp);
 
     auto t = Clock::now();
+    report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
     uint64_t steps = 0;
     TraceOptions topt;
     topt.on_step = &options.on_step;
@@ -344,6 +363,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     }
 
     t = Clock::now();
+    report(options, Progress::Phase::Assembling, tr.vertices.size());
     bool stopped = !tr.complete;
     auto emit_face = [&](const StepEvent& e) {
       if (stopped) return false;

@@ -557,6 +557,37 @@ TEST(Kernel, StreamingPrefixesAndEarlyStop) {
   }
 }
 
+TEST(Kernel, ProgressReportsEachPhaseOnceInOrder) {
+  auto phases_of = [](const Mesh& m) {
+    std::vector<std::pair<Progress::Phase, size_t>> seen;
+    Options o;
+    o.on_progress = [&](const Progress& p) { seen.push_back({p.phase, p.count}); };
+    Kernel k = compute_kernel(m.view(), o);
+    return std::make_pair(k, seen);
+  };
+  using P = Progress::Phase;
+  // A star-shaped mesh goes through every phase; counts are the input's faces, the distinct
+  // planes and the kernel's vertices.
+  auto [k, seen] = phases_of(l_prism());
+  ASSERT_TRUE(k.ok());
+  ASSERT_EQ(seen.size(), 5u);
+  EXPECT_EQ(seen[0], std::make_pair(P::Validating, l_prism().num_faces()));
+  EXPECT_EQ(seen[1].first, P::Planes);
+  EXPECT_EQ(seen[2], std::make_pair(P::Lp, k.stats.distinct_planes));
+  EXPECT_EQ(seen[3], std::make_pair(P::Tracing, k.stats.distinct_planes));
+  EXPECT_EQ(seen[4], std::make_pair(P::Assembling, k.num_vertices()));
+  EXPECT_STREQ(progress_phase_name(P::Tracing), "tracing");
+  // Bad input stops after validation; a non-star mesh after the LP.
+  auto [bad, bad_seen] = phases_of(open_cube());
+  EXPECT_EQ(bad.error, Error::OpenMesh);
+  ASSERT_EQ(bad_seen.size(), 1u);
+  EXPECT_EQ(bad_seen[0].first, P::Validating);
+  auto [empty, empty_seen] = phases_of(u_prism());
+  EXPECT_EQ(empty.type, KernelType::Empty);
+  ASSERT_EQ(empty_seen.size(), 3u);
+  EXPECT_EQ(empty_seen[2].first, P::Lp);
+}
+
 TEST(Kernel, Deterministic) {
   Mesh m = dented_cube();
   Kernel a = run(m), b = run(m);

@@ -99,12 +99,30 @@ struct StepEvent {
 // Return false to stop; the result then holds the partial kernel found so far (complete = false).
 using StepCallback = std::function<bool(const StepEvent&)>;
 
+// Progress of a long run, for a UI: called once as each phase of compute_kernel begins, in this
+// order (phases that do not run are skipped: a rejected mesh stops after Validating, a non-star
+// one after Lp). `count` is what the phase works on.
+struct Progress {
+  enum class Phase : uint8_t {
+    Validating,  // count = input faces
+    Planes,      // count = faces left after zero-area ones are dropped
+    Lp,          // count = distinct planes
+    Tracing,     // count = distinct planes
+    Assembling,  // count = kernel vertices found
+  };
+  Phase phase = Phase::Validating;
+  size_t count = 0;
+};
+using ProgressCallback = std::function<void(const Progress&)>;
+const char* progress_phase_name(Progress::Phase p);  // "validating", "planes", "lp", "tracing", "assembling"
+
 struct Options {
   // Start the trace at the kernel vertex extreme towards this point (seen from the mesh's centre)
   // and expand the vertex nearest to it first, so the kernel grows around it.
   bool has_from = false;
   std::array<double, 3> from{};
   StepCallback on_step;            // optional
+  ProgressCallback on_progress;    // optional
   uint64_t max_steps = 0;          // stop after this many events (0 = no limit)
   bool allow_open = false;         // accept meshes with holes: result may be Unbounded
   bool deepest_point = false;      // also compute the centre of the largest inscribed ball
