@@ -759,4 +759,13 @@ void PlaneSet::resize(size_t n) {
   opposite_.resize(n);
 }
 
+void add_bounding_box(PlaneSet& ps, std::vector<uint32_t>& box) {
+  for (int k = 0; k < 3; ++k)
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      double n[3] = {0, 0, 0};
+      n[k] = sgn;
+      box.push_back(ps.add_explicit(n[0], n[1], n[2], -2.0));
+    }
+}
+
 }  // namespace kergen

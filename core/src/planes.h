@@ -322,4 +322,9 @@ bool collinear(const double* a, const double* b, const double* c, int shift = 0)
 // sign of dir . (n_h x n_s) where dir = n_p x n_q (edge orientation in facet h).
 int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, uint32_t s);
 
+// Appends to `ps` the six planes of a box twice the size of the data (scaled coordinates are
+// below 1), their ids to `box`: it bounds what an open surface leaves unbounded, and the subset
+// kernels of culling. A closed mesh's kernel never reaches it.
+void add_bounding_box(PlaneSet& ps, std::vector<uint32_t>& box);
+
 }  // namespace kergen
