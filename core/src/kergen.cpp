@@ -37,6 +37,7 @@ const char* error_name(Error e) {
     case Error::IoError: return "IO_ERROR";
     case Error::InvalidArgument: return "INVALID_ARGUMENT";
     case Error::CoordinateRange: return "COORDINATE_RANGE";
+    case Error::Internal: return "INTERNAL_ERROR";
   }
   return "UNKNOWN";
 }
@@ -205,7 +206,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     out.stats.traced_lines = tr.traced_lines;
     out.complete = tr.complete;
     if (tr.internal_error) {
-      out.error = Error::InvalidArgument;
+      out.error = Error::Internal;
       out.message = "internal error: kernel tracing could not certify a vertex (please report this mesh)";
       return out;
     }
@@ -223,7 +224,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     };
     double scaled_volume = 0;
     if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
-      out.error = Error::InvalidArgument;
+      out.error = Error::Internal;
       out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
       return out;
     }

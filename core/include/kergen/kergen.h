@@ -47,6 +47,8 @@ enum class Error : int {
   InvalidArgument,          // a programmer-supplied argument is malformed (sizes disagree, etc.)
   CoordinateRange,          // coordinates span too many binary orders of magnitude for exact
                             // evaluation in double-based arithmetic (e.g. 1 next to 1e-60)
+  Internal,                 // a failure inside the library (a bug, not a verdict on the input):
+                            // please report the mesh; the message says what failed
 };
 
 // Shape of the kernel (meaningful when error == Error::Ok).
