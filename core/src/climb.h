@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "exact.h"
+#include "exact/expansion.h"
 
 namespace kergen {
 

@@ -5,7 +5,7 @@
 
 #include "climb.h"
 #include "hints.h"
-#include "planes.h"
+#include "exact/predicates.h"
 #include "tracer.h"
 
 namespace kergen {

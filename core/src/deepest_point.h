@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "planes.h"
+#include "exact/predicates.h"
 
 namespace kergen {
 

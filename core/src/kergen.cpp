@@ -13,7 +13,7 @@
 #include "lp.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
-#include "planes.h"
+#include "exact/predicates.h"
 #include "polytope.h"
 #include "step_replay.h"
 #include "tracer.h"

@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "hints.h"
-#include "planes.h"
+#include "exact/predicates.h"
 #include "union_find.h"
 
 namespace kergen {

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "planes.h"
+#include "exact/predicates.h"
 
 namespace kergen {
 

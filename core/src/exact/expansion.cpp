@@ -1,7 +1,7 @@
 // Expansion arithmetic after Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast
 // Robust Geometric Predicates", Discrete & Computational Geometry 18 (1997): two_sum /
 // two_product error-free transformations, zero-eliminating expansion sum and scaling, compression.
-#include "exact.h"
+#include "exact/expansion.h"
 
 #include <algorithm>
 #include <cassert>
