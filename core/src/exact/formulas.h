@@ -38,7 +38,7 @@ PlaneCoef<T> plane_from_points(const double* a, const double* b, const double* c
   return p;
 }
 
-// The filtered plane: approx_plane (planes.h, inline for the per-face loops).
+// The filtered plane: approx_plane (plane_store.h, inline for the per-face loops).
 template <>
 inline PlaneCoef<Approx> plane_from_points<Approx>(const double* a, const double* b, const double* c) {
   return approx_plane(a, b, c);
