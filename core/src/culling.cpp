@@ -40,12 +40,11 @@ constexpr size_t kDirectTraceLimit = 1024;  // below this many planes culling co
 // may_reach's margin and box test (see there), shared by the scalar and the batched test: the
 // same operations in the same order (no FMA contraction in this library) give the same bits,
 // hence the same decisions.
-// The margin is 16 delta, delta = value_error_bound (climb.h): how far a computed value of the
-// plane at a vertex of K_S can be off. The climbs' tie is margin / 4 = 4 delta: above the
-// 2 delta their plateau search needs to reach every higher vertex.
+// The margin is kReachMargin delta, delta = value_error_bound (exact/error_bounds.h): how far a
+// computed value of the plane at a vertex of K_S can be off. The climbs' tie is kClimbTie delta.
 inline double reach_margin(double a, double b, double c, double d, double ea, double eb, double ec, double ed,
                            double max_abs, double coord_error) {
-  return 16 * value_error_bound(a, b, c, d, ea, eb, ec, ed, max_abs, coord_error);
+  return kReachMargin * value_error_bound(a, b, c, d, ea, eb, ec, ed, max_abs, coord_error);
 }
 inline bool box_clears(double a, double b, double c, double d, double margin, const double centre[3],
                        const double half[3]) {
@@ -238,7 +237,7 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
       auto g = [&](uint32_t v) { return dir[0] * xyz_[3 * v] + dir[1] * xyz_[3 * v + 1] + dir[2] * xyz_[3 * v + 2]; };
       double h = g(at);
       // (tie: twice the most a computed g can be off, and twice again)
-      const double tie = 4 * value_error_bound(dir[0], dir[1], dir[2], 0, 0, 0, 0, 0, max_abs_, coord_error_);
+      const double tie = kClimbTie * value_error_bound(dir[0], dir[1], dir[2], 0, 0, 0, 0, 0, max_abs_, coord_error_);
       climb_to_max(at, h, g, neighbors, tie, V, climb);
       corner_support_[c] = h;
     }
@@ -354,7 +353,7 @@ void SupportTest::may_reach_all(const PlaneArrays& p, size_t n, Scratch& scratch
 
 bool SupportTest::climb_reaches(double a, double b, double c, double d, double margin, int32_t cell, int32_t corner,
                                 Scratch& scratch, uint32_t& hint) const {
-  const double tie = margin / 4;  // (see reach_margin)
+  const double tie = margin * (kClimbTie / kReachMargin);  // kClimbTie delta (see reach_margin)
   const double* xyz = xyz_.data();
   auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
   uint32_t cur = cell < 0 ? 0 : start_of_cell_[cell];
