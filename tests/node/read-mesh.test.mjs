@@ -217,6 +217,36 @@ test('writeMesh: bad arguments and meshes the readers would refuse are errors, n
   assert.throws(() => K.writeMesh({ positions: m.positions, indices: far }, 'off'), { code: 'INDEX_OUT_OF_RANGE', message: /indices\[5\] = 8 but the mesh has 8 vertices/ });
 });
 
+test('writeMesh(kernel) writes what kernel_mesh makes of it: point, segment and empty kernels have no faces', async () => {
+  const text = (bytes) => new TextDecoder().decode(bytes);
+  const vertices = new Float64Array([0, 0, 0, 1, 0.5, 0.25]);
+  const none = new Uint32Array(0);
+  assert.equal(text(K.writeMesh({ status: 'SEGMENT', vertices, faceIndices: none, faceSizes: none }, 'off')), 'OFF\n2 0 0\n0 0 0\n1 0.5 0.25\n');
+  assert.equal(text(K.writeMesh({ status: 'POINT', vertices: vertices.subarray(0, 3), faceIndices: none, faceSizes: none }, 'obj')), '# written by kergen\nv 0 0 0\n');
+  // An empty kernel drops even the vertices it is given; a mesh keeps them.
+  assert.equal(text(K.writeMesh({ status: 'EMPTY', vertices, faceIndices: none, faceSizes: none }, 'off')), 'OFF\n0 0 0\n');
+  assert.equal(text(K.writeMesh({ positions: vertices, indices: none }, 'off')), 'OFF\n2 0 0\n0 0 0\n1 0.5 0.25\n');
+  const stl = K.writeMesh({ status: 'EMPTY', vertices: new Float64Array(0), faceIndices: none, faceSizes: none }, 'stl');
+  assert.equal(stl.length, 84, 'a binary STL header with 0 triangles');
+  assert.equal(new DataView(stl.buffer).getUint32(80, true), 0);
+});
+
+test('readMesh and writeMesh leave the heap where it was (1000 calls, good and bad files)', async () => {
+  const cube = box([0, 0, 0], [1, 1, 1], { quads: true });
+  const off = K.writeMesh(cube, 'off');
+  const bad = new TextEncoder().encode('OFF\n8 6 0\n0 0 zero\n');
+  K.readMeshSync(off);
+  const before = K.memoryStats();
+  for (let i = 0; i < 500; i++) {
+    const mesh = K.readMeshSync(off, { name: `cube-${i}.off` });
+    K.writeMesh(mesh, ['obj', 'off', 'stl'][i % 3]);
+    assert.throws(() => K.readMeshSync(bad, { name: 'bad.off' }), { code: 'PARSE_ERROR', message: 'bad.off:2: header declares 8 vertices and 6 faces but only 9 bytes follow' });
+  }
+  const after = K.memoryStats();
+  assert.equal(after.heapUsed, before.heapUsed);
+  assert.equal(after.jsHandles, 0);
+});
+
 // Fixture meshes whose kernels cover the statuses the CLI reaches without options.
 const WRITE_FIXTURES = ['cube_quad.off', 'star.off', 'cross.off', 'tetrahedron.off', 'dodecahedron_pentagons.off', 'u.off', 'fandisk.off', 'sphere.stl'];
 
