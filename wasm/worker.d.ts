@@ -18,7 +18,8 @@ export interface ProgressEvent {
   steps: number;
 }
 
-export interface WorkerComputeOptions extends KernelOptions {
+// The worker reports its own progress (below), not computeKernel's phases.
+export interface WorkerComputeOptions extends Omit<KernelOptions, 'onProgress'> {
   /**
    * Called on the main thread for every step, in order (delivered in batches of up to ~16 ms or
    * 256 events). Returning `false` cancels the computation: the promise rejects with 'CANCELLED'.
