@@ -143,16 +143,6 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
 // ---------------------------------------------------------------------------------------------
 // Output.
 
-const char* warning_kind_name(kergen::Warning::Kind kind) {
-  switch (kind) {
-    case kergen::Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
-    case kergen::Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
-    case kergen::Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
-    case kergen::Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
-  }
-  return "UNKNOWN";
-}
-
 std::string json_string(const std::string& text) {
   std::string out = "\"";
   for (unsigned char c : text) {
@@ -227,7 +217,7 @@ std::string json_line(const MeshOutcome& m) {
   for (size_t i = 0; i < k.warnings.size(); ++i) {
     const kergen::Warning& w = k.warnings[i];
     if (i) s += ",";
-    s += "{\"kind\":" + json_string(warning_kind_name(w.kind)) + ",\"count\":" + std::to_string(w.count) +
+    s += "{\"kind\":" + json_string(kergen::warning_kind_name(w.kind)) + ",\"count\":" + std::to_string(w.count) +
          ",\"message\":" + json_string(w.message) + "}";
   }
   s += "]";
@@ -263,7 +253,7 @@ void print_human(const MeshOutcome& m) {
     std::printf("  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],
                 k.deepest_point[2], k.inscribed_radius);
   for (const kergen::Warning& w : k.warnings)
-    std::printf("  warning     %s (%zu): %s\n", warning_kind_name(w.kind), w.count, w.message.c_str());
+    std::printf("  warning     %s (%zu): %s\n", kergen::warning_kind_name(w.kind), w.count, w.message.c_str());
   const kergen::Stats& st = k.stats;
   std::printf("  planes      %zu faces (%zu culled), %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
               st.input_faces, st.culled_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);

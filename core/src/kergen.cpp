@@ -54,6 +54,33 @@ const char* kernel_type_name(KernelType t) {
   return "UNKNOWN";
 }
 
+const char* warning_kind_name(Warning::Kind k) {
+  switch (k) {
+    case Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
+    case Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
+    case Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
+    case Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
+  }
+  return "UNKNOWN";
+}
+
+std::array<StatsField, 14> stats_fields(const Stats& s) {
+  return {{{"input_vertices", double(s.input_vertices)},
+           {"input_faces", double(s.input_faces)},
+           {"dropped_faces", double(s.dropped_faces)},
+           {"culled_faces", double(s.culled_faces)},
+           {"distinct_planes", double(s.distinct_planes)},
+           {"active_planes", double(s.active_planes)},
+           {"traced_lines", double(s.traced_lines)},
+           {"exact_fallbacks", double(s.exact_fallbacks)},
+           {"ms_validate", s.ms_validate},
+           {"ms_planes", s.ms_planes},
+           {"ms_lp", s.ms_lp},
+           {"ms_trace", s.ms_trace},
+           {"ms_assemble", s.ms_assemble},
+           {"ms_total", s.ms_total}}};
+}
+
 const char* progress_phase_name(Progress::Phase p) {
   switch (p) {
     case Progress::Phase::Validating: return "validating";
