@@ -12,18 +12,11 @@
 
 #include "climb.h"
 #include "cutting.h"
+#include "random.h"
 
 namespace kergen {
 
 namespace {
-
-uint64_t mix(uint64_t& s) {
-  s += 0x9e3779b97f4a7c15ull;
-  uint64_t z = s;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
 
 // Direction of the point (i + fi, j + fj) / k of cell (face, i, j); fi = fj = 0.5 is the centre,
 // 0 or 1 the corners.
@@ -399,9 +392,9 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     }
     for (uint32_t l : start_tight) add(l);
   }
-  uint64_t rng = seed;
+  SplitMix64 rng{seed};
   size_t sample = std::min(planes.size(), std::max<size_t>(64, size_t(4 * std::sqrt(double(planes.size())))));
-  for (size_t i = 0; i < sample; ++i) add(planes[mix(rng) % planes.size()]);
+  for (size_t i = 0; i < sample; ++i) add(planes[rng.next() % planes.size()]);
 
   const TraceOptions& quiet = options;
   std::vector<uint32_t> added_list, added_hint, on_kernel;
@@ -436,7 +429,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     // The cuts keep K_S's structure and touch only what each added plane removes; retracing is
     // the fallback for what they do not handle (a flat result).
     TraceResult cut;
-    if (cut_kernel_trace(ps, tr, added_list, added_hint, mix(rng), cut))
+    if (cut_kernel_trace(ps, tr, added_list, added_hint, rng.next(), cut))
       tr = std::move(cut);
     else
       tr = update_kernel_trace(ps, S, tr, added_list, quiet);
