@@ -21,6 +21,8 @@
 //                             callback (two generated spheres, vase6, spiral6, princeton/325)
 //     --streaming-budget-ms T stop repeating a streaming measurement once one run took longer than T
 //                             (default 20000)
+//     --streaming-cap-ms T    the callback stops a run with on_step after T (default 120000): the
+//                             row then gives a lower bound
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -70,7 +72,7 @@ struct Args {
   size_t epick_max_faces = std::numeric_limits<size_t>::max();
   size_t qhull_max_faces = std::numeric_limits<size_t>::max();
   double baseline_budget_ms = 2000;
-  double streaming_budget_ms = 20000;
+  double streaming_budget_ms = 20000, streaming_cap_ms = 120000;
   std::string meshes = KERGEN_SHARED_MESHES;
   std::vector<std::string> files;
   std::vector<std::string> families;  // folders summarized, not listed row by row
@@ -407,7 +409,7 @@ const char* const kUsage =
     "usage: kergen_bench [--runs N] [--json] [--quick] [--no-epeck] [--no-epick] [--no-qhull]\n"
     "                    [--epeck-max-faces N] [--epick-max-faces N] [--qhull-max-faces N]\n"
     "                    [--baseline-budget-ms T] [--meshes DIR] [--family DIR]... [--families]\n"
-    "                    [--streaming [--streaming-budget-ms T]] [mesh files...]\n";
+    "                    [--streaming [--streaming-budget-ms T] [--streaming-cap-ms T]] [mesh files...]\n";
 
 // Exits with 2 on a usage error. `families_default`: --families was given.
 Args parse_args(int argc, char** argv, bool& families_default) {
@@ -434,6 +436,7 @@ Args parse_args(int argc, char** argv, bool& families_default) {
     else if (a == "--baseline-budget-ms") args.baseline_budget_ms = std::atof(next().c_str());
     else if (a == "--streaming") args.streaming = true;
     else if (a == "--streaming-budget-ms") args.streaming_budget_ms = std::atof(next().c_str());
+    else if (a == "--streaming-cap-ms") args.streaming_cap_ms = std::atof(next().c_str());
     else if (a == "--meshes") args.meshes = next();
     else if (a == "--family") args.families.push_back(next());
     else if (a == "--families") families_default = true;
@@ -446,6 +449,8 @@ Args parse_args(int argc, char** argv, bool& families_default) {
     } else args.files.push_back(a);
   }
   if (args.quick && !runs_given) args.runs = 1;
+  // A run cut off at the cap is then always the last one of its measurement.
+  args.streaming_cap_ms = std::max(args.streaming_cap_ms, args.streaming_budget_ms);
   return args;
 }
 
@@ -623,7 +628,8 @@ int main(int argc, char** argv) {
   }
   if (args.streaming) {
     const std::string context = "\"compiler\":\"" + json_escape(compiler) + "\",\"loadavg_at_start\":\"" + load_at_start + "\"";
-    return kergen_bench::run_streaming_rows(args.meshes, args.files, args.runs, args.streaming_budget_ms, args.json, context);
+    return kergen_bench::run_streaming_rows(args.meshes, args.files, args.runs, args.streaming_budget_ms,
+                                           args.streaming_cap_ms, args.json, context);
   }
 
   std::vector<Row> rows;

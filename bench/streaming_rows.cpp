@@ -21,16 +21,19 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Side {
-  double ms = 0;  // median
-  int runs = 0;
+  std::vector<double> times;
+  bool done = false;     // no more runs: all done, or one took longer than the budget
   bool stopped = false;  // the budget cut the repetitions short
+  bool cut = false;      // the on_step callback stopped the run at the cap: ms is a lower bound
+  double ms() const { return median(times); }
+  int runs() const { return int(times.size()); }
 };
 
 struct StreamRow {
   std::string mesh, error, note;
   size_t faces = 0, V = 0, E = 0, F = 0;
   std::string type;
-  uint64_t events = 0;
+  uint64_t events = 0;  // per run (when cut: the events before the cut)
   Side plain, streamed;
 };
 
@@ -39,62 +42,69 @@ struct StreamRow {
 // triangles.
 constexpr double kNearConvexAmplitude = 0.01;
 
-// Runs compute_kernel up to `runs` times (fewer once one run exceeds budget_ms); returns the
-// median and keeps the last result.
-Side measure(const kergen::MeshView& view, const kergen::Options& options, int runs, double budget_ms,
-             kergen::Kernel& result) {
-  std::vector<double> times;
-  Side side;
-  for (int r = 0; r < runs; ++r) {
-    const double t0 = now_ms();
-    result = kergen::compute_kernel(view, options);
-    benchmark::DoNotOptimize(result);
-    times.push_back(now_ms() - t0);
-    if (times.back() > budget_ms) {
-      side.stopped = r + 1 < runs;
-      break;
-    }
-  }
-  side.ms = median(times);
-  side.runs = int(times.size());
-  return side;
+// One timed run of one side; keeps the result. `run_start` is set as the run starts.
+void time_once(Side& side, const kergen::MeshView& view, const kergen::Options& options, int runs, double budget_ms,
+               kergen::Kernel& result, double& run_start) {
+  const double t0 = run_start = now_ms();
+  result = kergen::compute_kernel(view, options);
+  benchmark::DoNotOptimize(result);
+  side.times.push_back(now_ms() - t0);
+  if (side.runs() >= runs) side.done = true;
+  else if (side.times.back() > budget_ms) side.done = side.stopped = true;
 }
 
-StreamRow stream_row(const std::string& label, const kergen::Mesh& mesh, int runs, double budget_ms) {
+StreamRow stream_row(const std::string& label, const kergen::Mesh& mesh, int runs, double budget_ms, double cap_ms) {
   StreamRow row;
   row.mesh = label;
   row.faces = mesh.num_faces();
   const kergen::MeshView view = mesh.view();
-  kergen::Kernel plain, streamed;
-  row.plain = measure(view, kergen::Options(), runs, budget_ms, plain);
-  if (!plain.ok()) {
-    row.error = std::string(kergen::error_name(plain.error)) + ": " + plain.message;
-    return row;
-  }
-  uint64_t events = 0;  // over all runs: every run reports the same events
+  // The callback counts, and stops a run that has taken longer than cap_ms (looking at the clock
+  // every 1024 events): a slow streaming path then costs the cap, and the row gives a lower bound.
+  double run_start = 0;
+  uint64_t events = 0;  // over all runs: every complete run reports the same events
+  bool cut = false;
   kergen::Options counting;
-  counting.on_step = [&events](const kergen::StepEvent&) {
-    ++events;
-    return true;
+  counting.on_step = [&](const kergen::StepEvent&) {
+    if ((++events & 1023) == 0 && now_ms() - run_start > cap_ms) cut = true;
+    return !cut;
   };
-  row.streamed = measure(view, counting, runs, budget_ms, streamed);
-  row.events = events / uint64_t(row.streamed.runs);
+  // The two sides alternate run by run, so that a drift of the machine's speed and the first
+  // run's page faults weigh on both alike.
+  kergen::Kernel plain, streamed;
+  uint64_t events_before_last = 0;
+  while (!row.plain.done || !row.streamed.done) {
+    if (!row.plain.done) time_once(row.plain, view, kergen::Options(), runs, budget_ms, plain, run_start);
+    if (!plain.ok()) {
+      row.error = std::string(kergen::error_name(plain.error)) + ": " + plain.message;
+      return row;
+    }
+    if (row.streamed.done) continue;
+    events_before_last = events;
+    time_once(row.streamed, view, counting, runs, budget_ms, streamed, run_start);
+    if (cut) row.streamed.done = true;
+  }
   row.type = kergen::kernel_type_name(plain.type);
   row.V = plain.num_vertices();
   row.E = plain.num_edges();
   row.F = plain.num_faces();
+  if (cut) {
+    row.streamed.cut = true;
+    row.events = events - events_before_last;
+    return row;
+  }
+  row.events = events / uint64_t(row.streamed.runs());
   // Streaming must not change the result: say how it differs if it does. The volume is compared
   // relatively: a different order of the kernel's vertices sums it in a different order.
   const double volume_diff = std::fabs(streamed.volume - plain.volume) / std::fabs(plain.volume);
   char buf[256];
   if (streamed.type != plain.type || streamed.num_vertices() != row.V || streamed.num_edges() != row.E ||
-      streamed.num_faces() != row.F || !streamed.complete || events % uint64_t(row.streamed.runs) != 0 ||
+      streamed.num_faces() != row.F || !streamed.complete || events % uint64_t(row.streamed.runs()) != 0 ||
       !(volume_diff <= 1e-12)) {
     std::snprintf(buf, sizeof buf,
                   "**with on_step: %s V %zu E %zu F %zu, volume %.17g (without: %.17g), complete %d, events %llu over %d runs**",
                   kergen::kernel_type_name(streamed.type), streamed.num_vertices(), streamed.num_edges(),
                   streamed.num_faces(), streamed.volume, plain.volume, int(streamed.complete),
-                  (unsigned long long)events, row.streamed.runs);
+                  (unsigned long long)events, row.streamed.runs());
     row.note = buf;
   } else if (volume_diff > 0) {
     std::snprintf(buf, sizeof buf, "same V E F; volume differs by %.1e relative", volume_diff);
@@ -110,23 +120,28 @@ std::string fmt(double v, int prec = 2) {
 }
 
 std::string side_cell(const Side& s) {
-  return fmt(s.ms) + " (" + std::to_string(s.runs) + (s.stopped ? " run, budget" : s.runs == 1 ? " run" : " runs") + ")";
+  if (s.cut) return "> " + fmt(s.ms()) + " (cut off)";
+  return fmt(s.ms()) + " (" + std::to_string(s.runs()) + (s.runs() == 1 ? " run" : " runs") + (s.stopped ? ", budget" : "") + ")";
 }
 
-void print_row(const StreamRow& r, bool json, const std::string& json_context, double budget_ms) {
-  const double ratio = r.plain.ms > 0 ? r.streamed.ms / r.plain.ms : 0;
+void print_row(const StreamRow& r, bool json, const std::string& json_context, double budget_ms, double cap_ms) {
+  const double ratio = r.plain.ms() > 0 ? r.streamed.ms() / r.plain.ms() : 0;
   std::string note = r.note;
-  if (r.plain.stopped || r.streamed.stopped)
-    note += std::string(note.empty() ? "" : "; ") + "stopped repeating after a run over " + fmt(budget_ms / 1000, 0) + " s";
+  auto add = [&](const std::string& text) { note += (note.empty() ? "" : "; ") + text; };
+  if (r.plain.stopped || r.streamed.stopped) add("stopped repeating after a run over " + fmt(budget_ms / 1000, 0) + " s");
+  if (r.streamed.cut)
+    add("with on_step cut off at the " + fmt(cap_ms / 1000, 0) + " s cap after " + std::to_string(r.events) + " of " +
+        std::to_string(r.V + r.E + r.F) + " events (V + E + F): time and ratio are lower bounds");
   if (json) {
     std::ostringstream os;
     os << "{\"streaming_mesh\":\"" << r.mesh << "\"," << json_context << ",\"faces\":" << r.faces;
     if (!r.error.empty()) os << ",\"error\":\"" << r.error << "\"}";
     else
       os << ",\"type\":\"" << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F
-         << ",\"events\":" << r.events << ",\"plain_ms\":" << r.plain.ms << ",\"plain_runs\":" << r.plain.runs
-         << ",\"on_step_ms\":" << r.streamed.ms << ",\"on_step_runs\":" << r.streamed.runs << ",\"ratio\":" << ratio
-         << ",\"budget_stopped\":" << (r.plain.stopped || r.streamed.stopped ? "true" : "false") << ",\"note\":\""
+         << ",\"events\":" << r.events << ",\"plain_ms\":" << r.plain.ms() << ",\"plain_runs\":" << r.plain.runs()
+         << ",\"on_step_ms\":" << r.streamed.ms() << ",\"on_step_runs\":" << r.streamed.runs() << ",\"ratio\":" << ratio
+         << ",\"budget_stopped\":" << (r.plain.stopped || r.streamed.stopped ? "true" : "false")
+         << ",\"cut_off\":" << (r.streamed.cut ? "true" : "false") << ",\"note\":\""
          << note << "\"}";
     std::printf("%s\n", os.str().c_str());
   } else if (!r.error.empty()) {
@@ -134,7 +149,8 @@ void print_row(const StreamRow& r, bool json, const std::string& json_context, d
   } else {
     std::printf("| %s | %zu | %s | %zu | %zu | %zu | %llu | %s | %s | %sx | %s |\n", r.mesh.c_str(), r.faces,
                 r.type.c_str(), r.V, r.E, r.F, (unsigned long long)r.events, side_cell(r.plain).c_str(),
-                side_cell(r.streamed).c_str(), fmt(ratio, ratio < 10 ? 2 : 1).c_str(), note.c_str());
+                side_cell(r.streamed).c_str(), ((r.streamed.cut ? "> " : "") + fmt(ratio, ratio < 10 ? 2 : 1)).c_str(),
+                note.c_str());
   }
   std::fflush(stdout);
 }
@@ -142,7 +158,7 @@ void print_row(const StreamRow& r, bool json, const std::string& json_context, d
 }  // namespace
 
 int run_streaming_rows(const std::string& meshes, const std::vector<std::string>& files, int runs, double budget_ms,
-                       bool json, const std::string& json_context) {
+                       double cap_ms, bool json, const std::string& json_context) {
   // (label, generated mesh or file to read)
   std::vector<std::pair<std::string, std::string>> list;
   if (files.empty()) {
@@ -171,7 +187,7 @@ int run_streaming_rows(const std::string& meshes, const std::vector<std::string>
       }
       mesh = std::move(rr.mesh);
     }
-    print_row(stream_row(label, mesh, runs, budget_ms), json, json_context, budget_ms);
+    print_row(stream_row(label, mesh, runs, budget_ms, cap_ms), json, json_context, budget_ms, cap_ms);
   }
   return exit_code;
 }
