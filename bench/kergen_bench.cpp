@@ -572,14 +572,15 @@ void print_row_table(const std::vector<Row>& rows) {
                 ratio_cells.c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(), fmt(s.ms_lp).c_str(),
                 fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), row_note(r).c_str());
   }
-  std::printf("\nbaseline/ours over the rows with both times:");
+  std::string summary;
   for (size_t b = 0; b < kBaselines.size(); ++b) {
     const RatioStats& st = ratios[b];
     if (!st.count) continue;
-    std::printf("%s %s geometric mean %sx, minimum %sx (%s), %zu of %zu rows slower", b ? ";" : "", kBaselines[b].name,
-                fmt(st.geomean()).c_str(), fmt(st.min).c_str(), st.min_mesh.c_str(), st.slower, st.count);
+    summary += std::string(summary.empty() ? " " : "; ") + kBaselines[b].name + " geometric mean " + fmt(st.geomean()) +
+               "x, minimum " + fmt(st.min) + "x (" + st.min_mesh + "), " + std::to_string(st.slower) + " of " +
+               std::to_string(st.count) + " rows slower";
   }
-  std::printf("\n");
+  if (!summary.empty()) std::printf("\nbaseline/ours over the rows with both times:%s\n", summary.c_str());
 }
 
 void print_family_table(const std::vector<FamilySummary>& families, bool after_rows) {
