@@ -348,6 +348,7 @@ struct BaselineInfo {
 const std::array<BaselineInfo, 3> kBaselines{{{"Epick", "cgal_epick", &Row::epick},
                                              {"Epeck", "cgal_epeck", &Row::epeck},
                                              {"Qhull", "qhull", &Row::qhull}}};
+constexpr size_t kQhullIndex = 2;  // kBaselines[kQhullIndex] is Qhull
 using PerBaseline = std::array<bool, kBaselines.size()>;
 
 struct FamilySummary {
@@ -356,6 +357,8 @@ struct FamilySummary {
   std::vector<std::pair<std::string, size_t>> types;
   std::vector<double> ours;
   std::array<RatioStats, kBaselines.size()> ratios;  // in kBaselines' order
+  // Qhull's inexact kernels whose volume is off ours by more than the tolerance (mesh: difference).
+  std::vector<std::string> qhull_volume_off;
   // Counts the row; returns which baselines it was slower than.
   PerBaseline add(const Row& r) {
     PerBaseline slower{};
@@ -366,6 +369,8 @@ struct FamilySummary {
     else ++it->second;
     ours.push_back(r.ours_ms);
     for (size_t b = 0; b < kBaselines.size(); ++b) slower[b] = ratios[b].add(r.*kBaselines[b].member, r.ours_ms, r.mesh);
+    if (r.qhull.ran && !r.qhull.volume_ok())
+      qhull_volume_off.push_back(fs::path(r.mesh).filename().string() + ": " + fmt(r.qhull.volume_rel_diff, 9));
     return slower;
   }
   std::string types_cell() const {
@@ -400,7 +405,9 @@ struct FamilySummary {
        << load << "\",\"runs\":" << runs << ",\"meshes\":" << meshes << ",\"errors\":" << errors
        << ",\"ours_median_ms\":" << median(ours);
     for (size_t b = 0; b < kBaselines.size(); ++b) os << ",\"" << kBaselines[b].json_key << "\":" << ratio_json(ratios[b]);
-    os << "}";
+    os << ",\"qhull_volume_off\":[";
+    for (size_t i = 0; i < qhull_volume_off.size(); ++i) os << (i ? "," : "") << "\"" << json_escape(qhull_volume_off[i]) << "\"";
+    os << "]}";
     return os.str();
   }
 };
@@ -595,6 +602,14 @@ void print_family_table(const std::vector<FamilySummary>& families, bool after_r
         std::printf("\nMeasured again (%d runs), %s vs %s: %s", kRecheckRuns, f.dir.c_str(), kBaselines[b].name, r.c_str());
         any = true;
       }
+  for (const FamilySummary& f : families) {
+    std::printf("\nQhull volume check, %s: %zu of %zu kernels off ours by more than %g relative", f.dir.c_str(),
+                f.qhull_volume_off.size(), f.ratios[kQhullIndex].count, Baseline::kVolumeTolerance);
+    for (size_t i = 0; i < f.qhull_volume_off.size() && i < 10; ++i)
+      std::printf("%s%s", i ? ", " : " (", f.qhull_volume_off[i].c_str());
+    std::printf("%s", f.qhull_volume_off.empty() ? "" : f.qhull_volume_off.size() > 10 ? ", ...)" : ")");
+    any = true;
+  }
   if (any) std::printf("\n");
 }
 
