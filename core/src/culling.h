@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "climb.h"
-#include "hints.h"
+#include "compiler_hints.h"
 #include "exact/predicates.h"
 #include "tracer.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "culling.h"
-#include "hints.h"
+#include "compiler_hints.h"
 #include "plane_classes.h"
 
 namespace kergen {

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <utility>
 
-#include "hints.h"
+#include "compiler_hints.h"
 #include "exact/predicates.h"
 #include "union_find.h"
 

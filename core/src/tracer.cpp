@@ -9,8 +9,8 @@
 //    set or a plane that cuts the segment earlier, which becomes the next candidate.
 #include "tracer.h"
 
-#include "flat_set.h"
-#include "hints.h"
+#include "u64_set.h"
+#include "compiler_hints.h"
 #include "vertex_filter.h"
 
 #include <algorithm>

@@ -15,7 +15,8 @@
 #include <vector>
 
 #include "exact/expansion.h"
-#include "flat_set.h"
+#include "raw_vector.h"
+#include "sparse_cache.h"
 
 namespace kergen {
 
