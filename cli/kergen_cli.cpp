@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 const char* const kUsage =
     "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
-    "                      [--deepest] [--max-steps N] [--jobs N]\n"
+    "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -46,6 +46,8 @@ const char* const kUsage =
     "  --max-steps N   stop after N trace events (the result is then partial)\n"
     "  --jobs N        compute N meshes at a time (default: the machine's threads); the\n"
     "                  output is the same as with --jobs 1, in input order\n"
+    "  --no-cull-faces keep every face's plane (the same kernel; distinct_planes then counts all)\n"
+    "  --seed N        order of the LP's constraints (the results do not depend on it)\n"
     "Exit code: 0 all meshes processed, 1 some mesh had an input error, 2 usage error.\n";
 
 struct Arguments {
@@ -114,6 +116,16 @@ Arguments parse_arguments(int argc, char** argv) {
       if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE)
         usage_error("--max-steps needs a non-negative integer, got '" + text + "'");
       args.options.max_steps = steps;
+    } else if (arg == "--no-cull-faces") {
+      args.options.cull_faces = false;
+    } else if (arg == "--seed") {
+      const std::string text = value();
+      char* end = nullptr;
+      errno = 0;
+      const unsigned long long seed = std::strtoull(text.c_str(), &end, 10);
+      if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE)
+        usage_error("--seed needs a non-negative integer, got '" + text + "'");
+      args.options.seed = seed;
     } else if (arg == "--jobs") {
       const std::string text = value();
       char* end = nullptr;

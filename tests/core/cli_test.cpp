@@ -195,7 +195,7 @@ TEST_F(CliTest, UsageErrorsExitWithTwo) {
   for (const std::string& arguments :
        {std::string(""), std::string("--no-such-option x.off"), std::string("x.off --from 1,2"),
         std::string("x.off --max-steps minus"), std::string("x.off -o kernel.ply"), std::string("x.off -o"),
-        std::string("a.off b.off -o k.obj")}) {
+        std::string("a.off b.off -o k.obj"), std::string("x.off --seed -1"), std::string("x.off --seed one")}) {
     CliRun r = run(arguments);
     EXPECT_EQ(r.exit_code, 2) << "kergen " << arguments;
     EXPECT_TRUE(has(r.err, "usage: kergen")) << r.err;
@@ -312,6 +312,23 @@ TEST_F(CliTest, JobsGiveTheSameOutputInInputOrder) {
             std::regex_replace(without_timings(human_one.out), time_line, "T"));
   EXPECT_EQ(without_timings(human_default.err), without_timings(human_one.err));
   EXPECT_TRUE(has(human_one.err, "box4_bad.obj:4: vertex index 7 out of range")) << human_one.err;
+}
+
+// Options::cull_faces and Options::seed reach the CLI: the same kernel either way.
+TEST_F(CliTest, NoCullFacesAndSeedKeepTheKernel) {
+  const std::string path = (dir_ / "sphere.off").string();
+  std::string message;
+  ASSERT_EQ(kergen::write_mesh_file(path, kergen_test::bumpy_sphere(60, 40), &message), kergen::Error::Ok) << message;
+  const CliRun plain = run("--json " + shell_quote(path));
+  const CliRun kept = run("--json --no-cull-faces " + shell_quote(path));
+  const CliRun seeded = run("--json --seed 12345 " + shell_quote(path));
+  for (const CliRun* r : {&plain, &kept, &seeded}) ASSERT_EQ(r->exit_code, 0) << r->err;
+  EXPECT_NE(json_raw(plain.out, "culled_faces"), "0");
+  EXPECT_EQ(json_raw(kept.out, "culled_faces"), "0");
+  EXPECT_NEAR(std::stod(json_raw(kept.out, "volume")), std::stod(json_raw(plain.out, "volume")),
+              1e-12 * std::stod(json_raw(plain.out, "volume")));
+  EXPECT_EQ(json_raw(seeded.out, "volume"), json_raw(plain.out, "volume"));
+  EXPECT_EQ(json_raw(seeded.out, "kernel_point"), json_raw(plain.out, "kernel_point"));
 }
 
 TEST_F(CliTest, JobsNeedsAPositiveCount) {

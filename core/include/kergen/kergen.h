@@ -134,6 +134,10 @@ struct Progress {
 using ProgressCallback = std::function<void(const Progress&)>;
 const char* progress_phase_name(Progress::Phase p);  // "validating", "planes", "lp", "tracing", "assembling"
 
+// Every field is reachable from the CLI (docs/cli.md) and from the JS package (its options, in
+// camelCase), except on_step and on_progress in the CLI, which prints one result per mesh
+// (--max-steps stops the stream there), and max_faces / max_vertices there too (its readers
+// refuse what they cannot hold).
 struct Options {
   // Start the trace at the kernel vertex extreme towards this point (seen from the mesh's centre)
   // and expand the vertex nearest to it first, so the kernel grows around it.
