@@ -2,6 +2,7 @@
 // Robust Geometric Predicates", Discrete & Computational Geometry 18 (1997): two_sum /
 // two_product error-free transformations, zero-eliminating expansion sum and scaling, compression.
 #include "exact/expansion.h"
+#include "exact/wide_product.h"
 
 #include <algorithm>
 #include <cassert>
@@ -101,9 +102,6 @@ ApproxDD dd_difference(double a, double b) {
 // than expansions, and decides exact zeros (coplanar faces) as well as nonzero values.
 namespace {
 
-using Int128 = __int128;
-using UInt128 = unsigned __int128;
-
 // Writes x[i] = q[i] 2^L with L = highest - max_bits, where |x[i]| < 2^highest for all i < n,
 // when every q[i] is an integer (then |q[i]| < 2^max_bits); returns false otherwise (values on
 // a finer grid, non-finite values, or |x[i]| >= 2^max_bits, which does not occur for the
@@ -144,34 +142,6 @@ bool to_common_grid(const double (&x)[n], int max_bits, int64_t (&q)[n]) {
   return (fractions << 1) == 0;
 }
 
-// Full 128-bit products of 64-bit integers. WebAssembly has no 64x64->128 multiply: there
-// __int128 products become calls to a general 128x128 routine (__multi3), and four 32x32->64
-// products inline are cheaper. Signed operands by their two's complement: with
-// a = ua - 2^64 [a < 0] (ua = uint64_t(a)), a b = ua ub - 2^64 ([a < 0] ub + [b < 0] ua)
-// modulo 2^128, which is a b exactly when |a b| < 2^127 (the conversion of UInt128 to Int128
-// is modular in GCC and Clang).
-#if defined(__wasm__) || defined(KERGEN_PORTABLE_WIDE_PRODUCT)
-inline UInt128 wide_product(uint64_t a, uint64_t b) {
-  constexpr uint64_t kLow32 = 0xffffffffu;
-  const uint64_t a0 = a & kLow32, a1 = a >> 32, b0 = b & kLow32, b1 = b >> 32;
-  const uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
-  const uint64_t middle = (p00 >> 32) + (p01 & kLow32) + (p10 & kLow32);  // < 3 2^32
-  const uint64_t low = (middle << 32) | (p00 & kLow32);
-  const uint64_t high = p11 + (p01 >> 32) + (p10 >> 32) + (middle >> 32);
-  return (UInt128(high) << 64) | low;
-}
-inline Int128 wide_product(int64_t a, int64_t b) {
-  const uint64_t ua = uint64_t(a), ub = uint64_t(b);
-  const uint64_t correction = (a < 0 ? ub : 0) + (b < 0 ? ua : 0);
-  return Int128(wide_product(ua, ub) - (UInt128(correction) << 64));
-}
-inline Int128 wide_product(int64_t a, uint64_t b) {  // |a b| < 2^127
-  return Int128(wide_product(uint64_t(a), b) - (UInt128(a < 0 ? b : 0) << 64));
-}
-#else
-inline Int128 wide_product(int64_t a, int64_t b) { return Int128(a) * b; }
-inline Int128 wide_product(int64_t a, uint64_t b) { return Int128(a) * Int128(b); }  // |a b| < 2^127
-#endif
 
 // Sign of det3(u, v, w) for integer rows with every |entry| < 2^62, exactly.
 // Bounds: each 2x2 minor is a difference of two products below 2^124, so below 2^125 in
