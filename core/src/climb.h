@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "exact/error_bounds.h"
@@ -29,6 +30,39 @@ inline size_t cube_cell(size_t cells_per_side, double x, double y, double z) {
   };
   const size_t face = 2 * size_t(axis) + (v[axis] < 0);
   return (face * cells_per_side + bin(v[(axis + 1) % 3])) * cells_per_side + bin(v[(axis + 2) % 3]);
+}
+
+// Where a normal falls on the cube map (cube_cell, with what culling's support bound needs):
+// its cell, the first of the cell's corners, its coordinates (fi, fj) in the cell and
+// m = max_k |n_k|; the cell is meaningless unless usable(m) (not a zero or non-finite normal).
+// The same operations as cube_cell (the bins of t in [0, k] fit an int; integers below 2^53 are
+// exact in double), so the same cells; written in doubles without branches to vectorize. For
+// an unusable m, t is NaN (std::max makes it 0) or 0, so the corner is still in range.
+struct CubePosition {
+  int32_t cell, corner;
+  double fi, fj, m;
+};
+inline bool usable(double m) { return m > 0 && m <= std::numeric_limits<double>::max(); }
+inline CubePosition cube_position(int cells_per_side, double a, double b, double c) {
+  const double x = std::fabs(a), y = std::fabs(b), z = std::fabs(c);
+  const bool y_over_x = y > x;
+  const double mxy = y_over_x ? y : x;
+  const bool z_top = z > mxy;  // axis 2, else axis 1 if y_over_x, else axis 0
+  const double m = z_top ? z : mxy;
+  const double u = z_top ? a : (y_over_x ? c : b), v = z_top ? b : (y_over_x ? a : c);  // n[axis + 1], n[axis + 2]
+  const double n_axis = z_top ? c : (y_over_x ? b : a);
+  const double face = (z_top ? 4.0 : (y_over_x ? 2.0 : 0.0)) + (n_axis < 0 ? 1.0 : 0.0);
+  const double k = double(cells_per_side);
+  const double tu = (u / m + 1) * 0.5 * k, tv = (v / m + 1) * 0.5 * k;
+  const double i = double(std::min(cells_per_side - 1, int(std::max(0.0, tu))));
+  const double j = double(std::min(cells_per_side - 1, int(std::max(0.0, tv))));
+  CubePosition p;
+  p.cell = int32_t((face * k + i) * k + j);
+  p.corner = int32_t((face * (k + 1) + i) * (k + 1) + j);
+  p.fi = std::min(1.0, std::max(0.0, tu - i));
+  p.fj = std::min(1.0, std::max(0.0, tv - j));
+  p.m = m;
+  return p;
 }
 
 struct ClimbScratch {
