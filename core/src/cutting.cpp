@@ -50,14 +50,14 @@ class Cutter {
       adj_[edges_[e].a].push_back(e);
       adj_[edges_[e].b].push_back(e);
     }
-    replaced_by_.assign(V, kNoPlane);
+    replaced_by_.assign(V, kNoVertex);
     state_.assign(V, kUnseen);
     alive_count_ = V;
     traced_lines_ = prev.traced_lines;
   }
 
   // Cuts by plane h, climbing from the best of the hints (dead ones stand for the cut point that
-  // replaced them; invalid ones, kNoPlane, are skipped; vertex 0 when none is valid); `near`
+  // replaced them; invalid ones, kNoVertex, are skipped; vertex 0 when none is valid); `near`
   // gets a vertex on or nearest to h afterwards, a start for planes of similar normal. False
   // when the result is not handled (see cutting.h).
   bool cut(uint32_t h, std::initializer_list<uint32_t> hints, uint32_t& near) {
@@ -68,15 +68,15 @@ class Cutter {
                                            coord_error_);
     const double tie = kClimbTie * delta, margin = kReachMargin * delta;
     auto f = [&](uint32_t v) { return a * xyz_[3 * v] + b * xyz_[3 * v + 1] + c * xyz_[3 * v + 2] + d; };
-    uint32_t cur = kNoPlane;
+    uint32_t cur = kNoVertex;
     double val = 0;
     for (uint32_t hint : hints) {
       if (hint >= alive_v_.size()) continue;
       const uint32_t start = alive(hint);
       const double start_val = f(start);
-      if (cur == kNoPlane || start_val > val) { cur = start; val = start_val; }
+      if (cur == kNoVertex || start_val > val) { cur = start; val = start_val; }
     }
-    if (cur == kNoPlane) { cur = alive(0); val = f(cur); }
+    if (cur == kNoVertex) { cur = alive(0); val = f(cur); }
     // To the maximum of f_h over the polytope: greedy ascent in double, then along edges on
     // which f_h certainly rises (in double where the values differ by more than the tie, else
     // by the exact sign of its rate). A vertex without such an edge is an exact maximum: the
@@ -135,7 +135,7 @@ class Cutter {
   }
 
   void finish(TraceResult& out) {
-    std::vector<uint32_t> id(vertices_.size(), kNoPlane);
+    std::vector<uint32_t> id(vertices_.size(), kNoVertex);
     out = TraceResult();
     for (uint32_t v = 0; v < vertices_.size(); ++v) {
       if (!alive_v_[v]) continue;
@@ -243,8 +243,8 @@ class Cutter {
       alive_v_[v] = 0;
       --alive_count_;
     }
-    const uint32_t any_cut_point = cut_points_.empty() ? kNoPlane : cut_points_[0];
-    if (any_cut_point == kNoPlane) return false;
+    const uint32_t any_cut_point = cut_points_.empty() ? kNoVertex : cut_points_[0];
+    if (any_cut_point == kNoVertex) return false;
     for (uint32_t v : out_) replaced_by_[v] = any_cut_point;
 
     // The new face: cut points grouped by their other planes.
@@ -284,7 +284,7 @@ class Cutter {
     note_coordinates(id);
     alive_v_.push_back(1);
     adj_.emplace_back();
-    replaced_by_.push_back(kNoPlane);
+    replaced_by_.push_back(kNoVertex);
     state_.push_back(kUnseen);
     ++alive_count_;
     return id;
@@ -348,14 +348,14 @@ bool cut_kernel_trace(const PlaneSet& ps, const TraceResult& prev, const std::ve
   // a fine one (about two planes per cell) and a coarse one for cells not visited yet.
   const size_t cells_per_side = std::min<size_t>(128, std::max<size_t>(1, size_t(std::sqrt(double(added.size()) / 12))));
   const size_t coarse_per_side = std::max<size_t>(1, cells_per_side / 4);
-  std::vector<uint32_t> recent(6 * cells_per_side * cells_per_side, kNoPlane), recent_coarse(6 * coarse_per_side * coarse_per_side, kNoPlane);
+  std::vector<uint32_t> recent(6 * cells_per_side * cells_per_side, kNoVertex), recent_coarse(6 * coarse_per_side * coarse_per_side, kNoVertex);
   for (uint32_t i : order) {
     const uint32_t h = added[i];
     const size_t cell = cube_cell(cells_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
     const size_t coarse = cube_cell(coarse_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
-    uint32_t near = kNoPlane;
-    if (!cutter.cut(h, {i < hints.size() ? hints[i] : 0, cell == kNoCell ? kNoPlane : recent[cell],
-                        coarse == kNoCell ? kNoPlane : recent_coarse[coarse]}, near)) return false;
+    uint32_t near = kNoVertex;
+    if (!cutter.cut(h, {i < hints.size() ? hints[i] : 0, cell == kNoCell ? kNoVertex : recent[cell],
+                        coarse == kNoCell ? kNoVertex : recent_coarse[coarse]}, near)) return false;
     if (cell != kNoCell) recent[cell] = near;
     if (coarse != kNoCell) recent_coarse[coarse] = near;
   }

@@ -98,7 +98,7 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   out.triangles.reserve(3 * (corners - std::min(corners, 2 * facets.size())));
 
   bool announce = true, ok = true;
-  std::vector<uint32_t> next(V, kNoPlane), touched, loop;
+  std::vector<uint32_t> next(V, kNoVertex), touched, loop;
   touched.reserve(V);
   loop.reserve(V);
   for (const auto& [begin, end] : facets) {
@@ -112,7 +112,7 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       if (s == kNoPlane) { valid = false; break; }
       int sg = te.sigma * sign_edge_in_facet(ps, te.p, te.q, h, s);
       uint32_t from = sg > 0 ? te.a : te.b, to = sg > 0 ? te.b : te.a;
-      if (sg == 0 || next[from] != kNoPlane) { valid = false; break; }
+      if (sg == 0 || next[from] != kNoVertex) { valid = false; break; }
       next[from] = to;
       touched.push_back(from);
     }
@@ -121,10 +121,10 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       do {
         loop.push_back(v);
         v = next[v];
-      } while (v != kNoPlane && v != start && loop.size() <= touched.size());
+      } while (v != kNoVertex && v != start && loop.size() <= touched.size());
       valid = v == start && loop.size() == touched.size();
     }
-    for (uint32_t t : touched) next[t] = kNoPlane;
+    for (uint32_t t : touched) next[t] = kNoVertex;
     if (!valid) {
       // A stopped run leaves facets open; a complete run must not.
       if (trace.complete) ok = false;

@@ -21,7 +21,7 @@ namespace {
 class Replay {
  public:
   Replay(const PlaneSet& ps, TraceResult& tr, const ReplayOptions& options)
-      : ps_(ps), tr_(tr), opt_(options), new_id_(tr.vertices.size(), kNoPlane), traced_(tr.edges.size(), 0) {
+      : ps_(ps), tr_(tr), opt_(options), new_id_(tr.vertices.size(), kNoVertex), traced_(tr.edges.size(), 0) {
     // Edges at each vertex, in increasing id (a counting sort keeps the order).
     const size_t V = tr.vertices.size();
     offset_.assign(V + 1, 0);
@@ -46,7 +46,7 @@ class Replay {
       if (traced_[e]) continue;
       const TracedEdge& te = tr_.edges[e];
       const uint32_t to = te.a == from ? te.b : te.a;
-      if (new_id_[to] == kNoPlane && !discover(to)) return false;
+      if (new_id_[to] == kNoVertex && !discover(to)) return false;
       traced_[e] = 1;
       edge_order_.push_back(e);
       edge_from_.push_back(from);
@@ -65,7 +65,7 @@ class Replay {
   TraceResult result(bool complete) {
     if (complete) {
       for (uint32_t v = 0; v < tr_.vertices.size(); ++v)
-        if (new_id_[v] == kNoPlane) number(v);
+        if (new_id_[v] == kNoVertex) number(v);
       for (uint32_t e = 0; e < tr_.edges.size(); ++e)
         if (!traced_[e]) { edge_order_.push_back(e); edge_from_.push_back(tr_.edges[e].a); }
     }
@@ -154,7 +154,7 @@ class Replay {
   TraceResult& tr_;  // moved from by result()
   const ReplayOptions& opt_;
   std::vector<uint32_t> offset_, at_;  // edges at each vertex (CSR)
-  std::vector<uint32_t> new_id_;       // event id of each vertex of tr_, kNoPlane until discovered
+  std::vector<uint32_t> new_id_;       // event id of each vertex of tr_, kNoVertex until discovered
   std::vector<char> traced_;           // per edge of tr_
   std::vector<uint32_t> vertex_order_, edge_order_, edge_from_;
   std::vector<std::pair<uint32_t, uint32_t>> fifo_;  // queued rays (vertex, edge), in order

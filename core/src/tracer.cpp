@@ -123,11 +123,11 @@ class VertexIndex {
  public:
   template <class Ids>
   uint32_t find(const Ids& tight, const std::vector<TracedVertex>& vertices) const {
-    if (slots_.empty()) return kNoPlane;
+    if (slots_.empty()) return kNoVertex;
     const uint64_t h = hash(tight);
     for (size_t i = h & mask_;; i = (i + 1) & mask_) {
       const Slot& s = slots_[i];
-      if (s.id == kNoPlane) return kNoPlane;
+      if (s.id == kNoVertex) return kNoVertex;
       if (s.hash == h && vertices[s.id].tight == tight) return s.id;
     }
   }
@@ -152,16 +152,16 @@ class VertexIndex {
   }
   void place(const Slot& x) {
     size_t i = x.hash & mask_;
-    while (slots_[i].id != kNoPlane) i = (i + 1) & mask_;
+    while (slots_[i].id != kNoVertex) i = (i + 1) & mask_;
     slots_[i] = x;
   }
   void grow() {
     std::vector<Slot> old;
     old.swap(slots_);
-    slots_.assign(old.empty() ? 32 : 2 * old.size(), Slot{0, kNoPlane});
+    slots_.assign(old.empty() ? 32 : 2 * old.size(), Slot{0, kNoVertex});
     mask_ = slots_.size() - 1;
     for (const Slot& x : old)
-      if (x.id != kNoPlane) place(x);
+      if (x.id != kNoVertex) place(x);
   }
   std::vector<Slot> slots_;
   size_t mask_ = 0, size_ = 0;
@@ -287,7 +287,7 @@ class Tracer {
   TraceResult run_update(const TraceResult& prev, const std::vector<uint32_t>& added) {
     PlaneArrays added_arr;
     added_arr.build(ps_, added);
-    std::vector<uint32_t> new_id(prev.vertices.size(), kNoPlane);
+    std::vector<uint32_t> new_id(prev.vertices.size(), kNoVertex);
     std::vector<std::vector<uint32_t>> tight_added(prev.vertices.size());
     for (size_t v = 0; v < prev.vertices.size(); ++v) {
       const TracedVertex& tv = prev.vertices[v];
@@ -313,7 +313,7 @@ class Tracer {
     }
     if (res_.vertices.empty()) { res_.internal_error = true; return finish(); }  // the LP vertex always survives
     for (const TracedEdge& e : prev.edges) {
-      if (new_id[e.a] == kNoPlane || new_id[e.b] == kNoPlane) continue;
+      if (new_id[e.a] == kNoVertex || new_id[e.b] == kNoVertex) continue;
       TracedEdge k = e;
       k.a = new_id[e.a];
       k.b = new_id[e.b];
@@ -341,14 +341,14 @@ class Tracer {
     return finish();
   }
 
-  // The known vertex whose tight set holds planes a, b and c, or kNoPlane.
+  // The known vertex whose tight set holds planes a, b and c, or kNoVertex.
   uint32_t known_vertex_on(uint32_t a, uint32_t b, uint32_t c) const {
-    for (uint32_t e = on_head_[slot_[a]]; e != kNoPlane; e = on_next_[e]) {
+    for (uint32_t e = on_head_[slot_[a]]; e != kNoVertex; e = on_next_[e]) {
       const uint32_t v = on_vertex_[e];
       const auto& G = res_.vertices[v].tight;
       if (std::binary_search(G.begin(), G.end(), b) && std::binary_search(G.begin(), G.end(), c)) return v;
     }
-    return kNoPlane;
+    return kNoVertex;
   }
 
   // Adds a vertex and queues its untraced rays.
@@ -364,8 +364,8 @@ class Tracer {
   void link_vertex_on(uint32_t slot, uint32_t v) {
     const uint32_t e = uint32_t(on_vertex_.size());
     on_vertex_.push_back(v);
-    on_next_.push_back(kNoPlane);
-    if (on_head_[slot] == kNoPlane) on_head_[slot] = e;
+    on_next_.push_back(kNoVertex);
+    if (on_head_[slot] == kNoVertex) on_head_[slot] = e;
     else on_next_[on_tail_[slot]] = e;
     on_tail_[slot] = e;
   }
@@ -554,13 +554,13 @@ class Tracer {
     for (uint32_t i = 0; i < ray.line_size; ++i) mark_[line[i]] = 1;
     std::vector<uint32_t>& tight = tight_;
     VertexGeom w;
-    uint32_t known = kNoPlane;
+    uint32_t known = kNoVertex;
     bool exact_done = false;
     for (;;) {
       // A known vertex on p, q and r is the candidate itself (three independent planes meet in
       // one point) and is already certified: no need to evaluate anything.
       known = known_vertex_on(ray.p, ray.q, r);
-      if (known != kNoPlane) break;
+      if (known != kNoVertex) break;
       w = make_vertex(ps_, ray.p, ray.q, r);
       uint32_t violator = certify(w, tight);
       if (violator == kNoPlane) break;
@@ -575,8 +575,8 @@ class Tracer {
     for (uint32_t i = 0; i < ray.line_size; ++i) mark_[line[i]] = 0;
     if (res_.internal_error) return false;
 
-    uint32_t to = known != kNoPlane ? known : vertex_ids_.find(tight, res_.vertices);
-    if (to == kNoPlane) {
+    uint32_t to = known != kNoVertex ? known : vertex_ids_.find(tight, res_.vertices);
+    if (to == kNoVertex) {
       to = uint32_t(res_.vertices.size());
       add_vertex(w, tight);
     }

@@ -13,6 +13,9 @@
 
 namespace kergen {
 
+// "No vertex" among the vertex ids of a trace (the same bits as kNoPlane, but a vertex's).
+constexpr uint32_t kNoVertex = 0xffffffffu;
+
 // Planes through a vertex or along an edge: three or two, a few more at degenerate corners.
 using PlaneIds = SmallVector<uint32_t, 6>;
 
