@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "culling.h"
+#include "plane_culling.h"
 #include "compiler_hints.h"
 #include "plane_classes.h"
 

@@ -1284,8 +1284,7 @@ ReadResult read_mesh(std::string_view bytes, MeshFormat format, const std::strin
 }
 
 ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
-  // The header's default, size_t(4) << 30, wraps to 0 where size_t is 32-bit (wasm32): 0 therefore
-  // means "no limit beyond what the address space allows".
+  // 0, like the default SIZE_MAX, means no limit beyond what the address space allows.
   if (max_bytes == 0) max_bytes = std::numeric_limits<size_t>::max();
   ReadResult result;
   auto io_error = [&](const std::string& reason) {

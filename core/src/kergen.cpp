@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "culling.h"
+#include "plane_culling.h"
 #include "deepest_point.h"
 #include "face_culling.h"
 #include "lp.h"

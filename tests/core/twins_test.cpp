@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "climb.h"
-#include "culling.h"
+#include "plane_culling.h"
 #include "fixtures.h"
 #include "lp.h"
 #include "mesh_prep.h"

@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "culling.h"
+#include "plane_culling.h"
 #include "fixtures.h"
 #include "lp.h"
 #include "mesh_prep.h"

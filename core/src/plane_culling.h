@@ -1,4 +1,8 @@
-// Output-sensitive tracing: only the planes that can touch the kernel are traced against.
+// Plane culling, output-sensitive tracing: only the planes that can touch the kernel are traced
+// against. Its sample kernel is K_S, the plane-subset kernel: the kernel of a random subset S of
+// the distinct planes (face culling's is the face-sample kernel, of the planes of evenly spread
+// faces, before planes are merged; see face_culling.h). The support test (SupportTest) serves
+// both.
 #pragma once
 
 #include <vector>

@@ -4,7 +4,7 @@
 // the convex polytope K_S: hill climbing on its vertex graph from a cube map of extreme
 // vertices (or, for many planes at once and a small K_S, a vectorized scan of all its vertices).
 // K_S is then cut by the planes found.
-#include "culling.h"
+#include "plane_culling.h"
 
 #include <algorithm>
 #include <cmath>
