@@ -216,4 +216,39 @@ inline void check_kernel(const kergen::MeshView& mesh, const kergen::Kernel& k, 
   }
 }
 
+// Stricter checks for the kernels of well-shaped meshes (the tests'; the fuzzers skip them: on a
+// degenerate kernel, rounded coordinates can make a convex corner's turn compute as 0): every
+// face convex and counter-clockwise seen from outside (each turn agrees with the direction from
+// the vertex centroid), and no two vertices at one position. Coordinates are scaled by one power
+// of two first (exact), so huge and tiny kernels neither overflow nor underflow.
+inline void check_convex_faces_and_distinct_vertices(const kergen::Kernel& k) {
+  const size_t V = k.num_vertices();
+  if (V == 0) return;
+  double ext = 0;
+  for (double c : k.vertices) ext = std::max(ext, std::fabs(c));
+  int ex = 0;
+  std::frexp(ext, &ex);
+  std::vector<double> x(k.vertices.size());
+  for (size_t i = 0; i < x.size(); ++i) x[i] = std::ldexp(k.vertices[i], -ex);
+  double centre[3] = {0, 0, 0};
+  for (size_t v = 0; v < V; ++v)
+    for (int c = 0; c < 3; ++c) centre[c] += x[3 * v + c] / double(V);
+  for (size_t f = 0, off = 0; f < k.num_faces(); off += k.face_sizes[f], ++f) {
+    const size_t n = k.face_sizes[f];
+    for (size_t i = 0; i < n; ++i) {
+      const double* p0 = &x[3 * size_t(k.face_indices[off + i])];
+      const double* p1 = &x[3 * size_t(k.face_indices[off + (i + 1) % n])];
+      const double* p2 = &x[3 * size_t(k.face_indices[off + (i + 2) % n])];
+      const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
+      const double nn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      const double out = nn[0] * (p1[0] - centre[0]) + nn[1] * (p1[1] - centre[1]) + nn[2] * (p1[2] - centre[2]);
+      KFUZZ_CHECK(out > 0, "face " + std::to_string(f) + " not convex and counter-clockwise at corner " + std::to_string(i));
+    }
+  }
+  std::vector<std::vector<double>> points;
+  for (size_t v = 0; v < V; ++v) points.push_back({k.vertices[3 * v], k.vertices[3 * v + 1], k.vertices[3 * v + 2]});
+  std::sort(points.begin(), points.end());
+  KFUZZ_CHECK(std::adjacent_find(points.begin(), points.end()) == points.end(), "two kernel vertices at one position");
+}
+
 }  // namespace kfuzz

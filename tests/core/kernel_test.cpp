@@ -5,8 +5,10 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 
+#include "../../fuzz/invariants.h"
 #include "fixtures.h"
 #include "kergen/kergen.h"
 
@@ -15,81 +17,22 @@ namespace {
 using namespace kergen;
 using namespace kergen_test;
 
-// Checks what every correct result must satisfy, independent of how it was computed:
-// vertices inside every input half-space (up to double rounding of the output coordinates),
-// closed 2-manifold with consistently oriented faces, Euler characteristic 2, convex CCW faces,
-// no duplicate vertices, volume equal to the volume computed from the faces.
-void expect_valid_polyhedron_normalized(const Mesh& input, const Kernel& k);
+// Checks what every correct result must satisfy, independent of how it was computed, with the
+// fuzzers' invariant checker (fuzz/invariants.h: array sizes and ids, a closed 2-manifold with
+// consistently oriented faces and Euler characteristic 2, vertices inside every input half-space
+// up to output rounding, volume positive and not above the shape's) and its stricter checks for
+// well-shaped meshes (convex counter-clockwise faces, no duplicate vertices).
 void expect_valid_polyhedron(const Mesh& input, const Kernel& k) {
   ASSERT_TRUE(k.ok()) << k.message;
   ASSERT_EQ(k.type, KernelType::Polyhedron);
-  const size_t V = k.num_vertices(), E = k.num_edges(), F = k.num_faces();
-  EXPECT_EQ(int64_t(V) - int64_t(E) + int64_t(F), 2) << "Euler characteristic";
-
-  // Work in coordinates scaled by a power of two (exact) so huge and tiny inputs neither
-  // overflow nor underflow in the checks.
-  double ext = 0;
-  for (double c : input.positions) ext = std::max(ext, std::fabs(c));
-  int ex = 0;
-  std::frexp(ext, &ex);
-  Mesh scaled_input = input;
-  for (double& c : scaled_input.positions) c = std::ldexp(c, -ex);
-  Kernel scaled_kernel = k;
-  for (double& c : scaled_kernel.vertices) c = std::ldexp(c, -ex);
-  expect_valid_polyhedron_normalized(scaled_input, scaled_kernel);
-}
-
-void expect_valid_polyhedron_normalized(const Mesh& input, const Kernel& k) {
-  const size_t V = k.num_vertices(), E = k.num_edges(), F = k.num_faces();
-  const double ext = 1;
-  // Inside every face plane (triangle or polygon: use its first three vertices).
-  size_t off = 0;
-  for (size_t f = 0; f < input.num_faces(); ++f) {
-    size_t n = input.face_sizes.empty() ? 3 : input.face_sizes[f];
-    const double* a = &input.positions[3 * input.indices[off]];
-    const double* b = &input.positions[3 * input.indices[off + 1]];
-    const double* c = &input.positions[3 * input.indices[off + 2]];
-    off += n;
-    double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double nn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    double len = std::sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-    if (len == 0) continue;
-    for (size_t v = 0; v < V; ++v) {
-      const double* p = &k.vertices[3 * v];
-      double dist = (nn[0] * (p[0] - a[0]) + nn[1] * (p[1] - a[1]) + nn[2] * (p[2] - a[2])) / len;
-      EXPECT_LE(dist, 1e-12 * std::max(ext, 1.0)) << "vertex " << v << " outside face " << f;
-    }
+  kfuzz::violation_handler = [](const std::string& what) { throw std::runtime_error(what); };
+  try {
+    kfuzz::check_kernel(input.view(), k, false, true);
+    kfuzz::check_convex_faces_and_distinct_vertices(k);
+  } catch (const std::runtime_error& e) {
+    ADD_FAILURE() << e.what();
   }
-  // Each directed edge once, its reverse once.
-  std::map<std::pair<uint32_t, uint32_t>, int> directed;
-  off = 0;
-  double cx[3] = {0, 0, 0};
-  for (size_t v = 0; v < V; ++v)
-    for (int i = 0; i < 3; ++i) cx[i] += k.vertices[3 * v + i] / double(V);
-  for (size_t f = 0; f < F; ++f) {
-    size_t n = k.face_sizes[f];
-    EXPECT_GE(n, 3u);
-    for (size_t i = 0; i < n; ++i) directed[{k.face_indices[off + i], k.face_indices[off + (i + 1) % n]}]++;
-    // Convex and CCW from outside: every consecutive turn agrees with the outward direction.
-    for (size_t i = 0; i < n; ++i) {
-      const double* p0 = &k.vertices[3 * k.face_indices[off + i]];
-      const double* p1 = &k.vertices[3 * k.face_indices[off + (i + 1) % n]];
-      const double* p2 = &k.vertices[3 * k.face_indices[off + (i + 2) % n]];
-      double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
-      double nn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      double out = nn[0] * (p1[0] - cx[0]) + nn[1] * (p1[1] - cx[1]) + nn[2] * (p1[2] - cx[2]);
-      EXPECT_GT(out, 0) << "face " << f << " not convex/CCW at corner " << i;
-    }
-    off += n;
-  }
-  EXPECT_EQ(directed.size(), 2 * E);
-  for (const auto& [e, count] : directed) {
-    EXPECT_EQ(count, 1);
-    EXPECT_EQ(directed.count({e.second, e.first}), 1u) << "edge " << e.first << "-" << e.second << " has no twin";
-  }
-  std::set<std::array<double, 3>> distinct;
-  for (size_t v = 0; v < V; ++v) distinct.insert({k.vertices[3 * v], k.vertices[3 * v + 1], k.vertices[3 * v + 2]});
-  EXPECT_EQ(distinct.size(), V) << "duplicate vertices";
+  kfuzz::violation_handler = nullptr;
 }
 
 Kernel run(const Mesh& m, Options o = {}) { return compute_kernel(m.view(), o); }
