@@ -26,8 +26,8 @@ inline double median(std::vector<double> v) {
 
 struct Baseline {
   bool ran = false;
-  std::string skipped;      // reason when not run
-  double ms = 0;            // median
+  std::string skipped;  // reason when not run
+  double ms = 0;        // median
   int runs = 0;
   size_t raw_vertices = 0;  // output vertices as the baseline returns them (degree-k vertices repeated)
   // Qhull only: it constructs in floating point, so its kernel is checked by volume (the volume of
@@ -42,8 +42,8 @@ struct Baseline {
 // scipy.spatial.HalfspaceIntersection calls it) with `interior` as its feasible point: `runs`
 // timed runs (stopping after one longer than budget_ms). `our_volume` is what its result is
 // checked against. Without libqhull_r at build time the result says so in `skipped`.
-Baseline run_qhull(const kergen::Mesh& m, bool flip, const std::array<double, 3>& interior, double our_volume,
-                   int runs, double budget_ms);
+Baseline run_qhull(const kergen::Mesh& m, bool flip, const std::array<double, 3>& interior, double our_volume, int runs,
+                   double budget_ms);
 // "Qhull 2020.2.r 2020/08/31", or a note that the bench was built without it.
 std::string qhull_version();
 

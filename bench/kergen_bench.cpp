@@ -23,11 +23,11 @@
 //                             (default 20000)
 //     --streaming-cap-ms T    the callback stops a run with on_step after T (default 120000): the
 //                             row then gives a lower bound
+#include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
-#include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
 #include <CGAL/version.h>
 #include <benchmark/benchmark.h>
 
@@ -119,7 +119,7 @@ struct Row {
   kergen::Stats stats;
   Baseline epick, epeck, qhull;
   bool star = false;
-  std::string reference;   // non-star: the star mesh our time is compared with
+  std::string reference;  // non-star: the star mesh our time is compared with
   double reference_ms = 0;
 };
 
@@ -159,7 +159,9 @@ Baseline run_baseline(const kergen::Mesh& m, bool flip, const std::array<double,
     // first corners can face inward on a non-planar, non-convex polygon.)
     for (const auto& p : face_planes<K>(m, flip))
       if (!p.has_on_negative_side(origin)) {
-        b.skipped = "origin not strictly inside every face plane (kernel too thin for a double centroid, or a face's first corners turn inward)";
+        b.skipped =
+            "origin not strictly inside every face plane (kernel too thin for a double centroid, or a face's first "
+            "corners turn inward)";
         return b;
       }
   }
@@ -168,8 +170,7 @@ Baseline run_baseline(const kergen::Mesh& m, bool flip, const std::array<double,
     const auto planes = face_planes<K>(m, flip);
     CGAL::Surface_mesh<typename K::Point_3> out;
     try {
-      CGAL::halfspace_intersection_3(planes.begin(), planes.end(), out,
-                                     boost::optional<typename K::Point_3>(origin));
+      CGAL::halfspace_intersection_3(planes.begin(), planes.end(), out, boost::optional<typename K::Point_3>(origin));
     } catch (const std::exception& e) {
       b.skipped = std::string("failed: ") + e.what();
       return b;
@@ -244,15 +245,24 @@ Row bench_mesh(const std::string& path, const std::string& label, const Args& ar
   bool flip = false;
   for (const auto& w : k.warnings) flip |= w.kind == kergen::Warning::Kind::OrientationFlipped;
 
-  if (!args.epick) row.epick.skipped = "skipped (--no-epick)";
-  else if (row.faces > args.epick_max_faces) row.epick.skipped = "skipped (> --epick-max-faces)";
-  else row.epick = run_baseline<Epick>(rr.mesh, flip, c, args);
-  if (!args.epeck) row.epeck.skipped = "skipped (--no-epeck)";
-  else if (row.faces > args.epeck_max_faces) row.epeck.skipped = "skipped (> --epeck-max-faces)";
-  else row.epeck = run_baseline<Epeck>(rr.mesh, flip, c, args);
-  if (!args.qhull) row.qhull.skipped = "skipped (--no-qhull)";
-  else if (row.faces > args.qhull_max_faces) row.qhull.skipped = "skipped (> --qhull-max-faces)";
-  else row.qhull = kergen_bench::run_qhull(rr.mesh, flip, c, k.volume, args.runs, args.baseline_budget_ms);
+  if (!args.epick)
+    row.epick.skipped = "skipped (--no-epick)";
+  else if (row.faces > args.epick_max_faces)
+    row.epick.skipped = "skipped (> --epick-max-faces)";
+  else
+    row.epick = run_baseline<Epick>(rr.mesh, flip, c, args);
+  if (!args.epeck)
+    row.epeck.skipped = "skipped (--no-epeck)";
+  else if (row.faces > args.epeck_max_faces)
+    row.epeck.skipped = "skipped (> --epeck-max-faces)";
+  else
+    row.epeck = run_baseline<Epeck>(rr.mesh, flip, c, args);
+  if (!args.qhull)
+    row.qhull.skipped = "skipped (--no-qhull)";
+  else if (row.faces > args.qhull_max_faces)
+    row.qhull.skipped = "skipped (> --qhull-max-faces)";
+  else
+    row.qhull = kergen_bench::run_qhull(rr.mesh, flip, c, k.volume, args.runs, args.baseline_budget_ms);
   return row;
 }
 
@@ -261,8 +271,8 @@ std::vector<std::pair<std::string, std::string>> default_list(const Args& args) 
   const fs::path root = args.meshes;
   auto add = [&](const std::string& rel) { list.emplace_back((root / rel).string(), rel); };
   if (args.quick) {
-    for (const char* f : {"princeton/350.off", "princeton/200.off", "refinements/spiral1.off",
-                          "refinements/vase1.off", "polyhedra/tet10/0.off", "polyhedra/voro/0.off"})
+    for (const char* f : {"princeton/350.off", "princeton/200.off", "refinements/spiral1.off", "refinements/vase1.off",
+                          "polyhedra/tet10/0.off", "polyhedra/voro/0.off"})
       add(f);
     return list;
   }
@@ -297,7 +307,10 @@ std::string json_escape(const std::string& s) {
   std::string o;
   for (char ch : s) {
     if (ch == '"' || ch == '\\') o += '\\';
-    if (static_cast<unsigned char>(ch) < 0x20) { o += ' '; continue; }
+    if (static_cast<unsigned char>(ch) < 0x20) {
+      o += ' ';
+      continue;
+    }
     o += ch;
   }
   return o;
@@ -306,8 +319,9 @@ std::string json_escape(const std::string& s) {
 std::string json_baseline(const Baseline& b, double ours) {
   std::ostringstream os;
   os << "{\"ran\":" << (b.ran ? "true" : "false");
-  if (b.ran) os << ",\"ms\":" << b.ms << ",\"runs\":" << b.runs << ",\"ratio\":" << (ours > 0 ? b.ms / ours : 0)
-                << ",\"raw_vertices\":" << b.raw_vertices;
+  if (b.ran)
+    os << ",\"ms\":" << b.ms << ",\"runs\":" << b.runs << ",\"ratio\":" << (ours > 0 ? b.ms / ours : 0)
+       << ",\"raw_vertices\":" << b.raw_vertices;
   if (b.ran && b.has_volume)
     os << ",\"volume\":" << b.volume << ",\"volume_rel_diff\":" << b.volume_rel_diff
        << ",\"volume_ok\":" << (b.volume_ok() ? "true" : "false");
@@ -334,7 +348,10 @@ struct RatioStats {
     ++count;
     log_sum += std::log(r);
     slower += r < 1;
-    if (r < min) { min = r; min_mesh = mesh; }
+    if (r < min) {
+      min = r;
+      min_mesh = mesh;
+    }
     return r < 1;
   }
   double geomean() const { return count ? std::exp(log_sum / double(count)) : 0; }
@@ -345,9 +362,8 @@ struct BaselineInfo {
   const char* json_key;  // JSON field
   Baseline Row::*member;
 };
-const std::array<BaselineInfo, 3> kBaselines{{{"Epick", "cgal_epick", &Row::epick},
-                                             {"Epeck", "cgal_epeck", &Row::epeck},
-                                             {"Qhull", "qhull", &Row::qhull}}};
+const std::array<BaselineInfo, 3> kBaselines{
+    {{"Epick", "cgal_epick", &Row::epick}, {"Epeck", "cgal_epeck", &Row::epeck}, {"Qhull", "qhull", &Row::qhull}}};
 constexpr size_t kQhullIndex = 2;  // kBaselines[kQhullIndex] is Qhull
 using PerBaseline = std::array<bool, kBaselines.size()>;
 
@@ -363,12 +379,18 @@ struct FamilySummary {
   PerBaseline add(const Row& r) {
     PerBaseline slower{};
     ++meshes;
-    if (!r.error.empty()) { ++errors; return slower; }
+    if (!r.error.empty()) {
+      ++errors;
+      return slower;
+    }
     auto it = std::find_if(types.begin(), types.end(), [&](const auto& t) { return t.first == r.type; });
-    if (it == types.end()) types.emplace_back(r.type, 1);
-    else ++it->second;
+    if (it == types.end())
+      types.emplace_back(r.type, 1);
+    else
+      ++it->second;
     ours.push_back(r.ours_ms);
-    for (size_t b = 0; b < kBaselines.size(); ++b) slower[b] = ratios[b].add(r.*kBaselines[b].member, r.ours_ms, r.mesh);
+    for (size_t b = 0; b < kBaselines.size(); ++b)
+      slower[b] = ratios[b].add(r.*kBaselines[b].member, r.ours_ms, r.mesh);
     if (r.qhull.ran && !r.qhull.volume_ok())
       qhull_volume_off.push_back(fs::path(r.mesh).filename().string() + ": " + fmt(r.qhull.volume_rel_diff, 9));
     return slower;
@@ -385,8 +407,8 @@ struct FamilySummary {
     return fmt(r.geomean()) + "x | " + fmt(r.min) + "x (" + fs::path(r.min_mesh).filename().string() + ") | " + slower;
   }
   std::string table_row() const {
-    std::string s = "| " + dir + " | " + std::to_string(meshes) + " | " + std::to_string(errors) + " | " + types_cell() +
-                    " | " + fmt(median(ours), 3) + " |";
+    std::string s = "| " + dir + " | " + std::to_string(meshes) + " | " + std::to_string(errors) + " | " +
+                    types_cell() + " | " + fmt(median(ours), 3) + " |";
     for (const RatioStats& r : ratios) s += " " + ratio_cells(r) + " |";
     return s;
   }
@@ -401,12 +423,14 @@ struct FamilySummary {
   }
   std::string json(const std::string& compiler, const std::string& load, int runs) const {
     std::ostringstream os;
-    os << "{\"family\":\"" << json_escape(dir) << "\",\"compiler\":\"" << json_escape(compiler) << "\",\"loadavg_at_start\":\""
-       << load << "\",\"runs\":" << runs << ",\"meshes\":" << meshes << ",\"errors\":" << errors
-       << ",\"ours_median_ms\":" << median(ours);
-    for (size_t b = 0; b < kBaselines.size(); ++b) os << ",\"" << kBaselines[b].json_key << "\":" << ratio_json(ratios[b]);
+    os << "{\"family\":\"" << json_escape(dir) << "\",\"compiler\":\"" << json_escape(compiler)
+       << "\",\"loadavg_at_start\":\"" << load << "\",\"runs\":" << runs << ",\"meshes\":" << meshes
+       << ",\"errors\":" << errors << ",\"ours_median_ms\":" << median(ours);
+    for (size_t b = 0; b < kBaselines.size(); ++b)
+      os << ",\"" << kBaselines[b].json_key << "\":" << ratio_json(ratios[b]);
     os << ",\"qhull_volume_off\":[";
-    for (size_t i = 0; i < qhull_volume_off.size(); ++i) os << (i ? "," : "") << "\"" << json_escape(qhull_volume_off[i]) << "\"";
+    for (size_t i = 0; i < qhull_volume_off.size(); ++i)
+      os << (i ? "," : "") << "\"" << json_escape(qhull_volume_off[i]) << "\"";
     os << "]}";
     return os.str();
   }
@@ -431,29 +455,46 @@ Args parse_args(int argc, char** argv, bool& families_default) {
       }
       return argv[++i];
     };
-    if (a == "--runs") args.runs = std::max(1, std::atoi(next().c_str())), runs_given = true;
-    else if (a == "--json") args.json = true;
-    else if (a == "--quick") args.quick = true;
-    else if (a == "--no-epeck") args.epeck = false;
-    else if (a == "--no-epick") args.epick = false;
-    else if (a == "--no-qhull") args.qhull = false;
-    else if (a == "--epeck-max-faces") args.epeck_max_faces = std::strtoull(next().c_str(), nullptr, 10);
-    else if (a == "--epick-max-faces") args.epick_max_faces = std::strtoull(next().c_str(), nullptr, 10);
-    else if (a == "--qhull-max-faces") args.qhull_max_faces = std::strtoull(next().c_str(), nullptr, 10);
-    else if (a == "--baseline-budget-ms") args.baseline_budget_ms = std::atof(next().c_str());
-    else if (a == "--streaming") args.streaming = true;
-    else if (a == "--streaming-budget-ms") args.streaming_budget_ms = std::atof(next().c_str());
-    else if (a == "--streaming-cap-ms") args.streaming_cap_ms = std::atof(next().c_str());
-    else if (a == "--meshes") args.meshes = next();
-    else if (a == "--family") args.families.push_back(next());
-    else if (a == "--families") families_default = true;
+    if (a == "--runs")
+      args.runs = std::max(1, std::atoi(next().c_str())), runs_given = true;
+    else if (a == "--json")
+      args.json = true;
+    else if (a == "--quick")
+      args.quick = true;
+    else if (a == "--no-epeck")
+      args.epeck = false;
+    else if (a == "--no-epick")
+      args.epick = false;
+    else if (a == "--no-qhull")
+      args.qhull = false;
+    else if (a == "--epeck-max-faces")
+      args.epeck_max_faces = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--epick-max-faces")
+      args.epick_max_faces = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--qhull-max-faces")
+      args.qhull_max_faces = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--baseline-budget-ms")
+      args.baseline_budget_ms = std::atof(next().c_str());
+    else if (a == "--streaming")
+      args.streaming = true;
+    else if (a == "--streaming-budget-ms")
+      args.streaming_budget_ms = std::atof(next().c_str());
+    else if (a == "--streaming-cap-ms")
+      args.streaming_cap_ms = std::atof(next().c_str());
+    else if (a == "--meshes")
+      args.meshes = next();
+    else if (a == "--family")
+      args.families.push_back(next());
+    else if (a == "--families")
+      families_default = true;
     else if (a == "-h" || a == "--help") {
       std::fputs(kUsage, stdout);
       std::exit(0);
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
       std::exit(2);
-    } else args.files.push_back(a);
+    } else
+      args.files.push_back(a);
   }
   if (args.quick && !runs_given) args.runs = 1;
   // A run cut off at the cap is then always the last one of its measurement.
@@ -468,7 +509,8 @@ bool run_family(const std::string& dir, const Args& args, FamilySummary& fam) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string ext = entry.path().extension().string();
-    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".stl")) files.push_back(entry.path().string());
+    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".stl"))
+      files.push_back(entry.path().string());
   }
   if (ec || files.empty()) return false;
   std::sort(files.begin(), files.end());
@@ -500,7 +542,8 @@ void set_star_references(std::vector<Row>& rows) {
     const Row* best = nullptr;
     for (const Row& s : rows)
       if (s.error.empty() && s.type == "POLYHEDRON" &&
-          (!best || std::llabs((long long)s.faces - (long long)r.faces) < std::llabs((long long)best->faces - (long long)r.faces)))
+          (!best || std::llabs((long long)s.faces - (long long)r.faces) <
+                        std::llabs((long long)best->faces - (long long)r.faces)))
         best = &s;
     if (best) {
       r.reference = best->mesh;
@@ -522,13 +565,14 @@ void print_json(const std::vector<Row>& rows, const std::vector<FamilySummary>& 
     }
     const auto& s = r.stats;
     os << ",\"faces\":" << r.faces << ",\"distinct_planes\":" << r.planes << ",\"culled_faces\":" << r.culled
-       << ",\"merged_planes\":" << s.distinct_planes << ",\"active_planes\":" << s.active_planes
-       << ",\"type\":\"" << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F
-       << ",\"volume\":" << r.volume << ",\"ours_ms\":" << r.ours_ms << ",\"phases_ms\":{\"validate\":" << s.ms_validate
+       << ",\"merged_planes\":" << s.distinct_planes << ",\"active_planes\":" << s.active_planes << ",\"type\":\""
+       << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F << ",\"volume\":" << r.volume
+       << ",\"ours_ms\":" << r.ours_ms << ",\"phases_ms\":{\"validate\":" << s.ms_validate
        << ",\"planes\":" << s.ms_planes << ",\"lp\":" << s.ms_lp << ",\"trace\":" << s.ms_trace
        << ",\"assemble\":" << s.ms_assemble << ",\"total\":" << s.ms_total << "}"
        << ",\"traced_lines\":" << s.traced_lines << ",\"exact_fallbacks\":" << s.exact_fallbacks;
-    for (const BaselineInfo& b : kBaselines) os << ",\"" << b.json_key << "\":" << json_baseline(r.*b.member, r.ours_ms);
+    for (const BaselineInfo& b : kBaselines)
+      os << ",\"" << b.json_key << "\":" << json_baseline(r.*b.member, r.ours_ms);
     if (!r.reference.empty())
       os << ",\"star_reference\":\"" << json_escape(r.reference) << "\",\"star_reference_ms\":" << r.reference_ms
          << ",\"ratio_to_star_reference\":" << (r.reference_ms > 0 ? r.ours_ms / r.reference_ms : 0);
@@ -556,9 +600,11 @@ std::string row_note(const Row& r) {
 
 // The mesh table, then the geometric mean of each ratio over the rows that have it.
 void print_row_table(const std::vector<Row>& rows) {
-  std::printf("| mesh | faces | planes | culled | kernel | V | E | F | ours | Epick | Epeck | Qhull | Epick/ours | "
-              "Epeck/ours | Qhull/ours | validate | planes | lp | trace | assemble | note |\n");
-  std::printf("|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  std::printf(
+      "| mesh | faces | planes | culled | kernel | V | E | F | ours | Epick | Epeck | Qhull | Epick/ours | "
+      "Epeck/ours | Qhull/ours | validate | planes | lp | trace | assemble | note |\n");
+  std::printf(
+      "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
   std::array<RatioStats, kBaselines.size()> ratios;
   for (const Row& r : rows) {
     if (!r.error.empty()) {
@@ -574,10 +620,10 @@ void print_row_table(const std::vector<Row>& rows) {
       ratio_cells += ratio_cell(base, r.ours_ms) + " | ";
       ratios[b].add(base, r.ours_ms, r.mesh);
     }
-    std::printf("| %s | %zu | %zu | %zu | %s | %zu | %zu | %zu | %s | %s%s%s | %s | %s | %s | %s | %s |\n", r.mesh.c_str(),
-                r.faces, r.planes, r.culled, r.type.c_str(), r.V, r.E, r.F, fmt(r.ours_ms).c_str(), times.c_str(),
-                ratio_cells.c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(), fmt(s.ms_lp).c_str(),
-                fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), row_note(r).c_str());
+    std::printf("| %s | %zu | %zu | %zu | %s | %zu | %zu | %zu | %s | %s%s%s | %s | %s | %s | %s | %s |\n",
+                r.mesh.c_str(), r.faces, r.planes, r.culled, r.type.c_str(), r.V, r.E, r.F, fmt(r.ours_ms).c_str(),
+                times.c_str(), ratio_cells.c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(),
+                fmt(s.ms_lp).c_str(), fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), row_note(r).c_str());
   }
   std::string summary;
   for (size_t b = 0; b < kBaselines.size(); ++b) {
@@ -591,15 +637,18 @@ void print_row_table(const std::vector<Row>& rows) {
 }
 
 void print_family_table(const std::vector<FamilySummary>& families, bool after_rows) {
-  std::printf("%s| family | meshes | errors | kernel types | ours: median ms | Epick/ours: geomean | min | slower | "
-              "Epeck/ours: geomean | min | slower | Qhull/ours: geomean | min | slower |\n", after_rows ? "\n" : "");
+  std::printf(
+      "%s| family | meshes | errors | kernel types | ours: median ms | Epick/ours: geomean | min | slower | "
+      "Epeck/ours: geomean | min | slower | Qhull/ours: geomean | min | slower |\n",
+      after_rows ? "\n" : "");
   std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const FamilySummary& f : families) std::printf("%s\n", f.table_row().c_str());
   bool any = false;
   for (const FamilySummary& f : families)
     for (size_t b = 0; b < kBaselines.size(); ++b)
       for (const std::string& r : f.ratios[b].rechecks) {
-        std::printf("\nMeasured again (%d runs), %s vs %s: %s", kRecheckRuns, f.dir.c_str(), kBaselines[b].name, r.c_str());
+        std::printf("\nMeasured again (%d runs), %s vs %s: %s", kRecheckRuns, f.dir.c_str(), kBaselines[b].name,
+                    r.c_str());
         any = true;
       }
   for (const FamilySummary& f : families) {
@@ -619,7 +668,8 @@ int main(int argc, char** argv) {
   bool families_default = false;
   Args args = parse_args(argc, argv, families_default);
   if (families_default)
-    for (const char* d : {"tet10", "tet20", "tet30", "voro"}) args.families.push_back((fs::path(args.meshes) / "polyhedra" / d).string());
+    for (const char* d : {"tet10", "tet20", "tet30", "voro"})
+      args.families.push_back((fs::path(args.meshes) / "polyhedra" / d).string());
   std::vector<std::pair<std::string, std::string>> list;
   if (!args.files.empty())
     for (const auto& f : args.files) list.emplace_back(f, f);
@@ -636,16 +686,18 @@ int main(int argc, char** argv) {
   const std::string compiler = compiler_string();
   const std::string load_at_start = loadavg_string();
   if (!args.json) {
-    std::printf("# kergen_bench | %s | CGAL %s | %s | %s, %u threads, load average %s at start | median of %d run(s) | "
-                "times in ms, end to end (parse excluded)\n",
-                compiler.c_str(), CGAL_VERSION_STR, kergen_bench::qhull_version().c_str(), cpu_string().c_str(),
-                std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs);
+    std::printf(
+        "# kergen_bench | %s | CGAL %s | %s | %s, %u threads, load average %s at start | median of %d run(s) | "
+        "times in ms, end to end (parse excluded)\n",
+        compiler.c_str(), CGAL_VERSION_STR, kergen_bench::qhull_version().c_str(), cpu_string().c_str(),
+        std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs);
     std::fflush(stdout);
   }
   if (args.streaming) {
-    const std::string context = "\"compiler\":\"" + json_escape(compiler) + "\",\"loadavg_at_start\":\"" + load_at_start + "\"";
+    const std::string context =
+        "\"compiler\":\"" + json_escape(compiler) + "\",\"loadavg_at_start\":\"" + load_at_start + "\"";
     return kergen_bench::run_streaming_rows(args.meshes, args.files, args.runs, args.streaming_budget_ms,
-                                           args.streaming_cap_ms, args.json, context);
+                                            args.streaming_cap_ms, args.json, context);
   }
 
   std::vector<Row> rows;

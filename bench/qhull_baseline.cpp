@@ -1,5 +1,5 @@
 // The Qhull baseline of kergen_bench: halfspace intersection with libqhull_r's reentrant C API.
-#include "bench_util.h"
+#include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include <benchmark/benchmark.h>
+#include "bench_util.h"
 
 #ifdef KERGEN_HAVE_QHULL
 #include "libqhull_r/qhull_ra.h"

@@ -1,14 +1,14 @@
 // kergen_bench --streaming: compute_kernel without and with an on_step callback, same run.
 #include "streaming_rows.h"
 
+#include <benchmark/benchmark.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "bench_util.h"
 #include "fixtures.h"  // tests/core: the sphere generators the core tests use
@@ -49,8 +49,10 @@ void time_once(Side& side, const kergen::MeshView& view, const kergen::Options& 
   result = kergen::compute_kernel(view, options);
   benchmark::DoNotOptimize(result);
   side.times.push_back(now_ms() - t0);
-  if (side.runs() >= runs) side.done = true;
-  else if (side.times.back() > budget_ms) side.done = side.stopped = true;
+  if (side.runs() >= runs)
+    side.done = true;
+  else if (side.times.back() > budget_ms)
+    side.done = side.stopped = true;
 }
 
 StreamRow stream_row(const std::string& label, const kergen::Mesh& mesh, int runs, double budget_ms, double cap_ms) {
@@ -100,11 +102,11 @@ StreamRow stream_row(const std::string& label, const kergen::Mesh& mesh, int run
   if (streamed.type != plain.type || streamed.num_vertices() != row.V || streamed.num_edges() != row.E ||
       streamed.num_faces() != row.F || !streamed.complete || events % uint64_t(row.streamed.runs()) != 0 ||
       !(volume_diff <= 1e-12)) {
-    std::snprintf(buf, sizeof buf,
-                  "**with on_step: %s V %zu E %zu F %zu, volume %.17g (without: %.17g), complete %d, events %llu over %d runs**",
-                  kergen::kernel_type_name(streamed.type), streamed.num_vertices(), streamed.num_edges(),
-                  streamed.num_faces(), streamed.volume, plain.volume, int(streamed.complete),
-                  (unsigned long long)events, row.streamed.runs());
+    std::snprintf(
+        buf, sizeof buf,
+        "**with on_step: %s V %zu E %zu F %zu, volume %.17g (without: %.17g), complete %d, events %llu over %d runs**",
+        kergen::kernel_type_name(streamed.type), streamed.num_vertices(), streamed.num_edges(), streamed.num_faces(),
+        streamed.volume, plain.volume, int(streamed.complete), (unsigned long long)events, row.streamed.runs());
     row.note = buf;
   } else if (volume_diff > 0) {
     std::snprintf(buf, sizeof buf, "same V E F; volume differs by %.1e relative", volume_diff);
@@ -121,28 +123,30 @@ std::string fmt(double v, int prec = 2) {
 
 std::string side_cell(const Side& s) {
   if (s.cut) return "> " + fmt(s.ms()) + " (cut off)";
-  return fmt(s.ms()) + " (" + std::to_string(s.runs()) + (s.runs() == 1 ? " run" : " runs") + (s.stopped ? ", budget" : "") + ")";
+  return fmt(s.ms()) + " (" + std::to_string(s.runs()) + (s.runs() == 1 ? " run" : " runs") +
+         (s.stopped ? ", budget" : "") + ")";
 }
 
 void print_row(const StreamRow& r, bool json, const std::string& json_context, double budget_ms, double cap_ms) {
   const double ratio = r.plain.ms() > 0 ? r.streamed.ms() / r.plain.ms() : 0;
   std::string note = r.note;
   auto add = [&](const std::string& text) { note += (note.empty() ? "" : "; ") + text; };
-  if (r.plain.stopped || r.streamed.stopped) add("stopped repeating after a run over " + fmt(budget_ms / 1000, 0) + " s");
+  if (r.plain.stopped || r.streamed.stopped)
+    add("stopped repeating after a run over " + fmt(budget_ms / 1000, 0) + " s");
   if (r.streamed.cut)
     add("with on_step cut off at the " + fmt(cap_ms / 1000, 0) + " s cap after " + std::to_string(r.events) + " of " +
         std::to_string(r.V + r.E + r.F) + " events (V + E + F): time and ratio are lower bounds");
   if (json) {
     std::ostringstream os;
     os << "{\"streaming_mesh\":\"" << r.mesh << "\"," << json_context << ",\"faces\":" << r.faces;
-    if (!r.error.empty()) os << ",\"error\":\"" << r.error << "\"}";
+    if (!r.error.empty())
+      os << ",\"error\":\"" << r.error << "\"}";
     else
       os << ",\"type\":\"" << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F
          << ",\"events\":" << r.events << ",\"plain_ms\":" << r.plain.ms() << ",\"plain_runs\":" << r.plain.runs()
          << ",\"on_step_ms\":" << r.streamed.ms() << ",\"on_step_runs\":" << r.streamed.runs() << ",\"ratio\":" << ratio
          << ",\"budget_stopped\":" << (r.plain.stopped || r.streamed.stopped ? "true" : "false")
-         << ",\"cut_off\":" << (r.streamed.cut ? "true" : "false") << ",\"note\":\""
-         << note << "\"}";
+         << ",\"cut_off\":" << (r.streamed.cut ? "true" : "false") << ",\"note\":\"" << note << "\"}";
     std::printf("%s\n", os.str().c_str());
   } else if (!r.error.empty()) {
     std::printf("| %s | %zu | ERROR | | | | | | | | %s |\n", r.mesh.c_str(), r.faces, r.error.c_str());
@@ -169,7 +173,8 @@ int run_streaming_rows(const std::string& meshes, const std::vector<std::string>
     for (const std::string& f : files) list.emplace_back(f, f);
   }
   if (!json) {
-    std::printf("| mesh | faces | kernel | V | E | F | events | default ms | with on_step ms | with/without | note |\n");
+    std::printf(
+        "| mesh | faces | kernel | V | E | F | events | default ms | with on_step ms | with/without | note |\n");
     std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   }
   int exit_code = 0;
@@ -193,4 +198,3 @@ int run_streaming_rows(const std::string& meshes, const std::vector<std::string>
 }
 
 }  // namespace kergen_bench
-

@@ -101,8 +101,10 @@ Arguments parse_arguments(int argc, char** argv) {
       const std::string text = value();
       std::vector<std::string> parts(1);
       for (char c : text) {
-        if (c == ',') parts.emplace_back();
-        else parts.back() += c;
+        if (c == ',')
+          parts.emplace_back();
+        else
+          parts.back() += c;
       }
       if (parts.size() != 3) usage_error("--from needs x,y,z, got '" + text + "'");
       for (int k = 0; k < 3; ++k)
@@ -161,8 +163,10 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
       std::error_code type_ec;
       if (it->is_regular_file(type_ec) && is_mesh_file_name(it->path())) found.push_back(it->path().string());
     }
-    if (ec) problems.push_back(input + ": cannot list folder: " + ec.message());
-    else if (found.empty()) problems.push_back(input + ": folder has no .off, .obj, .stl or .ply file");
+    if (ec)
+      problems.push_back(input + ": cannot list folder: " + ec.message());
+    else if (found.empty())
+      problems.push_back(input + ": folder has no .off, .obj, .stl or .ply file");
     std::sort(found.begin(), found.end());
     files.insert(files.end(), found.begin(), found.end());
   }
@@ -216,7 +220,7 @@ struct MeshOutcome {
   std::string message;
   kergen::Kernel kernel;  // meaningful when read_ok
   double ms_parse = 0;
-  double ms_total = 0;    // parse + kernel
+  double ms_total = 0;  // parse + kernel
   bool ok() const { return error == kergen::Error::Ok; }
 };
 
@@ -302,8 +306,10 @@ void append_human(std::string& out, const MeshOutcome& m) {
   for (const kergen::Warning& w : k.warnings)
     appendf(out, "  warning     %s (%zu): %s\n", kergen::warning_kind_name(w.kind), w.count, w.message.c_str());
   const kergen::Stats& st = k.stats;
-  appendf(out, "  planes      %zu faces (%zu culled), %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
-          st.input_faces, st.culled_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);
+  appendf(
+      out,
+      "  planes      %zu faces (%zu culled), %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
+      st.input_faces, st.culled_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);
   appendf(out, "  time        %.3f ms (parse %.3f, validate %.3f, planes %.3f, lp %.3f, trace %.3f, assemble %.3f)\n",
           m.ms_total, m.ms_parse, st.ms_validate, st.ms_planes, st.ms_lp, st.ms_trace, st.ms_assemble);
 }
@@ -369,7 +375,8 @@ MeshReport report(const std::string& file, const Arguments& args) {
 // thrown for a mesh (out of memory) is rethrown in order, as one thread would throw it.
 // compute_kernel is reentrant: the core has no mutable state outside each call.
 template <class Wait, class Emit>
-void run_in_order(const std::vector<std::string>& files, const Arguments& args, unsigned threads, Wait wait, Emit emit) {
+void run_in_order(const std::vector<std::string>& files, const Arguments& args, unsigned threads, Wait wait,
+                  Emit emit) {
   if (threads <= 1) {
     for (size_t i = 0; i < files.size(); ++i) {
       wait(i);
@@ -389,9 +396,7 @@ void run_in_order(const std::vector<std::string>& files, const Arguments& args, 
       std::exception_ptr failure;
       try {
         r = report(files[i], args);
-      } catch (...) {
-        failure = std::current_exception();
-      }
+      } catch (...) { failure = std::current_exception(); }
       std::lock_guard<std::mutex> lock(mutex);
       reports[i] = std::move(r);
       failures[i] = failure;

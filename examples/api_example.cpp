@@ -33,8 +33,8 @@ int main() {
     return 1;
   }
   std::printf("%s: %zu vertices, %zu edges (%d streamed), %zu faces, volume %g of %g\n",
-              kergen::kernel_type_name(k.type), k.num_vertices(), k.num_edges(), edges_seen, k.num_faces(),
-              k.volume, k.shape_volume);
+              kergen::kernel_type_name(k.type), k.num_vertices(), k.num_edges(), edges_seen, k.num_faces(), k.volume,
+              k.shape_volume);
 
   // Emptiness test only (one LP), and the kernel written as a mesh file.
   kergen::KernelPoint p = kergen::find_kernel_point(mesh.view());

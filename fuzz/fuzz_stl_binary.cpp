@@ -15,10 +15,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (mode % 4 != 0 && bytes.size() >= 84) {
     uint64_t n = (bytes.size() - 84) / 50;
     bytes.resize(84 + 50 * n);
-    if (mode % 4 == 2) n += 1;                      // claims one more triangle than present
-    if (mode % 4 == 3) n = 0xffffffffu;             // claims the maximum
+    if (mode % 4 == 2) n += 1;           // claims one more triangle than present
+    if (mode % 4 == 3) n = 0xffffffffu;  // claims the maximum
     const uint32_t count = static_cast<uint32_t>(n);
-    std::memcpy(&bytes[80], &count, 4);             // little-endian hosts only (x86, wasm)
+    std::memcpy(&bytes[80], &count, 4);  // little-endian hosts only (x86, wasm)
   }
   const kergen::ReadResult r = kergen::read_stl(bytes, "fuzz.stl");
   kfuzz::check_read_result(r);

@@ -38,9 +38,9 @@ inline ViolationHandler violation_handler = nullptr;
   std::fflush(stderr);
   std::abort();
 }
-#define KFUZZ_CHECK(cond, detail)                                                \
-  do {                                                                           \
-    if (!(cond)) ::kfuzz::violated(#cond, (detail), __FILE__, __LINE__);         \
+#define KFUZZ_CHECK(cond, detail)                                        \
+  do {                                                                   \
+    if (!(cond)) ::kfuzz::violated(#cond, (detail), __FILE__, __LINE__); \
   } while (0)
 
 inline bool has_warning(const std::vector<kergen::Warning>& ws, kergen::Warning::Kind kind) {
@@ -109,7 +109,8 @@ inline void check_inside_halfspaces(const kergen::MeshView& mesh, const kergen::
       const long double tol = 1e-9L * area_len + 1e-15L * area_scale * (lp + 1);
       if (d > tol) {
         char buf[256];
-        std::snprintf(buf, sizeof buf, "%s %zu outside face %zu: signed distance %.3Le (scaled by 2^%d), tolerance %.3Le",
+        std::snprintf(buf, sizeof buf,
+                      "%s %zu outside face %zu: signed distance %.3Le (scaled by 2^%d), tolerance %.3Le",
                       p < k.num_vertices() ? "kernel vertex" : "kernel point", p, f, (long double)(d / area_len), -ex,
                       (long double)(tol / area_len));
         violated("kernel inside every face half-space", buf, __FILE__, __LINE__);
@@ -163,10 +164,13 @@ inline void check_kernel(const kergen::MeshView& mesh, const kergen::Kernel& k, 
     case KernelType::Empty: KFUZZ_CHECK(V == 0 && E == 0 && F == 0, "EMPTY with geometry"); break;
     case KernelType::Point: KFUZZ_CHECK(V == 1 && E == 0 && F == 0, "POINT: V=" + std::to_string(V)); break;
     case KernelType::Segment:
-      if (k.complete) KFUZZ_CHECK(V == 2 && E == 1 && F == 0, "SEGMENT: V=" + std::to_string(V) + " E=" + std::to_string(E));
+      if (k.complete)
+        KFUZZ_CHECK(V == 2 && E == 1 && F == 0, "SEGMENT: V=" + std::to_string(V) + " E=" + std::to_string(E));
       break;
     case KernelType::Polygon:
-      if (k.complete) KFUZZ_CHECK(V >= 3 && V == E && F <= 1, "POLYGON: V=" + std::to_string(V) + " E=" + std::to_string(E) + " F=" + std::to_string(F));
+      if (k.complete)
+        KFUZZ_CHECK(V >= 3 && V == E && F <= 1,
+                    "POLYGON: V=" + std::to_string(V) + " E=" + std::to_string(E) + " F=" + std::to_string(F));
       KFUZZ_CHECK(k.volume == 0, "POLYGON with volume");
       break;
     case KernelType::Polyhedron:
@@ -239,10 +243,12 @@ inline void check_convex_faces_and_distinct_vertices(const kergen::Kernel& k) {
       const double* p0 = &x[3 * size_t(k.face_indices[off + i])];
       const double* p1 = &x[3 * size_t(k.face_indices[off + (i + 1) % n])];
       const double* p2 = &x[3 * size_t(k.face_indices[off + (i + 2) % n])];
-      const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
+      const double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]},
+                   w[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
       const double nn[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
       const double out = nn[0] * (p1[0] - centre[0]) + nn[1] * (p1[1] - centre[1]) + nn[2] * (p1[2] - centre[2]);
-      KFUZZ_CHECK(out > 0, "face " + std::to_string(f) + " not convex and counter-clockwise at corner " + std::to_string(i));
+      KFUZZ_CHECK(out > 0,
+                  "face " + std::to_string(f) + " not convex and counter-clockwise at corner " + std::to_string(i));
     }
   }
   std::vector<std::vector<double>> points;

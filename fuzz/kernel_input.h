@@ -34,8 +34,12 @@ struct Bytes {
 
 inline Mesh octahedron() {
   Mesh m;
-  add_point(m, 1, 0, 0); add_point(m, -1, 0, 0); add_point(m, 0, 1, 0);
-  add_point(m, 0, -1, 0); add_point(m, 0, 0, 1); add_point(m, 0, 0, -1);
+  add_point(m, 1, 0, 0);
+  add_point(m, -1, 0, 0);
+  add_point(m, 0, 1, 0);
+  add_point(m, 0, -1, 0);
+  add_point(m, 0, 0, 1);
+  add_point(m, 0, 0, -1);
   const uint32_t f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   for (const auto& t : f) add_face(m, {t[0], t[1], t[2]});
   return m;
@@ -71,8 +75,10 @@ inline Mesh concat(const Mesh& a, const Mesh& b) {
   m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
   if (!a.face_sizes.empty() || !b.face_sizes.empty()) {
     if (m.face_sizes.empty()) m.face_sizes.assign(a.indices.size() / 3, 3);
-    if (b.face_sizes.empty()) m.face_sizes.insert(m.face_sizes.end(), b.indices.size() / 3, 3);
-    else m.face_sizes.insert(m.face_sizes.end(), b.face_sizes.begin(), b.face_sizes.end());
+    if (b.face_sizes.empty())
+      m.face_sizes.insert(m.face_sizes.end(), b.indices.size() / 3, 3);
+    else
+      m.face_sizes.insert(m.face_sizes.end(), b.face_sizes.begin(), b.face_sizes.end());
   }
   for (uint32_t v : b.indices) m.indices.push_back(v + base);
   return m;
@@ -106,9 +112,9 @@ inline Mesh base_mesh(Bytes& in, uint8_t which) {
     case 3: return dented_cube();
     case 4: return l_prism();
     case 5: return plus_prism(0.3);
-    case 6: return s_prism();           // kernel: a polygon
-    case 7: return pinwheel_prism();    // kernel: a segment
-    case 8: return u_prism();           // not star-shaped
+    case 6: return s_prism();         // kernel: a polygon
+    case 7: return pinwheel_prism();  // kernel: a segment
+    case 8: return u_prism();         // not star-shaped
     case 9: return pyramid(5);
     case 10: return pyramid(7, 1, 1e-3);  // flat pyramid: near-coplanar faces
     case 11: return bumpy_sphere(8, 6);
@@ -121,10 +127,16 @@ inline Mesh base_mesh(Bytes& in, uint8_t which) {
     case 15: return open_cube();
     case 16: return cubes_sharing_edge();
     case 17: return concat(unit_cube(), box(3, 0, 0, 4, 1, 1));  // two components
-    case 18: {  // flat: a square used from both sides
+    case 18: {                                                   // flat: a square used from both sides
       Mesh m;
-      add_point(m, 0, 0, 0); add_point(m, 1, 0, 0); add_point(m, 1, 1, 0); add_point(m, 0, 1, 0);
-      add_face(m, {0, 1, 2}); add_face(m, {0, 2, 3}); add_face(m, {0, 2, 1}); add_face(m, {0, 3, 2});
+      add_point(m, 0, 0, 0);
+      add_point(m, 1, 0, 0);
+      add_point(m, 1, 1, 0);
+      add_point(m, 0, 1, 0);
+      add_face(m, {0, 1, 2});
+      add_face(m, {0, 2, 3});
+      add_face(m, {0, 2, 1});
+      add_face(m, {0, 3, 2});
       return m;
     }
     case 19: return box(0, 0, 0, 1, 1e-9, 1);  // sliver box
@@ -217,9 +229,17 @@ inline void scale_translate(Mesh& m, uint8_t sb, uint8_t tb) {
   double t[3] = {0, 0, 0};
   switch (tb % 8) {
     case 0: break;
-    case 1: t[0] = 1e6; t[1] = -1e6; t[2] = 3e6; break;
+    case 1:
+      t[0] = 1e6;
+      t[1] = -1e6;
+      t[2] = 3e6;
+      break;
     case 2: t[0] = t[1] = t[2] = 1e-300; break;
-    case 3: t[0] = 0.5; t[1] = 0.25; t[2] = -0.125; break;
+    case 3:
+      t[0] = 0.5;
+      t[1] = 0.25;
+      t[2] = -0.125;
+      break;
     case 4: t[2] = 1e15; break;
     case 5: t[0] = -1e6; break;
     default: break;
@@ -314,10 +334,10 @@ inline void run_kernel_input(const uint8_t* data, size_t size) {
   if (k.ok()) {
     KFUZZ_CHECK(k2.type == k.type, std::string("type depends on the seed: ") + kergen::kernel_type_name(k.type) +
                                        " vs " + kergen::kernel_type_name(k2.type));
-    KFUZZ_CHECK(k2.num_vertices() == k.num_vertices() && k2.num_edges() == k.num_edges() &&
-                    k2.num_faces() == k.num_faces(),
-                "kernel size depends on the seed: V " + std::to_string(k.num_vertices()) + " vs " +
-                    std::to_string(k2.num_vertices()));
+    KFUZZ_CHECK(
+        k2.num_vertices() == k.num_vertices() && k2.num_edges() == k.num_edges() && k2.num_faces() == k.num_faces(),
+        "kernel size depends on the seed: V " + std::to_string(k.num_vertices()) + " vs " +
+            std::to_string(k2.num_vertices()));
     // The volume comes from vertex coordinates known to ~2^-100 of their magnitude M (double-double,
     // see assemble_polytope), so each of its T triangle terms can be off by ~3 2^-100 M L^2 (L the
     // kernel's extent): a kernel below that resolution (three vertices within 1e-30 of each other
@@ -329,14 +349,15 @@ inline void run_kernel_input(const uint8_t* data, size_t size) {
     }
     const double resolution = 1e-27 * double(k.triangles.size() / 3) * magnitude * 3 * extent * extent;
     if (std::isfinite(k.volume) && std::isfinite(k2.volume))
-      KFUZZ_CHECK(std::fabs(k.volume - k2.volume) <=
-                      1e-9 * std::max(std::fabs(k.volume), std::fabs(k2.volume)) + resolution,
-                  "volume depends on the seed");
+      KFUZZ_CHECK(
+          std::fabs(k.volume - k2.volume) <= 1e-9 * std::max(std::fabs(k.volume), std::fabs(k2.volume)) + resolution,
+          "volume depends on the seed");
   }
   const kergen::KernelPoint kp = kergen::find_kernel_point(view, o);
   KFUZZ_CHECK(kp.error == k.error, std::string("find_kernel_point error ") + kergen::error_name(kp.error) + " vs " +
                                        kergen::error_name(k.error));
-  if (k.ok()) KFUZZ_CHECK(kp.star_shaped == (k.type != kergen::KernelType::Empty), "find_kernel_point disagrees on emptiness");
+  if (k.ok())
+    KFUZZ_CHECK(kp.star_shaped == (k.type != kergen::KernelType::Empty), "find_kernel_point disagrees on emptiness");
 }
 
 }  // namespace kfuzz

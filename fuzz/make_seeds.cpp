@@ -50,8 +50,8 @@ std::string ply_seed(const kergen::Mesh& m, int order) {
   std::string s = std::string("ply\nformat ") + format[order] + " 1.0\ncomment seed\nelement vertex " +
                   std::to_string(m.num_vertices()) +
                   "\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nelement edge 1\n"
-                  "property list uchar int vertex_index\nelement face " + std::to_string(m.num_faces()) +
-                  "\nproperty list uchar int vertex_indices\nend_header\n";
+                  "property list uchar int vertex_index\nelement face " +
+                  std::to_string(m.num_faces()) + "\nproperty list uchar int vertex_indices\nend_header\n";
   auto put_bytes = [&](const void* p, size_t n) {
     char b[8];
     std::memcpy(b, p, n);

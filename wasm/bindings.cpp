@@ -50,41 +50,48 @@ namespace {
 // offsets, and refuses a module whose layout lacks a field it uses).
 
 // Request block options, f64 slots (NaN = not given: the core's default applies).
+// clang-format off
 #define KERGEN_OPTION_SLOTS(X) \
-  X(fromX) X(fromY) X(fromZ) X(maxSteps) X(allowOpen) X(deepestPoint) X(maxFaces) X(maxVertices) X(cullFaces) X(seed)
+  X(fromX) X(fromY) X(fromZ) X(maxSteps) X(allowOpen) X(deepestPoint) X(maxFaces) X(maxVertices) \
+  X(cullFaces) X(seed)
+// clang-format on
 enum Option : uint32_t {
 #define KERGEN_ENUM(name) kOpt_##name,
   KERGEN_OPTION_SLOTS(KERGEN_ENUM)
 #undef KERGEN_ENUM
-  kOptionSlots
+      kOptionSlots
 };
 
 // Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[numWarnings]],
 // f64 vertices, u32 edges, face indices, face sizes, triangles, u8 bytes (writeMesh's file), then
 // the text: NUL-terminated UTF-8 strings: name (kernel status, "" for findPoint, or the error
 // code), message ("" unless error), then kind and message of each warning.
-#define KERGEN_HEAD_WORDS(X)                                                                              \
-  X(ok) X(complete) X(hasKernelPoint) X(hasDeepestPoint) X(starShaped) X(numWarnings) X(textBytes)      \
-  X(numVertexValues) X(numEdgeValues) X(numFaceIndices) X(numFaces) X(numTriangleValues) X(numBytes) \
-  X(padding)
+// clang-format off
+#define KERGEN_HEAD_WORDS(X) \
+  X(ok) X(complete) X(hasKernelPoint) X(hasDeepestPoint) X(starShaped) X(numWarnings) X(textBytes) \
+  X(numVertexValues) X(numEdgeValues) X(numFaceIndices) X(numFaces) X(numTriangleValues) \
+  X(numBytes) X(padding)
+// clang-format on
 enum Head : uint32_t {
 #define KERGEN_ENUM(name) kHead_##name,
   KERGEN_HEAD_WORDS(KERGEN_ENUM)
 #undef KERGEN_ENUM
-  kHeadWords
+      kHeadWords
 };
 static_assert(kHeadWords % 2 == 0, "the f64 section after the head must stay 8-byte aligned");
 
 // f64 scalars after the head: (name, number of values); stats holds kergen::stats_fields in order.
 constexpr uint32_t kNumStats = std::tuple_size<decltype(kergen::stats_fields(kergen::Stats{}))>::value;
-#define KERGEN_SCALARS(X)                                                                                   \
+// clang-format off
+#define KERGEN_SCALARS(X) \
   X(volume, 1) X(area, 1) X(shapeVolume, 1) X(volumeRatio, 1) X(kernelPoint, 3) X(deepestPoint, 3) \
   X(inscribedRadius, 1) X(stats, kNumStats)
+// clang-format on
 enum Scalar : uint32_t {
-#define KERGEN_ENUM(name, width) kScalar_##name, kScalarLast_##name = kScalar_##name + (width) - 1,
+#define KERGEN_ENUM(name, width) kScalar_##name, kScalarLast_##name = kScalar_##name + (width)-1,
   KERGEN_SCALARS(KERGEN_ENUM)
 #undef KERGEN_ENUM
-  kScalars
+      kScalars
 };
 
 // One step event as index.js reads it; kind 0 vertex, 1 edge, 2 face.
@@ -320,9 +327,9 @@ uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indice
 uintptr_t read_mesh(uintptr_t request, uint32_t num_bytes, uint32_t num_name_bytes, uint32_t format) {
   try {
     const char* bytes = reinterpret_cast<const char*>(request);
-    const kergen::ReadResult r = kergen::read_mesh(std::string_view(bytes, num_bytes),
-                                                   static_cast<kergen::MeshFormat>(format),
-                                                   std::string(bytes + num_bytes, num_name_bytes));
+    const kergen::ReadResult r =
+        kergen::read_mesh(std::string_view(bytes, num_bytes), static_cast<kergen::MeshFormat>(format),
+                          std::string(bytes + num_bytes, num_name_bytes));
     if (!r.ok()) return error_block(kergen::error_name(r.error), r.message);
     Out o;
     o.head[kHead_ok] = 1;
@@ -384,7 +391,8 @@ val memory_stats() {
 // The layout object index.js reads at init(): every list above by name, the step event's byte
 // offsets, and the names the codes in the blocks stand for.
 val wire_format() {
-  auto fields = [](std::initializer_list<std::pair<const char*, uint32_t>> list, const char* count_name, uint32_t count) {
+  auto fields = [](std::initializer_list<std::pair<const char*, uint32_t>> list, const char* count_name,
+                   uint32_t count) {
     val o = val::object();
     for (const auto& [name, value] : list) o.set(name, value);
     o.set(count_name, count);
@@ -409,7 +417,8 @@ val wire_format() {
                         {"position", offsetof(StepOut, position)}},
                        "bytes", sizeof(StepOut)));
   val stats = val::array();
-  for (const kergen::StatsField& f : kergen::stats_fields(kergen::Stats{})) stats.call<void>("push", std::string(f.name));
+  for (const kergen::StatsField& f : kergen::stats_fields(kergen::Stats{}))
+    stats.call<void>("push", std::string(f.name));
   w.set("stats", stats);
   val kinds = val::array();  // StepOut.kind values 0, 1, 2 (static_assert above)
   for (const char* k : {"vertex", "edge", "face"}) kinds.call<void>("push", std::string(k));

@@ -83,11 +83,18 @@ uint32_t climb_to_max(uint32_t cur, double& val, const Value& f, const Neighbors
     bool moved = false;
     neighbors(cur, [&](uint32_t w) {
       const double fw = f(w);
-      if (fw > val) { val = fw; cur = w; moved = true; }
+      if (fw > val) {
+        val = fw;
+        cur = w;
+        moved = true;
+      }
     });
     if (moved) continue;
     if (s.mark.size() < num_vertices) s.mark.resize(num_vertices, 0);
-    if (++s.stamp == 0) { s.mark.assign(s.mark.size(), 0); s.stamp = 1; }
+    if (++s.stamp == 0) {
+      s.mark.assign(s.mark.size(), 0);
+      s.stamp = 1;
+    }
     uint32_t higher = uint32_t(-1);
     s.bfs.assign(1, cur);
     s.mark[cur] = s.stamp;
@@ -96,8 +103,10 @@ uint32_t climb_to_max(uint32_t cur, double& val, const Value& f, const Neighbors
         if (higher != uint32_t(-1) || s.mark[w] == s.stamp) return;
         s.mark[w] = s.stamp;
         const double fw = f(w);
-        if (fw > val) higher = w;
-        else if (fw >= val - tie) s.bfs.push_back(w);
+        if (fw > val)
+          higher = w;
+        else if (fw >= val - tie)
+          s.bfs.push_back(w);
       });
     }
     if (higher == uint32_t(-1)) return cur;

@@ -64,8 +64,8 @@ class Cutter {
     const PlaneCoef<Approx> plane = ps_.approx(h);
     const double a = plane.n[0].v, b = plane.n[1].v, c = plane.n[2].v, d = plane.d.v;
     // The bounds of culling's support test: the climb's tie is 4 delta, the margin 16 delta.
-    const double delta = value_error_bound(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_,
-                                           coord_error_);
+    const double delta =
+        value_error_bound(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_, coord_error_);
     const double tie = kClimbTie * delta, margin = kReachMargin * delta;
     auto f = [&](uint32_t v) { return a * xyz_[3 * v] + b * xyz_[3 * v + 1] + c * xyz_[3 * v + 2] + d; };
     uint32_t cur = kNoVertex;
@@ -74,9 +74,15 @@ class Cutter {
       if (hint >= alive_v_.size()) continue;
       const uint32_t start = alive(hint);
       const double start_val = f(start);
-      if (cur == kNoVertex || start_val > val) { cur = start; val = start_val; }
+      if (cur == kNoVertex || start_val > val) {
+        cur = start;
+        val = start_val;
+      }
     }
-    if (cur == kNoVertex) { cur = alive(0); val = f(cur); }
+    if (cur == kNoVertex) {
+      cur = alive(0);
+      val = f(cur);
+    }
     // To the maximum of f_h over the polytope: greedy ascent in double, then along edges on
     // which f_h certainly rises (in double where the values differ by more than the tie, else
     // by the exact sign of its rate). A vertex without such an edge is an exact maximum: the
@@ -86,7 +92,12 @@ class Cutter {
       for (uint32_t e : adj_[cur]) {
         const uint32_t w = other(e, cur);
         const double fw = f(w);
-        if (fw > val) { cur = w; val = fw; moved = true; break; }
+        if (fw > val) {
+          cur = w;
+          val = fw;
+          moved = true;
+          break;
+        }
       }
     }
     // (Each step rises strictly, so the walk meets each vertex at most once; the count only
@@ -99,7 +110,12 @@ class Cutter {
         const uint32_t w = other(e, cur);
         const double fw = f(w);
         if (fw < val - tie) continue;  // certainly lower: each value is within delta of exact
-        if (fw > val + tie || rate_sign(h, e, cur) > 0) { cur = w; val = fw; moved = true; break; }
+        if (fw > val + tie || rate_sign(h, e, cur) > 0) {
+          cur = w;
+          val = fw;
+          moved = true;
+          break;
+        }
       }
     }
     near = cur;
@@ -301,11 +317,18 @@ class Cutter {
     for (uint32_t r : tu) {
       if (std::binary_search(tw.begin(), tw.end(), r)) continue;
       const int s = sign_det3_normals(ps_, r, g, h);
-      if (s != 0) { sigma = -s; break; }
+      if (s != 0) {
+        sigma = -s;
+        break;
+      }
     }
     if (sigma == 0) return false;
     TracedEdge te;
-    te.a = u; te.b = w; te.p = g; te.q = h; te.sigma = sigma;
+    te.a = u;
+    te.b = w;
+    te.p = g;
+    te.q = h;
+    te.sigma = sigma;
     std::set_intersection(tu.begin(), tu.end(), tw.begin(), tw.end(), std::back_inserter(te.planes));
     const uint32_t id = uint32_t(edges_.size());
     edges_.push_back(std::move(te));
@@ -321,7 +344,7 @@ class Cutter {
   std::vector<char> alive_v_, alive_e_;
   std::vector<SmallVector<uint32_t, 4>> adj_;  // edge ids per vertex (three at a simple vertex)
   std::vector<double> xyz_;
-  std::vector<uint32_t> replaced_by_;       // a cut point of the cut that removed the vertex
+  std::vector<uint32_t> replaced_by_;  // a cut point of the cut that removed the vertex
   std::vector<int8_t> state_;
   size_t alive_count_ = 0, traced_lines_ = 0;
   double max_abs_ = 0, coord_error_ = 0;  // over every vertex so far (upper bounds for the live ones)
@@ -346,16 +369,21 @@ bool cut_kernel_trace(const PlaneSet& ps, const TraceResult& prev, const std::ve
   // The hints come from prev; once cuts have refined the polytope near a direction, the last
   // vertex found for a plane of similar normal is usually closer. Two cube maps of the normals:
   // a fine one (about two planes per cell) and a coarse one for cells not visited yet.
-  const size_t cells_per_side = std::min<size_t>(128, std::max<size_t>(1, size_t(std::sqrt(double(added.size()) / 12))));
+  const size_t cells_per_side =
+      std::min<size_t>(128, std::max<size_t>(1, size_t(std::sqrt(double(added.size()) / 12))));
   const size_t coarse_per_side = std::max<size_t>(1, cells_per_side / 4);
-  std::vector<uint32_t> recent(6 * cells_per_side * cells_per_side, kNoVertex), recent_coarse(6 * coarse_per_side * coarse_per_side, kNoVertex);
+  std::vector<uint32_t> recent(6 * cells_per_side * cells_per_side, kNoVertex),
+      recent_coarse(6 * coarse_per_side * coarse_per_side, kNoVertex);
   for (uint32_t i : order) {
     const uint32_t h = added[i];
     const size_t cell = cube_cell(cells_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
     const size_t coarse = cube_cell(coarse_per_side, ps.nx()[h], ps.ny()[h], ps.nz()[h]);
     uint32_t near = kNoVertex;
-    if (!cutter.cut(h, {i < hints.size() ? hints[i] : 0, cell == kNoCell ? kNoVertex : recent[cell],
-                        coarse == kNoCell ? kNoVertex : recent_coarse[coarse]}, near)) return false;
+    if (!cutter.cut(h,
+                    {i < hints.size() ? hints[i] : 0, cell == kNoCell ? kNoVertex : recent[cell],
+                     coarse == kNoCell ? kNoVertex : recent_coarse[coarse]},
+                    near))
+      return false;
     if (cell != kNoCell) recent[cell] = near;
     if (coarse != kNoCell) recent_coarse[coarse] = near;
   }

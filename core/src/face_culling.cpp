@@ -6,9 +6,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "plane_culling.h"
 #include "compiler_hints.h"
 #include "plane_classes.h"
+#include "plane_culling.h"
 
 namespace kergen {
 
@@ -38,10 +38,14 @@ void face_planes(const PreparedMesh& mesh, uint32_t first, size_t n, FacePlanes&
     const double a[3] = {xyz[0][j], xyz[1][j], xyz[2][j]}, b[3] = {xyz[3][j], xyz[4][j], xyz[5][j]},
                  c[3] = {xyz[6][j], xyz[7][j], xyz[8][j]};
     const PlaneCoef<Approx> p = approx_plane(a, b, c);
-    out.nx[j] = p.n[0].v; out.enx[j] = p.n[0].e;
-    out.ny[j] = p.n[1].v; out.eny[j] = p.n[1].e;
-    out.nz[j] = p.n[2].v; out.enz[j] = p.n[2].e;
-    out.d[j] = p.d.v; out.ed[j] = p.d.e;
+    out.nx[j] = p.n[0].v;
+    out.enx[j] = p.n[0].e;
+    out.ny[j] = p.n[1].v;
+    out.eny[j] = p.n[1].e;
+    out.nz[j] = p.n[2].v;
+    out.enz[j] = p.n[2].e;
+    out.d[j] = p.d.v;
+    out.ed[j] = p.d.e;
   }
 }
 

@@ -260,8 +260,10 @@ NumberStatus parse_double(std::string_view token, double& out) {
   bool out_of_range = false;
 #if KERGEN_FROM_CHARS_DOUBLE
   auto converted = std::from_chars(number.data(), number.data() + number.size(), value);
-  if (converted.ec == std::errc::result_out_of_range) out_of_range = true;
-  else if (converted.ec != std::errc() || converted.ptr != number.data() + number.size()) return NumberStatus::Invalid;
+  if (converted.ec == std::errc::result_out_of_range)
+    out_of_range = true;
+  else if (converted.ec != std::errc() || converted.ptr != number.data() + number.size())
+    return NumberStatus::Invalid;
 #else
   char small[64];
   std::string large;
@@ -361,7 +363,8 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
         while (true) {
           size_t slash = token.find('/', start);
           if (part_count == 3) fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
-          parts[part_count++] = token.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
+          parts[part_count++] =
+              token.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
           if (slash == std::string_view::npos) break;
           start = slash + 1;
         }
@@ -452,7 +455,8 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
   std::string_view keyword;
   tokens.next(keyword);
   bool higher_dimension = false;
-  if (!is_off_keyword(keyword, higher_dimension)) fail_at_line(name, lines.line_number(), "expected an OFF header, found " + quoted(keyword));
+  if (!is_off_keyword(keyword, higher_dimension))
+    fail_at_line(name, lines.line_number(), "expected an OFF header, found " + quoted(keyword));
   if (higher_dimension) fail_at_line(name, lines.line_number(), "4D / n-dimensional OFF is not supported");
   if (tokens.at_end()) {
     if (!next_content_line(lines, tokens)) fail_at_line(name, lines.line_number(), "missing vertex/face counts");
@@ -485,18 +489,18 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
 
   for (long long v = 0; v < vertex_count; ++v) {
     if (!next_content_line(lines, tokens))
-      fail_at_line(name, lines.line_number(),
-                   "unexpected end of file: " + std::to_string(v) + " of " + std::to_string(vertex_count) +
-                       " vertices read");
+      fail_at_line(
+          name, lines.line_number(),
+          "unexpected end of file: " + std::to_string(v) + " of " + std::to_string(vertex_count) + " vertices read");
     double xyz[3];
     read_coordinates(tokens, xyz, name, lines.line_number(), "vertex");
     mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
   }
   for (long long f = 0; f < face_count; ++f) {
     if (!next_content_line(lines, tokens))
-      fail_at_line(name, lines.line_number(),
-                   "unexpected end of file: " + std::to_string(f) + " of " + std::to_string(face_count) +
-                       " faces read");
+      fail_at_line(
+          name, lines.line_number(),
+          "unexpected end of file: " + std::to_string(f) + " of " + std::to_string(face_count) + " faces read");
     const size_t line = lines.line_number();
     std::string_view token;
     tokens.next(token);
@@ -591,9 +595,9 @@ void parse_binary_stl(std::string_view bytes, uint32_t triangle_count, const std
       for (int k = 0; k < 3; ++k) {
         float value = read_le_float(data + offset + 4 * k);
         if (!std::isfinite(value))
-          fail_at_byte(name, offset + 4 * k,
-                       "non-finite coordinate in triangle " + std::to_string(t) + " (vertex " +
-                           std::to_string(corner) + ")");
+          fail_at_byte(
+              name, offset + 4 * k,
+              "non-finite coordinate in triangle " + std::to_string(t) + " (vertex " + std::to_string(corner) + ")");
         xyz[k] = static_cast<double>(value);  // exact: every float is a double
       }
       mesh.indices.push_back(welder.add(xyz[0], xyz[1], xyz[2]));
@@ -743,11 +747,11 @@ bool ply_type_from_name(std::string_view name, PlyType& type) {
   static const struct {
     const char* name;
     PlyType type;
-  } kNames[] = {{"char", PlyType::Int8},     {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
-                {"uint8", PlyType::UInt8},   {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-                {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
-                {"int32", PlyType::Int32},   {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
-                {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
+  } kNames[] = {{"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
+                {"uint8", PlyType::UInt8},    {"short", PlyType::Int16},     {"int16", PlyType::Int16},
+                {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
+                {"int32", PlyType::Int32},    {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
+                {"float", PlyType::Float32},  {"float32", PlyType::Float32}, {"double", PlyType::Float64},
                 {"float64", PlyType::Float64}};
   for (const auto& entry : kNames)
     if (name == entry.name) return type = entry.type, true;
@@ -756,9 +760,13 @@ bool ply_type_from_name(std::string_view name, PlyType& type) {
 
 size_t ply_size(PlyType t) {
   switch (t) {
-    case PlyType::Int8: case PlyType::UInt8: return 1;
-    case PlyType::Int16: case PlyType::UInt16: return 2;
-    case PlyType::Int32: case PlyType::UInt32: case PlyType::Float32: return 4;
+    case PlyType::Int8:
+    case PlyType::UInt8: return 1;
+    case PlyType::Int16:
+    case PlyType::UInt16: return 2;
+    case PlyType::Int32:
+    case PlyType::UInt32:
+    case PlyType::Float32: return 4;
     case PlyType::Float64: return 8;
   }
   return 8;
@@ -816,7 +824,8 @@ void parse_ply_property(Tokens& tokens, PlyElement& e, const std::string& name, 
     p.is_list = true;
     p.count_type = type_of(count_type);
     p.type = type_of(item_type);
-    if (!ply_is_integer(p.count_type)) fail_at_line(name, line, "list count type " + quoted(count_type) + " is not an integer type");
+    if (!ply_is_integer(p.count_type))
+      fail_at_line(name, line, "list count type " + quoted(count_type) + " is not an integer type");
   } else {
     p.type = type_of(word);
   }
@@ -843,10 +852,14 @@ void parse_ply_format(Tokens& tokens, PlyHeader& h, const std::string& name, siz
   std::string_view encoding, version, extra;
   if (!tokens.next(encoding) || !tokens.next(version) || tokens.next(extra))
     fail_at_line(name, line, "expected 'format <encoding> 1.0'");
-  if (encoding == "ascii") h.encoding = PlyEncoding::Ascii;
-  else if (encoding == "binary_little_endian") h.encoding = PlyEncoding::LittleEndian;
-  else if (encoding == "binary_big_endian") h.encoding = PlyEncoding::BigEndian;
-  else fail_at_line(name, line, "unknown PLY format " + quoted(encoding));
+  if (encoding == "ascii")
+    h.encoding = PlyEncoding::Ascii;
+  else if (encoding == "binary_little_endian")
+    h.encoding = PlyEncoding::LittleEndian;
+  else if (encoding == "binary_big_endian")
+    h.encoding = PlyEncoding::BigEndian;
+  else
+    fail_at_line(name, line, "unknown PLY format " + quoted(encoding));
   if (version != "1.0") fail_at_line(name, line, "unsupported PLY version " + quoted(version) + " (1.0 expected)");
 }
 
@@ -905,7 +918,8 @@ PlyHeader parse_ply_header(std::string_view bytes, const std::string& name) {
   if (h.vertex >= 0) {
     const PlyElement& v = h.elements[h.vertex];
     for (int k = 0; k < 3; ++k)
-      if (v.role[k] < 0) fail_at_line(name, v.line, std::string("vertex element has no '") + char('x' + k) + "' property");
+      if (v.role[k] < 0)
+        fail_at_line(name, v.line, std::string("vertex element has no '") + char('x' + k) + "' property");
   }
   if (h.face >= 0 && h.elements[h.face].role[0] < 0)
     fail_at_line(name, h.elements[h.face].line, "face element has no 'vertex_indices' list");
@@ -929,7 +943,8 @@ void check_ply_counts(const PlyHeader& h, uint64_t available, const std::string&
                        std::to_string(available) + " bytes of data follow");
     needed += e.count * per_instance;
   }
-  if (h.vertex >= 0) check_vertex_count(static_cast<size_t>(h.elements[h.vertex].count), name, h.elements[h.vertex].line);
+  if (h.vertex >= 0)
+    check_vertex_count(static_cast<size_t>(h.elements[h.vertex].count), name, h.elements[h.vertex].line);
 }
 
 // The values of an ascii PLY body: one element instance per line (blank lines skipped).
@@ -997,16 +1012,18 @@ class PlyAsciiValues {
 class PlyBinaryValues {
  public:
   PlyBinaryValues(std::string_view bytes, size_t offset, bool big_endian, const std::string& name)
-      : data_(reinterpret_cast<const unsigned char*>(bytes.data())), size_(bytes.size()), pos_(offset),
-        big_endian_(big_endian), name_(name) {}
+      : data_(reinterpret_cast<const unsigned char*>(bytes.data())),
+        size_(bytes.size()),
+        pos_(offset),
+        big_endian_(big_endian),
+        name_(name) {}
   void begin(const PlyElement& e, uint64_t index) {
     element_ = &e;
     index_ = index;
   }
   double coordinate(PlyType t) {
     const double value = read(t);
-    if (!std::isfinite(value))
-      fail("non-finite coordinate in vertex " + std::to_string(index_));
+    if (!std::isfinite(value)) fail("non-finite coordinate in vertex " + std::to_string(index_));
     return value;
   }
   long long integer(PlyType t, const char*) { return static_cast<long long>(read(t)); }
@@ -1093,8 +1110,10 @@ void read_ply_body(Values& values, const PlyHeader& h, Mesh& mesh) {
         if (p.is_list) {
           const long long n = values.integer(p.count_type, "list count");
           if (n < 0) values.fail("negative list count " + std::to_string(n));
-          if (is_face && property == e.role[0]) read_ply_face(values, p.type, n, vertex_count, mesh);
-          else values.skip(p.type, static_cast<uint64_t>(n));
+          if (is_face && property == e.role[0])
+            read_ply_face(values, p.type, n, vertex_count, mesh);
+          else
+            values.skip(p.type, static_cast<uint64_t>(n));
         } else if (is_vertex && (property == e.role[0] || property == e.role[1] || property == e.role[2])) {
           xyz[property == e.role[0] ? 0 : property == e.role[1] ? 1 : 2] = values.coordinate(p.type);
         } else {
@@ -1145,8 +1164,8 @@ std::string_view first_keyword(std::string_view text) {
 }
 
 bool is_obj_keyword(std::string_view keyword) {
-  static const char* const kKeywords[] = {"v", "vt", "vn", "vp", "f", "fo", "l", "p",
-                                          "o", "g", "s", "mtllib", "usemtl"};
+  static const char* const kKeywords[] = {"v", "vt", "vn", "vp", "f",      "fo",    "l",
+                                          "p", "o",  "g",  "s",  "mtllib", "usemtl"};
   return std::any_of(std::begin(kKeywords), std::end(kKeywords), [&](const char* k) { return keyword == k; });
 }
 
@@ -1430,9 +1449,7 @@ Error write_mesh_file(const std::string& path, const Mesh& mesh, std::string* me
     return failed("unsupported file type (expected .off, .obj or .stl)");
   try {
     bytes = write_mesh(mesh, format);
-  } catch (const std::bad_alloc&) {
-    return failed("out of memory while formatting the mesh");
-  }
+  } catch (const std::bad_alloc&) { return failed("out of memory while formatting the mesh"); }
   FILE* file = std::fopen(path.c_str(), "wb");
   if (!file) return failed(std::string("cannot open for writing: ") + std::strerror(errno));
   const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();

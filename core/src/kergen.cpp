@@ -7,13 +7,13 @@
 #include <cmath>
 #include <memory>
 
-#include "plane_culling.h"
 #include "deepest_point.h"
+#include "exact/predicates.h"
 #include "face_culling.h"
 #include "lp.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
-#include "exact/predicates.h"
+#include "plane_culling.h"
 #include "polytope.h"
 #include "step_replay.h"
 #include "tracer.h"
@@ -113,7 +113,6 @@ struct Setup {
   double center[3] = {0, 0, 0};
 };
 
-
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
   report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
@@ -142,8 +141,10 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
   s.planes->set_extent(s.mesh.extent());
   std::vector<uint32_t> face_plane;
-  if (faces.culled) build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane);
-  else build_planes(s.mesh, *s.planes, face_plane);
+  if (faces.culled)
+    build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane);
+  else
+    build_planes(s.mesh, *s.planes, face_plane);
   stats.distinct_planes = s.planes->size();
   s.active.reserve(s.planes->size() + 6);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
@@ -226,7 +227,8 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       if (!s.is_box[i]) mesh_planes.push_back(i);
     CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
     TraceResult& tr = ct.trace;
-    if (!tr.internal_error && (options.on_step || options.max_steps)) replay_steps(*s.planes, ct.start_vertex, tr, ropt);
+    if (!tr.internal_error && (options.on_step || options.max_steps))
+      replay_steps(*s.planes, ct.start_vertex, tr, ropt);
     out.stats.active_planes = 0;
     for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];
     out.stats.ms_trace = ms_since(t);
@@ -246,7 +248,10 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       ++steps;
       bool go = !options.on_step || options.on_step(e);
       if (options.max_steps && steps >= options.max_steps) go = false;
-      if (!go) { stopped = true; out.complete = false; }
+      if (!go) {
+        stopped = true;
+        out.complete = false;
+      }
       return go;
     };
     double scaled_volume = 0;

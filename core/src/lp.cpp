@@ -7,14 +7,13 @@
 // bounded; their corner is the optimum of the empty constraint set.
 #include "lp.h"
 
-#include "random.h"
-
-#include "lp_hint.h"
-#include "vertex_filter.h"
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+
+#include "lp_hint.h"
+#include "random.h"
+#include "vertex_filter.h"
 
 namespace kergen {
 
@@ -39,11 +38,17 @@ class SeidelLp {
     for (int a = 0; a < 4 && found < 2; ++a)
       for (int b = a + 1; b < 4 && found < 2; ++b) {
         double c2[3], c3[3];
-        for (int i = 0; i < 3; ++i) { c2[i] = s[i] * cand[a][i]; c3[i] = s[i] * cand[b][i]; }
-        Expansion det = det3(Expansion(dir[0]), Expansion(dir[1]), Expansion(dir[2]), Expansion(c2[0]), Expansion(c2[1]),
-                             Expansion(c2[2]), Expansion(c3[0]), Expansion(c3[1]), Expansion(c3[2]));
+        for (int i = 0; i < 3; ++i) {
+          c2[i] = s[i] * cand[a][i];
+          c3[i] = s[i] * cand[b][i];
+        }
+        Expansion det = det3(Expansion(dir[0]), Expansion(dir[1]), Expansion(dir[2]), Expansion(c2[0]),
+                             Expansion(c2[1]), Expansion(c2[2]), Expansion(c3[0]), Expansion(c3[1]), Expansion(c3[2]));
         if (det.sign() != 0) {
-          for (int i = 0; i < 3; ++i) { obj_[1][i] = c2[i]; obj_[2][i] = c3[i]; }
+          for (int i = 0; i < 3; ++i) {
+            obj_[1][i] = c2[i];
+            obj_[2][i] = c3[i];
+          }
           found = 2;
         }
       }
@@ -97,7 +102,8 @@ class SeidelLp {
       const PlaneCoef<Approx> pm = ps_.approx(m);
       const Approx rate = filter.rate(pm);
       int r = rate.sign();
-      if (r == 2) r = sign_det3_normals(ps_, m, h, g) * sigma;  // rate_sign's exact fallback (its filter is the one above)
+      if (r == 2)
+        r = sign_det3_normals(ps_, m, h, g) * sigma;  // rate_sign's exact fallback (its filter is the one above)
       if (r == 0) {
         parallel_.push_back(m);
         continue;
@@ -110,8 +116,10 @@ class SeidelLp {
         // product of the two rates is positive on either side). m cuts first when it is < 0
         // ahead, > 0 behind.
         const int q = best.certain && rate.certain() ? (best.offset * rate - offset * best.rate).sign() : 2;
-        if (q != 2) take = r > 0 ? q < 0 : q > 0;
-        else take = side(ps_, m, best.vertex(ps_, h, g)) > 0;
+        if (q != 2)
+          take = r > 0 ? q < 0 : q > 0;
+        else
+          take = side(ps_, m, best.vertex(ps_, h, g)) > 0;
       }
       if (take) best.set(m, rate, offset);
     }
@@ -190,7 +198,10 @@ class SeidelLp {
             if (feasible && sigma * objective_sign(h, tight[a]) > 0) optimal = false;
           }
         }
-        if (optimal) { w = c; have = true; }
+        if (optimal) {
+          w = c;
+          have = true;
+        }
       }
     assert(have && "no optimal corner of the bounding planes on h");
     if (!have) return false;
@@ -273,19 +284,26 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
       std::vector<uint32_t> pool = planes;
       shuffle(pool, seed ^ 0x5eed);
       size_t sample = std::min(planes.size(), size_t(6 * std::sqrt(double(planes.size()))));
-      for (size_t i = 0; i < sample; ++i) { subset.push_back(pool[i]); in_subset[pool[i]] = 1; }
+      for (size_t i = 0; i < sample; ++i) {
+        subset.push_back(pool[i]);
+        in_subset[pool[i]] = 1;
+      }
       for (uint64_t round = 0;; ++round) {
         r = run(subset, seed + round);
         if (r.outcome == LpResult::Outcome::Infeasible) break;  // a subset is already infeasible
         violated_planes(ps, planes, in_subset, r.vertex, violated);
         if (violated.empty()) break;
-        for (uint32_t l : violated) { subset.push_back(l); in_subset[l] = 1; }
+        for (uint32_t l : violated) {
+          subset.push_back(l);
+          in_subset[l] = 1;
+        }
       }
     }
   }
   for (int i = 0; i < 3; ++i) ps.pop_last();
   // The optimum is kept (it starts the tracing): rebuilt with input-point recognition.
-  if (r.outcome == LpResult::Outcome::Optimal) r.vertex = make_vertex(ps, r.vertex.basis[0], r.vertex.basis[1], r.vertex.basis[2]);
+  if (r.outcome == LpResult::Outcome::Optimal)
+    r.vertex = make_vertex(ps, r.vertex.basis[0], r.vertex.basis[1], r.vertex.basis[2]);
   return r;
 }
 

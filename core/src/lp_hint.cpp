@@ -86,7 +86,10 @@ class FloatSeidel {
     const double w[3] = {h.n[1] * u[2] - h.n[2] * u[1], h.n[2] * u[0] - h.n[0] * u[2], h.n[0] * u[1] - h.n[1] * u[0]};
     const double p0[3] = {-h.d * h.n[0], -h.d * h.n[1], -h.d * h.n[2]};
     double cx = dot3(c_, u), cy = dot3(c_, w);
-    if (std::fabs(cx) + std::fabs(cy) < 1e-12) { cx = dot3(tie_, u); cy = dot3(tie_, w); }
+    if (std::fabs(cx) + std::fabs(cy) < 1e-12) {
+      cx = dot3(tie_, u);
+      cy = dot3(tie_, w);
+    }
     // The constraints before i in the plane's coordinates: A . y + B <= 0.
     ax_.resize(i);
     ay_.resize(i);
@@ -103,14 +106,22 @@ class FloatSeidel {
     for (int j = 0; j < i; ++j) {
       const double nx = ax_[j], ny = ay_[j];
       if (std::fabs(nx) + std::fabs(ny) < kParallel) {
-        if (b_[j] > kTol) { witness[0] = i; witness[1] = j; witness[2] = witness[3] = -1; return false; }
+        if (b_[j] > kTol) {
+          witness[0] = i;
+          witness[1] = j;
+          witness[2] = witness[3] = -1;
+          return false;
+        }
         continue;
       }
       if (nx * y[0] + ny * y[1] + b_[j] <= kTol) continue;
       // Optimum on the line A_j . y + B_j = 0: y0 + s t, s bounded by the constraints before j.
       const double l2 = nx * nx + ny * ny, l = std::sqrt(l2);
       double t[2] = {-ny / l, nx / l};
-      if (t[0] * cx + t[1] * cy < 0) { t[0] = -t[0]; t[1] = -t[1]; }
+      if (t[0] * cx + t[1] * cy < 0) {
+        t[0] = -t[0];
+        t[1] = -t[1];
+      }
       const double y0[2] = {-b_[j] * nx / l2, -b_[j] * ny / l2};
       double hi = HUGE_VAL, lo = -HUGE_VAL;
       int hi_id = -1, lo_id = -1;
@@ -118,10 +129,16 @@ class FloatSeidel {
         const double alpha = ak0 * t[0] + ak1 * t[1], beta = ak0 * y0[0] + ak1 * y0[1] + bk;
         if (alpha > kParallel) {
           const double s = -beta / alpha;
-          if (s < hi) { hi = s; hi_id = id; }
+          if (s < hi) {
+            hi = s;
+            hi_id = id;
+          }
         } else if (alpha < -kParallel) {
           const double s = -beta / alpha;
-          if (s > lo) { lo = s; lo_id = id; }
+          if (s > lo) {
+            lo = s;
+            lo_id = id;
+          }
         } else if (beta > kTol) {
           lo = HUGE_VAL;  // the line is outside a parallel constraint
           lo_id = id;
@@ -133,7 +150,10 @@ class FloatSeidel {
       bound_by(0, -1, -r, -1);
       for (int k = 0; k < j; ++k) bound_by(ax_[k], ay_[k], b_[k], k);
       if (lo > hi + kTol) {
-        witness[0] = i; witness[1] = j; witness[2] = lo_id; witness[3] = hi_id;
+        witness[0] = i;
+        witness[1] = j;
+        witness[2] = lo_id;
+        witness[3] = hi_id;
         return false;
       }
       y[0] = y0[0] + hi * t[0];

@@ -35,15 +35,21 @@ exact::ApproxDD accurate_volume6(const PreparedMesh& m, const double c[3]) {
     const size_t k = m.loop_offsets[f + 1] - m.loop_offsets[f];
     for (size_t i = 1; i + 1 < k; ++i) {
       ApproxDD a[3], b[3], d[3];
-      for (int j = 0; j < 3; ++j) { a[j] = rel(loop[0], j); b[j] = rel(loop[i], j); d[j] = rel(loop[i + 1], j); }
-      vol6 = vol6 + (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]));
+      for (int j = 0; j < 3; ++j) {
+        a[j] = rel(loop[0], j);
+        b[j] = rel(loop[i], j);
+        d[j] = rel(loop[i + 1], j);
+      }
+      vol6 = vol6 + (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                     a[2] * (b[0] * d[1] - b[1] * d[0]));
     }
   }
   return vol6;
 }
 
 Warning flipped_warning(size_t faces) {
-  return {Warning::Kind::OrientationFlipped, faces, "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"};
+  return {Warning::Kind::OrientationFlipped, faces,
+          "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"};
 }
 
 PreparedMesh fail(PreparedMesh& m, Error e, const std::string& msg) {
@@ -162,9 +168,11 @@ struct EarRegion {
   double margin;
   double box[4];  // xlo, xhi, ylo, yhi
 };
-bool ear_region(const std::vector<double>& xs, const std::vector<double>& ys, uint32_t a, uint32_t b, uint32_t c, double tol,
-                double area2, EarRegion& region) {
-  auto len = [&](uint32_t p, uint32_t q) { return std::sqrt((xs[q] - xs[p]) * (xs[q] - xs[p]) + (ys[q] - ys[p]) * (ys[q] - ys[p])); };
+bool ear_region(const std::vector<double>& xs, const std::vector<double>& ys, uint32_t a, uint32_t b, uint32_t c,
+                double tol, double area2, EarRegion& region) {
+  auto len = [&](uint32_t p, uint32_t q) {
+    return std::sqrt((xs[q] - xs[p]) * (xs[q] - xs[p]) + (ys[q] - ys[p]) * (ys[q] - ys[p]));
+  };
   const double ab = len(a, b), bc = len(b, c), ca = len(c, a);
   const double shortest = std::min(ab, std::min(bc, ca)), longest = std::max(ab, std::max(bc, ca));
   if (!(shortest >= 1e-80)) return false;
@@ -179,7 +187,8 @@ bool ear_region(const std::vector<double>& xs, const std::vector<double>& ys, ui
   const uint32_t ear[3] = {a, b, c};
   for (int i = 0; i < 3; ++i) {
     const uint32_t p = ear[i], q = ear[(i + 1) % 3], r = ear[(i + 2) % 3];
-    const double x = xs[p] + mu * ((xs[p] - xs[q]) + (xs[p] - xs[r])), y = ys[p] + mu * ((ys[p] - ys[q]) + (ys[p] - ys[r]));
+    const double x = xs[p] + mu * ((xs[p] - xs[q]) + (xs[p] - xs[r])),
+                 y = ys[p] + mu * ((ys[p] - ys[q]) + (ys[p] - ys[r]));
     region.corner[i][0] = x;
     region.corner[i][1] = y;
     box[0] = std::min(box[0], x - margin);
@@ -233,8 +242,8 @@ bool region_x_range(const EarRegion& region, double lo, double hi, double& xlo, 
 // spent is fanned, and *gave_up says so. Then, up to 128 corners, inward folds are flipped
 // outward where they can be. ("Convex" and the ears are judged in the same projection.)
 std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<double>& pts, const uint32_t* loop, size_t k,
-                                                         const std::array<double, 3>& n, int exact_shift, bool along_normal,
-                                                         bool* gave_up) {
+                                                         const std::array<double, 3>& n, int exact_shift,
+                                                         bool along_normal, bool* gave_up) {
   if (gave_up) *gave_up = false;
   std::vector<std::array<uint32_t, 3>> out;
   out.reserve(k - 2);
@@ -310,7 +319,8 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   std::vector<std::array<uint32_t, 5>> tested;  // x, y, p, q, whether it folds inward
   auto folds_inward = [&](uint32_t x, uint32_t y, uint32_t p, uint32_t q) {
     for (const auto& d : tested)
-      if ((d[0] == x && d[1] == y && d[2] == p && d[3] == q) || (d[0] == y && d[1] == x && d[2] == q && d[3] == p)) return d[4] != 0;
+      if ((d[0] == x && d[1] == y && d[2] == p && d[3] == q) || (d[0] == y && d[1] == x && d[2] == q && d[3] == p))
+        return d[4] != 0;
     const bool inward = orient3d(P(x), P(y), P(p), P(q), exact_shift) > 0;
     if (tested.empty()) tested.reserve(4 * k);
     tested.push_back({x, y, p, q, inward});
@@ -360,8 +370,8 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
   // lose a corner, which cannot block an ear). Quadratic instead of cubic in the corners, with
   // the same choices.
   constexpr uint32_t kNoBlocker = 0xffffffffu, kUnjudged = 0xfffffffeu;
-  std::vector<double> quality;     // per position in idx: the ear's quality, 0 if not an ear
-  std::vector<uint32_t> blocker;   // the corner inside the ear, kNoBlocker, or kUnjudged
+  std::vector<double> quality;    // per position in idx: the ear's quality, 0 if not an ear
+  std::vector<uint32_t> blocker;  // the corner inside the ear, kNoBlocker, or kUnjudged
   auto judge = [&](size_t i) {
     const size_t r = idx.size();
     const uint32_t a = idx[(i + r - 1) % r], b = idx[i], c = idx[(i + 1) % r];
@@ -376,7 +386,10 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     for (size_t j = 0; j < r; ++j) {
       const uint32_t q = idx[j];
       if (q == a || q == b || q == c) continue;
-      if (cross(a, b, q) >= tol && cross(b, c, q) >= tol && cross(c, a, q) >= tol) { blocker[i] = q; return; }
+      if (cross(a, b, q) >= tol && cross(b, c, q) >= tol && cross(c, a, q) >= tol) {
+        blocker[i] = q;
+        return;
+      }
     }
     quality[i] = area2 / size2;
   };
@@ -390,7 +403,10 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     double best_quality = 0;
     for (size_t i = 0; i < r; ++i) {
       if (blocker[i] == kUnjudged) judge(i);
-      if (quality[i] > best_quality) { best_quality = quality[i]; best = i; }
+      if (quality[i] > best_quality) {
+        best_quality = quality[i];
+        best = i;
+      }
     }
     if (best == r) break;
     const uint32_t clipped = idx[best];
@@ -419,7 +435,9 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     auto cr = [&](uint32_t a, uint32_t b, uint32_t c) {
       return sign * ((xs[b] - xs[a]) * (ys[c] - ys[a]) - (ys[b] - ys[a]) * (xs[c] - xs[a]));
     };
-    auto sq2 = [&](uint32_t a, uint32_t b) { return (xs[b] - xs[a]) * (xs[b] - xs[a]) + (ys[b] - ys[a]) * (ys[b] - ys[a]); };
+    auto sq2 = [&](uint32_t a, uint32_t b) {
+      return (xs[b] - xs[a]) * (xs[b] - xs[a]) + (ys[b] - ys[a]) * (ys[b] - ys[a]);
+    };
     // The corners left, as a ring of positions in loop.
     std::vector<uint32_t> next(k), prev(k);
     std::vector<char> alive(k, 1);
@@ -431,8 +449,8 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
     std::vector<std::array<size_t, 3>> rows;  // an ear's rows of cells: row, first and last column
     const bool charge_scans = k <= kBudgetPerScan;
     size_t budget = charge_scans ? 8 * k * k : std::min(kEarWorkPerCorner * k, 8 * kBudgetPerScan * kBudgetPerScan);
-    size_t r = k;      // corners left
-    uint32_t i = 0;    // the corner whose ear is tried next
+    size_t r = k;    // corners left
+    uint32_t i = 0;  // the corner whose ear is tried next
     while (r > 3 && budget > 0) {
       bool clipped = false;
       for (size_t tries = 0; tries < r && budget > 0 && !clipped; ++tries, i = next[i]) {
@@ -442,15 +460,16 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
         if (!(area2 > 0)) continue;  // reflex or flat corner
         const double tol = -1e-9 * (sq2(a, b) + sq2(b, c) + sq2(c, a));
         auto blocks = [&](uint32_t q) {
-          return loop[q] != loop[a] && loop[q] != loop[b] && loop[q] != loop[c] && cr(a, b, q) >= tol && cr(b, c, q) >= tol &&
-                 cr(c, a, q) >= tol;
+          return loop[q] != loop[a] && loop[q] != loop[b] && loop[q] != loop[c] && cr(a, b, q) >= tol &&
+                 cr(b, c, q) >= tol && cr(c, a, q) >= tol;
         };
         bool empty = true;
         size_t work = 1;
         // The region's rows of cells, each cut to the columns the region reaches in it.
         EarRegion region;
         size_t box_cells[4], cells = 0;
-        bool use_grid = ear_region(xs, ys, a, b, c, tol, area2, region) && grid.cells_of(region.box, box_cells) <= 4 * r;
+        bool use_grid =
+            ear_region(xs, ys, a, b, c, tol, area2, region) && grid.cells_of(region.box, box_cells) <= 4 * r;
         if (use_grid) {
           rows.clear();
           for (size_t cy = box_cells[2]; cy <= box_cells[3] && cells <= r; ++cy) {
@@ -507,7 +526,10 @@ inline int count_trailing_zeros(uint64_t x) {
   return __builtin_ctzll(x);
 #else
   int n = 0;
-  while (!(x & 1)) { x >>= 1; ++n; }
+  while (!(x & 1)) {
+    x >>= 1;
+    ++n;
+  }
   return n;
 #endif
 }
@@ -520,8 +542,10 @@ int lowest_bit_exponent(double x) {
   std::memcpy(&bits, &x, sizeof bits);
   uint64_t mant = bits & ((uint64_t(1) << 52) - 1);
   int biased = int((bits >> 52) & 0x7ff);
-  if (biased) mant |= uint64_t(1) << 52;
-  else biased = 1;
+  if (biased)
+    mant |= uint64_t(1) << 52;
+  else
+    biased = 1;
   return biased - 1075 + count_trailing_zeros(mant);  // mant != 0 for x != 0
 }
 
@@ -530,8 +554,8 @@ int lowest_bit_exponent(double x) {
 // larger than the caches for big meshes, so slots are hashed a block ahead and prefetched.
 // The same pass takes the bounding box of the used vertices, in id order (complete when the
 // answer is false).
-bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used,
-                         double lo3[3], double hi3[3]) {
+bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used, double lo3[3],
+                         double hi3[3]) {
   size_t bits = 1;
   while ((size_t(1) << bits) < 2 * num_used) ++bits;  // load factor <= 1/2
   const uint32_t kEmpty = 0xffffffffu;
@@ -573,7 +597,10 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
     for (size_t j = 0; j < n; ++j) {
       const double* p = P + 3 * size_t(ids[j]);
       for (size_t slot = slots[j];; slot = (slot + 1) & mask) {
-        if (table[slot] == kEmpty) { table[slot] = ids[j]; break; }
+        if (table[slot] == kEmpty) {
+          table[slot] = ids[j];
+          break;
+        }
         const double* q = P + 3 * size_t(table[slot]);
         if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return true;
       }
@@ -623,8 +650,10 @@ int projected_area_sign(const std::vector<double>& pts, const uint32_t* loop, si
   auto scaled = [&](size_t t, int c) { return std::ldexp(at(t, c), shift); };
   Expansion total;
   for (size_t t = 1; t + 1 < k; ++t) {
-    const Expansion ux = Expansion::difference(scaled(t, i), scaled(0, i)), uy = Expansion::difference(scaled(t, j), scaled(0, j));
-    const Expansion vx = Expansion::difference(scaled(t + 1, i), scaled(0, i)), vy = Expansion::difference(scaled(t + 1, j), scaled(0, j));
+    const Expansion ux = Expansion::difference(scaled(t, i), scaled(0, i)),
+                    uy = Expansion::difference(scaled(t, j), scaled(0, j));
+    const Expansion vx = Expansion::difference(scaled(t + 1, i), scaled(0, i)),
+                    vy = Expansion::difference(scaled(t + 1, j), scaled(0, j));
     total = total + (ux * vy - uy * vx);
   }
   return total.sign();
@@ -669,8 +698,15 @@ struct ScaledCoordinates {
   const double* at;
   double factor;
   double operator*() const { return *at * factor; }
-  ScaledCoordinates& operator++() { ++at; return *this; }
-  ScaledCoordinates operator++(int) { ScaledCoordinates old = *this; ++at; return old; }
+  ScaledCoordinates& operator++() {
+    ++at;
+    return *this;
+  }
+  ScaledCoordinates operator++(int) {
+    ScaledCoordinates old = *this;
+    ++at;
+    return old;
+  }
   difference_type operator-(const ScaledCoordinates& o) const { return at - o.at; }
   bool operator==(const ScaledCoordinates& o) const { return at == o.at; }
   bool operator!=(const ScaledCoordinates& o) const { return at != o.at; }
@@ -713,7 +749,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   const size_t nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
   m.input_faces = nf;
 
-  if ((nv > 0 && !mesh.positions) || (mesh.num_indices > 0 && !mesh.indices) || (mesh.face_sizes == nullptr && mesh.num_faces > 0 && mesh.num_faces != nf))
+  if ((nv > 0 && !mesh.positions) || (mesh.num_indices > 0 && !mesh.indices) ||
+      (mesh.face_sizes == nullptr && mesh.num_faces > 0 && mesh.num_faces != nf))
     return fail(m, Error::InvalidArgument, "null array with a non-zero size, or num_faces given without face_sizes");
   if (nv == 0) return fail(m, Error::EmptyInput, "the mesh has no vertices");
   if (nf == 0) return fail(m, Error::EmptyInput, "the mesh has no faces");
@@ -724,7 +761,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     return fail(m, Error::TooLarge, s.str());
   }
   if (!mesh.face_sizes && mesh.num_indices % 3 != 0)
-    return fail(m, Error::InvalidArgument, "triangle indices: the count " + std::to_string(mesh.num_indices) + " is not a multiple of 3");
+    return fail(m, Error::InvalidArgument,
+                "triangle indices: the count " + std::to_string(mesh.num_indices) + " is not a multiple of 3");
 
   // Face sizes must add up. (No offsets are stored: the faces are walked in order below.)
   if (mesh.face_sizes) {
@@ -741,7 +779,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         return fail(m, Error::InvalidArgument, "face sizes add up to more than the number of indices");
     }
     if (total != mesh.num_indices)
-      return fail(m, Error::InvalidArgument, "face sizes add up to " + std::to_string(total) + " but " + std::to_string(mesh.num_indices) + " indices were given");
+      return fail(m, Error::InvalidArgument,
+                  "face sizes add up to " + std::to_string(total) + " but " + std::to_string(mesh.num_indices) +
+                      " indices were given");
   }
   auto face_size = [&](size_t f) -> size_t { return mesh.face_sizes ? mesh.face_sizes[f] : 3; };
 
@@ -802,7 +842,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     // The lowest set bit of a coordinate lies at most 52 bits below its leading one: when every
     // non-zero coordinate is at least 2^(kLowestAllowed + 52), no lowest bit needs reading.
     if (exact_factor && min_nonzero_abs * factor >= std::ldexp(1.0, kLowestAllowed + 52)) {
-      m.points = std::vector<double>(ScaledCoordinates{mesh.positions, factor}, ScaledCoordinates{mesh.positions + 3 * nv, factor});
+      m.points = std::vector<double>(ScaledCoordinates{mesh.positions, factor},
+                                     ScaledCoordinates{mesh.positions + 3 * nv, factor});
     } else {
       m.points.resize(3 * nv);
       for (size_t i = 0; i < 3 * nv; ++i) {
@@ -814,8 +855,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     int shift = std::max(0, kLowestAllowed - lowest);
     if (shift > kMaxShift) {
       std::ostringstream s;
-      s << "coordinates span about " << int(-lowest * 0.30103) << " decimal orders of magnitude (largest |x| "
-        << maxabs << ", finest bit 2^" << lowest + ex << "); exact evaluation supports about "
+      s << "coordinates span about " << int(-lowest * 0.30103) << " decimal orders of magnitude (largest |x| " << maxabs
+        << ", finest bit 2^" << lowest + ex << "); exact evaluation supports about "
         << int((kMaxShift - kLowestAllowed) * 0.30103) << " — snap tiny coordinates to 0 or rescale";
       return fail(m, Error::CoordinateRange, s.str());
     }
@@ -967,7 +1008,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         }
       }
     }
-    struct Tally { uint32_t up = 0, down = 0, up_face = 0, down_face = 0; };
+    struct Tally {
+      uint32_t up = 0, down = 0, up_face = 0, down_face = 0;
+    };
     std::vector<Tally> tally_store(nv);  // per upper vertex id; all zero between lower vertices
     Tally* tally = tally_store.data();
     uint32_t* parent = components.parent.data();
@@ -1035,9 +1078,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         } else if (t.up + t.down > 0) {  // else judged already
           const uint64_t key = uint64_t(lo) << 32 | hi;
           const size_t n = size_t(t.up) + t.down;
-          if (n == 1) note(open, open_ex, key);
-          else if (n > 2) note(nonmanifold, nonmanifold_ex, key);
-          else note(inconsistent, inconsistent_ex, key);  // two uses the same way
+          if (n == 1)
+            note(open, open_ex, key);
+          else if (n > 2)
+            note(nonmanifold, nonmanifold_ex, key);
+          else
+            note(inconsistent, inconsistent_ex, key);  // two uses the same way
         }
         t = Tally{};
       };
@@ -1052,13 +1098,21 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";
   };
   if (nonmanifold) {
-    return fail(m, Error::NonManifoldEdge, std::to_string(nonmanifold) + " edge(s) are shared by more than two faces, e.g. edge " + edge_name(nonmanifold_ex));
+    return fail(m, Error::NonManifoldEdge,
+                std::to_string(nonmanifold) + " edge(s) are shared by more than two faces, e.g. edge " +
+                    edge_name(nonmanifold_ex));
   }
   if (inconsistent) {
-    return fail(m, Error::InconsistentOrientation, std::to_string(inconsistent) + " edge(s) are traversed in the same direction by both of their faces (inconsistent orientation), e.g. edge " + edge_name(inconsistent_ex));
+    return fail(m, Error::InconsistentOrientation,
+                std::to_string(inconsistent) +
+                    " edge(s) are traversed in the same direction by both of their faces (inconsistent orientation), "
+                    "e.g. edge " +
+                    edge_name(inconsistent_ex));
   }
   if (open && !options.allow_open) {
-    return fail(m, Error::OpenMesh, "the mesh is open: " + std::to_string(open) + " edge(s) belong to one face only, e.g. edge " + edge_name(open_ex) + " (Options::allow_open accepts open meshes)");
+    return fail(m, Error::OpenMesh,
+                "the mesh is open: " + std::to_string(open) + " edge(s) belong to one face only, e.g. edge " +
+                    edge_name(open_ex) + " (Options::allow_open accepts open meshes)");
   }
   m.boundary_edges = open;
   // Faces joined by boundary edges only are joined through vertices for the component count.
@@ -1068,20 +1122,25 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       for (size_t f = 0; f < cf; ++f)
         for (size_t i = clean_offsets[f]; i < clean_offsets[f + 1]; ++i) {
           uint32_t v = clean[i];
-          if (first_face[v] == 0xffffffffu) first_face[v] = uint32_t(f);
-          else unions += components.unite(first_face[v], uint32_t(f));
+          if (first_face[v] == 0xffffffffu)
+            first_face[v] = uint32_t(f);
+          else
+            unions += components.unite(first_face[v], uint32_t(f));
         }
     }
     const size_t pieces = cf - unions;
     if (pieces > 1) {
-      return fail(m, Error::MultipleComponents, "the mesh has " + std::to_string(pieces) + " separate pieces; the kernel is defined for one closed surface");
+      return fail(
+          m, Error::MultipleComponents,
+          "the mesh has " + std::to_string(pieces) + " separate pieces; the kernel is defined for one closed surface");
     }
   }
   double lo3[3], hi3[3];  // bounding box of the used vertices, taken with the check below
   {
     const size_t unused = nv - size_t(std::count(used.begin(), used.end(), 1));
     if (unused)
-      m.warnings.push_back({Warning::Kind::UnusedVertices, unused, std::to_string(unused) + " vertices are not used by any face"});
+      m.warnings.push_back(
+          {Warning::Kind::UnusedVertices, unused, std::to_string(unused) + " vertices are not used by any face"});
     // Two distinct vertices of a closed surface at one position: the surface touches itself
     // there (it is not embedded), and the intersection of its face half-spaces is then not its
     // kernel — refused rather than answered wrongly.
@@ -1129,8 +1188,13 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   auto vol6_about_centre = [&](uint32_t i0, uint32_t i1, uint32_t i2) KERGEN_INLINE {
     const double *p0 = &m.points[3 * size_t(i0)], *p1 = &m.points[3 * size_t(i1)], *p2 = &m.points[3 * size_t(i2)];
     double a[3], bb[3], cc[3];
-    for (int k = 0; k < 3; ++k) { a[k] = p0[k] - c[k]; bb[k] = p1[k] - c[k]; cc[k] = p2[k] - c[k]; }
-    return a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) + a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
+    for (int k = 0; k < 3; ++k) {
+      a[k] = p0[k] - c[k];
+      bb[k] = p1[k] - c[k];
+      cc[k] = p2[k] - c[k];
+    }
+    return a[0] * (bb[1] * cc[2] - bb[2] * cc[1]) - a[1] * (bb[0] * cc[2] - bb[2] * cc[0]) +
+           a[2] * (bb[0] * cc[1] - bb[1] * cc[0]);
   };
   // The usual leading run of the plane faces below is taken in the same pass (the points are
   // read once): triangles that a float filter certifies as non-degenerate are kept whole with
@@ -1179,13 +1243,15 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   // level of the terms' magnitudes is treated as zero. The fans of non-planar polygons may enclose
   // nothing where their splits below do (two quads over a tetrahedron's corners whose fans take
   // the same diagonal): then the split surface decides, below.
-  if (!open && ext == 0) return fail(m, Error::DegenerateInput, "the mesh encloses no volume (flat or folded onto itself)");
+  if (!open && ext == 0)
+    return fail(m, Error::DegenerateInput, "the mesh encloses no volume (flat or folded onto itself)");
   const bool fans_enclose_nothing = !open && !(std::fabs(vol6) > 1e-12 * vol6_abs);
   const bool flip = vol6 < 0 && !open && !fans_enclose_nothing;
   m.volume = flip ? -vol6 / 6 : vol6 / 6;
   if (flip) {
     m.warnings.push_back(flipped_warning(cf));
-    for (size_t f = 0; f < cf; ++f) std::reverse(clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
+    for (size_t f = 0; f < cf; ++f)
+      std::reverse(clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
     for (auto& t : m.rep) std::swap(t[0], t[2]);
   }
 
@@ -1200,7 +1266,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   double split_abs = 0;  // sum of |terms| of the split polygons' volume corrections
   bool renumbered = false;
   std::vector<uint32_t> face_of_clean;  // used once renumbered
-  auto renumber = [&](size_t f) {  // faces before f were kept whole
+  auto renumber = [&](size_t f) {       // faces before f were kept whole
     if (renumbered) return;
     renumbered = true;
     m.loops.assign(clean.begin(), clean.begin() + clean_offsets[f]);
@@ -1221,12 +1287,17 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     size_t k = clean_offsets[f + 1] - clean_offsets[f];
     auto P = [&](uint32_t v) { return &m.points[3 * size_t(v)]; };
     if (k == 3) {
-      if (collinear(P(loop[0]), P(loop[1]), P(loop[2]), m.exact_shift)) { renumber(f); ++degenerate; continue; }
+      if (collinear(P(loop[0]), P(loop[1]), P(loop[2]), m.exact_shift)) {
+        renumber(f);
+        ++degenerate;
+        continue;
+      }
       keep_whole(f, {loop[0], loop[1], loop[2]});
       continue;
     }
     size_t lo = 0;
-    for (size_t i = 1; i < k; ++i) if (lex_less(P(loop[i]), P(loop[lo]))) lo = i;
+    for (size_t i = 1; i < k; ++i)
+      if (lex_less(P(loop[i]), P(loop[lo]))) lo = i;
     std::array<uint32_t, 3> rep = {loop[(lo + k - 1) % k], loop[lo], loop[(lo + 1) % k]};
     bool planar = !collinear(P(rep[0]), P(rep[1]), P(rep[2]), m.exact_shift);
     // The representative's own corners (at lo - 1, lo, lo + 1) are in its plane, and so is a
@@ -1235,7 +1306,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     bool same[3];
     for (int c = 0; c < 3; ++c) same[c] = P(rep[0])[c] == P(rep[1])[c] && P(rep[1])[c] == P(rep[2])[c];
     auto in_axis_plane = [&](const double* q) {
-      return (same[0] && q[0] == P(rep[0])[0]) || (same[1] && q[1] == P(rep[0])[1]) || (same[2] && q[2] == P(rep[0])[2]);
+      return (same[0] && q[0] == P(rep[0])[0]) || (same[1] && q[1] == P(rep[0])[1]) ||
+             (same[2] && q[2] == P(rep[0])[2]);
     };
     for (size_t i = 0; i < k && planar; ++i)
       if ((i + k + 1 - lo) % k > 2 && !in_axis_plane(P(loop[i])) &&
@@ -1286,9 +1358,11 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     if (why) {
       std::ostringstream msg;
-      msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0] << ") folds over itself: " << why;
+      msg << "a non-planar polygon face of " << k << " vertices (first vertex " << loop[0]
+          << ") folds over itself: " << why;
       if (gave_up)
-        msg << "; its ear clipping found no more ears (the loop overlaps itself) or spent its work budget, and the rest was"
+        msg << "; its ear clipping found no more ears (the loop overlaps itself) or spent its work budget, and the "
+               "rest was"
                " split as a fan (split such a face before, if it is simple)";
       else
         msg << "; the surface is not embedded there";
@@ -1319,7 +1393,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       m.rep.push_back(tri);
       any = true;
     }
-    if (any) ++nonplanar; else ++degenerate;
+    if (any)
+      ++nonplanar;
+    else
+      ++degenerate;
   }
   // The fans' volume chose the orientation and the splits then fold outward for it; polygons far
   // from planar can fold into a surface that encloses a negative volume (two quads closing a
@@ -1332,17 +1409,22 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     m.volume = -m.volume;
     auto flipped = std::find_if(m.warnings.begin(), m.warnings.end(),
                                 [](const Warning& w) { return w.kind == Warning::Kind::OrientationFlipped; });
-    if (flipped != m.warnings.end()) m.warnings.erase(flipped);
-    else m.warnings.push_back(flipped_warning(cf));
+    if (flipped != m.warnings.end())
+      m.warnings.erase(flipped);
+    else
+      m.warnings.push_back(flipped_warning(cf));
   }
   if (!open && (nonplanar > 0 || fans_enclose_nothing) && !(m.volume > 1e-12 * (vol6_abs + split_abs) / 6))
-    return fail(m, Error::DegenerateInput, nonplanar > 0 ? "the mesh encloses no volume once its non-planar polygons are split"
-                                                         : "the mesh encloses no volume (flat or folded onto itself)");
+    return fail(m, Error::DegenerateInput,
+                nonplanar > 0 ? "the mesh encloses no volume once its non-planar polygons are split"
+                              : "the mesh encloses no volume (flat or folded onto itself)");
   m.dropped_faces += degenerate;
   if (m.dropped_faces)
-    m.warnings.push_back({Warning::Kind::DegenerateFacesDropped, m.dropped_faces, std::to_string(m.dropped_faces) + " zero-area faces were ignored"});
+    m.warnings.push_back({Warning::Kind::DegenerateFacesDropped, m.dropped_faces,
+                          std::to_string(m.dropped_faces) + " zero-area faces were ignored"});
   if (nonplanar)
-    m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, nonplanar, std::to_string(nonplanar) + " non-planar polygons were split into triangles"});
+    m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, nonplanar,
+                          std::to_string(nonplanar) + " non-planar polygons were split into triangles"});
   if (m.rep.empty()) return fail(m, Error::DegenerateInput, "every face has zero area");
   // A nearly flat shape's volume is far below the rounding of its terms (the points' offsets
   // from the centre, rounded, span its thickness): summed again in double-double once the loops
@@ -1359,7 +1441,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
       const exact::ApproxDD vol6_dd = accurate_volume6(m, c);
       m.volume = (vol6_dd.hi + vol6_dd.lo) / 6;
       if (vol6_dd.sign() != 1)
-        return fail(m, Error::DegenerateInput, "the mesh encloses almost no volume and its orientation cannot be decided reliably (flat or folded onto itself)");
+        return fail(m, Error::DegenerateInput,
+                    "the mesh encloses almost no volume and its orientation cannot be decided reliably (flat or folded "
+                    "onto itself)");
     }
     return std::move(m);
   };

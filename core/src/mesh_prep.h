@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "raw_vector.h"
 #include "kergen/kergen.h"
+#include "raw_vector.h"
 
 namespace kergen {
 
@@ -36,8 +36,8 @@ struct PreparedMesh {
 
   size_t input_faces = 0;
   size_t dropped_faces = 0;
-  size_t boundary_edges = 0;   // > 0 only with allow_open
-  double volume = 0;           // enclosed volume, in scaled units
+  size_t boundary_edges = 0;                                // > 0 only with allow_open
+  double volume = 0;                                        // enclosed volume, in scaled units
   double bbox_min[3] = {0, 0, 0}, bbox_max[3] = {0, 0, 0};  // scaled units
 
   size_t num_faces() const { return rep.size(); }

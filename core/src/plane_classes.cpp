@@ -12,14 +12,14 @@
 // cell, so rounding never hides a match.
 #include "plane_classes.h"
 
-#include "u64_set.h"
-#include "raw_vector.h"
-#include "compiler_hints.h"
-#include "union_find.h"
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+
+#include "compiler_hints.h"
+#include "raw_vector.h"
+#include "u64_set.h"
+#include "union_find.h"
 
 namespace kergen {
 
@@ -133,7 +133,10 @@ void for_each_cell(const Key& key, Visit visit) {
     bool skip = false;
     for (int i = 0; i < 4; ++i) {
       const bool bit = (mask >> i) & 1;
-      if (bit && near[i] == 0) { skip = true; break; }
+      if (bit && near[i] == 0) {
+        skip = true;
+        break;
+      }
       cell[i] = base[i] + (bit ? near[i] : 0);
     }
     if (!skip) visit(cell_hash(cell));
@@ -182,8 +185,15 @@ class CellTable {
     const uint32_t tag = uint32_t(h >> 32);
     for (size_t i = h & mask_;; i = (i + 1) & mask_) {
       Slot& s = slots_[i];
-      if (s.head == kNoPlane) { s = {tag, id}; return kNoPlane; }
-      if (s.tag == tag) { uint32_t old = s.head; s.head = id; return old; }
+      if (s.head == kNoPlane) {
+        s = {tag, id};
+        return kNoPlane;
+      }
+      if (s.tag == tag) {
+        uint32_t old = s.head;
+        s.head = id;
+        return old;
+      }
     }
   }
 
@@ -238,7 +248,8 @@ uint64_t fine_hash(int m, int sign, const __int128 c[3]) {
 // `own_valid` is false when the largest normal component is not clear-cut (two candidates for
 // m, both visited): such a plane is stored with the float keys.
 template <class Visit>
-bool for_each_fine_cell(const Key& k, const PlaneCoef<exact::ApproxDD>& p, Visit visit, uint64_t& own, bool& own_valid) {
+bool for_each_fine_cell(const Key& k, const PlaneCoef<exact::ApproxDD>& p, Visit visit, uint64_t& own,
+                        bool& own_valid) {
   int order[3] = {0, 1, 2};
   std::sort(order, order + 3, [&](int a, int b) { return std::fabs(k.k[a]) > std::fabs(k.k[b]); });
   // Keys are within kKeyError of the exact normalized plane: a gap of 1e-12 between the two
@@ -263,13 +274,17 @@ bool for_each_fine_cell(const Key& k, const PlaneCoef<exact::ApproxDD>& p, Visit
     const double margin = 2 * kFineMaxError * kFineScale + 1e-9;
     for (int orientation : {1, -1}) {
       FineCoord c[3];
-      for (int i = 0; i < 3; ++i) c[i] = orientation > 0 ? fine_coord(v[i].hi, v[i].lo, margin) : fine_coord(-v[i].hi, -v[i].lo, margin);
+      for (int i = 0; i < 3; ++i)
+        c[i] = orientation > 0 ? fine_coord(v[i].hi, v[i].lo, margin) : fine_coord(-v[i].hi, -v[i].lo, margin);
       for (int mask = 0; mask < 8; ++mask) {
         __int128 cell[3];
         bool skip = false;
         for (int i = 0; i < 3; ++i) {
           const bool bit = (mask >> i) & 1;
-          if (bit && c[i].near == 0) { skip = true; break; }
+          if (bit && c[i].near == 0) {
+            skip = true;
+            break;
+          }
           cell[i] = c[i].cell + (bit ? c[i].near : 0);
         }
         if (skip) continue;
@@ -392,17 +407,23 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
       ++walked;
       const uint32_t of = plane_face[other - first_plane];
       const int orientation = key_match(k, key[of]);
-      if (orientation == 0 || (orientation > 0 && distinct.contains(pair_key(f, of))) || !same_plane(m, rep[of], r)) return;
-      if (orientation > 0) found = other;
-      else opposite = other;  // at most one plane per orientation, so this one is unlinked
+      if (orientation == 0 || (orientation > 0 && distinct.contains(pair_key(f, of))) || !same_plane(m, rep[of], r))
+        return;
+      if (orientation > 0)
+        found = other;
+      else
+        opposite = other;  // at most one plane per orientation, so this one is unlinked
     };
     // The planes of table t's chain h (linked through `links`), until one is found.
     auto walk = [&](const CellTable& t, const std::vector<uint32_t>& links, uint64_t h) KERGEN_INLINE {
-      for (uint32_t other = t.head(h); other != kNoPlane && found == kNoPlane; other = links[other - first_plane]) check(other);
+      for (uint32_t other = t.head(h); other != kNoPlane && found == kNoPlane; other = links[other - first_plane])
+        check(other);
     };
     auto visit = [&](uint64_t h) KERGEN_INLINE { walk(table, next, h); };
-    if (cell.near_border) for_each_cell(k, visit);
-    else visit(cell.hash);
+    if (cell.near_border)
+      for_each_cell(k, visit);
+    else
+      visit(cell.hash);
     bool store_fine = false;
     uint64_t fine_own = 0;
     if (found == kNoPlane && walked >= kCrowded) {
@@ -413,8 +434,10 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
       } else {
         // No fine key: every fine-keyed plane of the float-key cells, as the float keys would.
         auto visit_by_cell = [&](uint64_t h) { walk(fine_by_cell, next_by_cell, h); };
-        if (cell.near_border) for_each_cell(k, visit_by_cell);
-        else visit_by_cell(cell.hash);
+        if (cell.near_border)
+          for_each_cell(k, visit_by_cell);
+        else
+          visit_by_cell(cell.hash);
       }
     }
     if (found != kNoPlane) {
@@ -486,11 +509,13 @@ void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_
 }  // namespace
 
 void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
-  const FaceLists all{m.rep.data(), m.num_faces(), m.adjacent.data(), m.adjacent.size(), m.loop_offsets.data(), m.loops.data()};
+  const FaceLists all{m.rep.data(),      m.num_faces(),         m.adjacent.data(),
+                      m.adjacent.size(), m.loop_offsets.data(), m.loops.data()};
   build_planes(m, all, ps, face_plane);
 }
 
-void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
+void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, PlaneSet& ps,
+                  std::vector<uint32_t>& face_plane) {
   // The faces renumbered 0..n-1 in the order given: their triangles, loops, and the pairs among
   // them that share an edge, found by matching their loops' edges in a hash table: time in the
   // chosen faces, not in the mesh (a scan of the mesh's pairs cost more than the classes of the

@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "mesh_prep.h"
 #include "exact/predicates.h"
+#include "mesh_prep.h"
 
 namespace kergen {
 

@@ -21,7 +21,8 @@ namespace {
 // Direction of the point (i + fi, j + fj) / k of cell (face, i, j); fi = fj = 0.5 is the centre,
 // 0 or 1 the corners.
 void cube_cell_direction(size_t cells_per_side, size_t cell, double fi, double fj, double dir[3]) {
-  const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side, j = cell % cells_per_side;
+  const size_t face = cell / (cells_per_side * cells_per_side), i = cell / cells_per_side % cells_per_side,
+               j = cell % cells_per_side;
   const int axis = int(face / 2);
   dir[axis] = face % 2 ? -1.0 : 1.0;
   dir[(axis + 1) % 3] = (double(i) + fi) / double(cells_per_side) * 2 - 1;
@@ -42,7 +43,8 @@ inline double reach_margin(double a, double b, double c, double d, double ea, do
 inline bool box_clears(double a, double b, double c, double d, double margin, const double centre[3],
                        const double half[3]) {
   return a * centre[0] + b * centre[1] + c * centre[2] + d + std::fabs(a) * half[0] + std::fabs(b) * half[1] +
-             std::fabs(c) * half[2] < -2 * margin;
+             std::fabs(c) * half[2] <
+         -2 * margin;
 }
 
 // The bound on max f over K_S from the support values s_ij at the corners of the normal's cell
@@ -104,7 +106,8 @@ bool any_above(size_t n, const double* __restrict x, const double* __restrict y,
 // The vertex of `tr` (traced over the sorted planes `S`) whose tight set is `tight` (over a
 // superset of S) restricted to S; 0 when none is (never expected: the start vertex is a vertex
 // of every kernel traced from it).
-uint32_t vertex_with_tight_set(const TraceResult& tr, const std::vector<uint32_t>& tight, const std::vector<uint32_t>& S) {
+uint32_t vertex_with_tight_set(const TraceResult& tr, const std::vector<uint32_t>& tight,
+                               const std::vector<uint32_t>& S) {
   std::vector<uint32_t> in_s;
   for (uint32_t l : tight)
     if (std::binary_search(S.begin(), S.end(), l)) in_s.push_back(l);
@@ -130,18 +133,27 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
     for (size_t v = 0; v < V; ++v) vertex_coord_[k][v] = xyz_[3 * v + k];
   }
   adj_offset_.assign(V + 1, 0);
-  for (const auto& e : tr.edges) { adj_offset_[e.a + 1]++; adj_offset_[e.b + 1]++; }
+  for (const auto& e : tr.edges) {
+    adj_offset_[e.a + 1]++;
+    adj_offset_[e.b + 1]++;
+  }
   for (size_t v = 0; v < V; ++v) adj_offset_[v + 1] += adj_offset_[v];
   adj_.resize(adj_offset_[V]);
   {
     std::vector<uint32_t> fill(adj_offset_.begin(), adj_offset_.end() - 1);
-    for (const auto& e : tr.edges) { adj_[fill[e.a]++] = e.b; adj_[fill[e.b]++] = e.a; }
+    for (const auto& e : tr.edges) {
+      adj_[fill[e.a]++] = e.b;
+      adj_[fill[e.b]++] = e.a;
+    }
   }
   // Bounding box of K_S: max over K_S of f_l <= f_l(box centre) + sum_k |n_k| half_k, one
   // dot product that clears most planes without a climb (they lie far from the kernel).
   double lo[3] = {xyz_[0], xyz_[1], xyz_[2]}, hi[3] = {xyz_[0], xyz_[1], xyz_[2]};
   for (size_t v = 1; v < V; ++v)
-    for (int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], xyz_[3 * v + k]); hi[k] = std::max(hi[k], xyz_[3 * v + k]); }
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], xyz_[3 * v + k]);
+      hi[k] = std::max(hi[k], xyz_[3 * v + k]);
+    }
   for (int k = 0; k < 3; ++k) {
     centre_[k] = 0.5 * (lo[k] + hi[k]);
     half_[k] = 0.5 * (hi[k] - lo[k]);
@@ -169,7 +181,11 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
     for (bool moved = true; moved;) {
       moved = false;
       for (uint32_t i = adj_offset_[at]; i < adj_offset_[at + 1]; ++i)
-        if (g(adj_[i]) > val) { at = adj_[i]; val = g(at); moved = true; }
+        if (g(adj_[i]) > val) {
+          at = adj_[i];
+          val = g(at);
+          moved = true;
+        }
     }
     return at;
   };
@@ -234,7 +250,8 @@ bool SupportTest::may_reach(const PlaneCoef<Approx>& plane, Scratch& scratch, ui
   const double a = plane.n[0].v, b = plane.n[1].v, c = plane.n[2].v, d = plane.d.v;
   // `margin` (reach_margin) keeps every plane that could be violated: it is far above what a
   // computed value can be off by (rounding, the plane's coefficients, the vertices' coordinates).
-  const double margin = reach_margin(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_, coord_error_);
+  const double margin =
+      reach_margin(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_, coord_error_);
   // (The box is a double computation like the climb; 2 * margin covers its rounding.)
   if (box_clears(a, b, c, d, margin, centre_, half_)) return false;
   const CubePosition q = cube_position(int(cells_per_side_), a, b, c);
@@ -301,8 +318,8 @@ void SupportTest::may_reach_all(const PlaneArrays& p, size_t n, Scratch& scratch
       } else if (usable(m[t]) && bound[t] < -2 * mg) {
         out = 0;
       } else if (scan) {
-        out = any_above(num_vertices, vertex_coord_[0].data(), vertex_coord_[1].data(), vertex_coord_[2].data(), a[t], b[t],
-                        c[t], d[t], -mg);
+        out = any_above(num_vertices, vertex_coord_[0].data(), vertex_coord_[1].data(), vertex_coord_[2].data(), a[t],
+                        b[t], c[t], d[t], -mg);
       } else {
         uint32_t hint = 0;
         out = climb_reaches(a[t], b[t], c[t], d[t], mg, usable(m[t]) ? cell[t] : -1, corner[t], scratch, hint);
@@ -322,7 +339,10 @@ bool SupportTest::climb_reaches(double a, double b, double c, double d, double m
     const size_t side_pts = cells_per_side_ + 1, c0 = size_t(corner);
     for (size_t k : {c0, c0 + 1, c0 + side_pts, c0 + side_pts + 1}) {
       const double fc = f(start_of_corner_[k]);
-      if (fc > val) { val = fc; cur = start_of_corner_[k]; }
+      if (fc > val) {
+        val = fc;
+        cur = start_of_corner_[k];
+      }
     }
   }
   auto neighbors = [&](uint32_t u, const auto& fn) {
@@ -332,8 +352,9 @@ bool SupportTest::climb_reaches(double a, double b, double c, double d, double m
   return val > -margin;
 }
 
-CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<uint32_t>& always,
-                               const VertexGeom& start, const TraceOptions& options, uint64_t seed) {
+CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& planes,
+                               const std::vector<uint32_t>& always, const VertexGeom& start,
+                               const TraceOptions& options, uint64_t seed) {
   CulledTrace out;
   std::vector<uint32_t> all = planes;
   all.insert(all.end(), always.begin(), always.end());
@@ -347,7 +368,10 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   std::vector<char> in_s(ps.size(), 0);
   std::vector<uint32_t> S;
   auto add = [&](uint32_t l) {
-    if (!in_s[l]) { in_s[l] = 1; S.push_back(l); }
+    if (!in_s[l]) {
+      in_s[l] = 1;
+      S.push_back(l);
+    }
   };
   for (uint32_t l : always) add(l);
   std::vector<uint32_t> start_tight;  // over `all`
@@ -379,7 +403,11 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       if (in_s[l]) continue;
       const PlaneCoef<Approx> c = ps.approx(l);
       uint32_t hint = 0;
-      if (support.may_reach(c, scratch, hint)) { in_s[l] = 1; added_list.push_back(l); added_hint.push_back(hint); }
+      if (support.may_reach(c, scratch, hint)) {
+        in_s[l] = 1;
+        added_list.push_back(l);
+        added_hint.push_back(hint);
+      }
     }
   }
   // Every plane outside S' = (planes some vertex of K_S lies on) + (added ones) is strictly

@@ -58,9 +58,9 @@ class SupportTest {
 };
 
 struct CulledTrace {
-  TraceResult trace;            // the kernel, traced against `active` only
-  std::vector<uint32_t> active; // the planes kept (a superset of those touching the kernel)
-  uint32_t start_vertex = 0;    // the vertex of `trace` at `start`
+  TraceResult trace;             // the kernel, traced against `active` only
+  std::vector<uint32_t> active;  // the planes kept (a superset of those touching the kernel)
+  uint32_t start_vertex = 0;     // the vertex of `trace` at `start`
   size_t rounds = 0;
 };
 
@@ -72,7 +72,8 @@ struct CulledTrace {
 // K_S's vertex graph in the plane's normal direction, in double with a margin far above
 // rounding, so a violated plane is never missed (near-touching planes are merely kept).
 // `options` must not ask for events (step_replay.h replays them from the result).
-CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<uint32_t>& always,
-                               const VertexGeom& start, const TraceOptions& options, uint64_t seed);
+CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& planes,
+                               const std::vector<uint32_t>& always, const VertexGeom& start,
+                               const TraceOptions& options, uint64_t seed);
 
 }  // namespace kergen

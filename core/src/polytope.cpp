@@ -34,11 +34,23 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       local_lo[3 * i + k] = tail - (local[3 * i + k] - s);
     }
   out.edges.resize(2 * E);
-  for (size_t i = 0; i < E; ++i) { out.edges[2 * i] = trace.edges[i].a; out.edges[2 * i + 1] = trace.edges[i].b; }
+  for (size_t i = 0; i < E; ++i) {
+    out.edges[2 * i] = trace.edges[i].a;
+    out.edges[2 * i + 1] = trace.edges[i].b;
+  }
 
-  if (V == 0) { out.type = KernelType::Empty; return true; }
-  if (V == 1) { out.type = KernelType::Point; return true; }
-  if (V == 2 && E <= 1) { out.type = KernelType::Segment; return true; }
+  if (V == 0) {
+    out.type = KernelType::Empty;
+    return true;
+  }
+  if (V == 1) {
+    out.type = KernelType::Point;
+    return true;
+  }
+  if (V == 2 && E <= 1) {
+    out.type = KernelType::Segment;
+    return true;
+  }
 
   // Flat: some opposite pair is tight at a vertex (then it is tight everywhere).
   uint32_t flat_plane = kNoPlane;
@@ -62,7 +74,10 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   auto pair_at = [&](uint32_t e, uint32_t h) {
     uint32_t s = kNoPlane;
     for (uint32_t c : trace.edges[e].planes)
-      if (c != h && c != ps.opposite(h)) { s = c; break; }
+      if (c != h && c != ps.opposite(h)) {
+        s = c;
+        break;
+      }
     return PlaneEdge{h, e, s};
   };
   size_t num_pairs = 0;
@@ -84,7 +99,7 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   }
   // Facets: planes holding three or more edges (the flat plane alone for a polygon), increasing.
   std::vector<std::pair<uint32_t, uint32_t>> facets;  // [begin, end) in grouped
-  facets.reserve(grouped.size() / 3 + 1);  // (each has three edges or more)
+  facets.reserve(grouped.size() / 3 + 1);             // (each has three edges or more)
   size_t corners = 0;
   for (uint32_t i = 0, j; i < grouped.size(); i = j) {
     for (j = i; j < grouped.size() && grouped[j].h == grouped[i].h; ++j) {}
@@ -109,10 +124,16 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
     for (uint32_t i = begin; i < end; ++i) {
       const TracedEdge& te = trace.edges[grouped[i].e];
       const uint32_t s = grouped[i].s;
-      if (s == kNoPlane) { valid = false; break; }
+      if (s == kNoPlane) {
+        valid = false;
+        break;
+      }
       int sg = te.sigma * sign_edge_in_facet(ps, te.p, te.q, h, s);
       uint32_t from = sg > 0 ? te.a : te.b, to = sg > 0 ? te.b : te.a;
-      if (sg == 0 || next[from] != kNoVertex) { valid = false; break; }
+      if (sg == 0 || next[from] != kNoVertex) {
+        valid = false;
+        break;
+      }
       next[from] = to;
       touched.push_back(from);
     }
@@ -164,14 +185,20 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   for (size_t t = 0; t < out.triangles.size(); t += 3) {
     uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
     double u[3], w[3], r[3];
-    for (int k = 0; k < 3; ++k) { u[k] = P(b, k) - P(a, k); w[k] = P(d, k) - P(a, k); r[k] = P(a, k) - c[k]; }
+    for (int k = 0; k < 3; ++k) {
+      u[k] = P(b, k) - P(a, k);
+      w[k] = P(d, k) - P(a, k);
+      r[k] = P(a, k) - c[k];
+    }
     double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
     area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     const double term = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
     vol6 += term;
     vol6_abs += std::fabs(n[0] * r[0]) + std::fabs(n[1] * r[1]) + std::fabs(n[2] * r[2]);
-    const double u1 = std::fabs(u[0]) + std::fabs(u[1]) + std::fabs(u[2]), w1 = std::fabs(w[0]) + std::fabs(w[1]) + std::fabs(w[2]);
-    const double r1 = std::fabs(r[0]) + std::fabs(r[1]) + std::fabs(r[2]), n1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+    const double u1 = std::fabs(u[0]) + std::fabs(u[1]) + std::fabs(u[2]),
+                 w1 = std::fabs(w[0]) + std::fabs(w[1]) + std::fabs(w[2]);
+    const double r1 = std::fabs(r[0]) + std::fabs(r[1]) + std::fabs(r[2]),
+                 n1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
     coordinate_error += reach * (4 * (u1 + w1) * r1 + 2 * n1);
   }
   // A nearly flat kernel's volume is far below the rounding of its terms (a tetrahedron of volume
@@ -191,7 +218,11 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
       if (a == 0 || b == 0 || d == 0) continue;  // (a face through vertex 0: volume 0)
       ApproxDD u[3], w[3], r[3];
-      for (int k = 0; k < 3; ++k) { u[k] = PD(b, k) - PD(a, k); w[k] = PD(d, k) - PD(a, k); r[k] = PD(a, k); }
+      for (int k = 0; k < 3; ++k) {
+        u[k] = PD(b, k) - PD(a, k);
+        w[k] = PD(d, k) - PD(a, k);
+        r[k] = PD(a, k);
+      }
       const ApproxDD n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
       const ApproxDD term = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
       if (term.hi + term.lo > 0) sum = sum + term;

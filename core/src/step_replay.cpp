@@ -25,11 +25,17 @@ class Replay {
     // Edges at each vertex, in increasing id (a counting sort keeps the order).
     const size_t V = tr.vertices.size();
     offset_.assign(V + 1, 0);
-    for (const TracedEdge& e : tr.edges) { ++offset_[e.a + 1]; ++offset_[e.b + 1]; }
+    for (const TracedEdge& e : tr.edges) {
+      ++offset_[e.a + 1];
+      ++offset_[e.b + 1];
+    }
     for (size_t v = 0; v < V; ++v) offset_[v + 1] += offset_[v];
     at_.resize(offset_[V]);
     std::vector<uint32_t> fill(offset_.begin(), offset_.end() - 1);
-    for (uint32_t e = 0; e < tr.edges.size(); ++e) { at_[fill[tr.edges[e].a]++] = e; at_[fill[tr.edges[e].b]++] = e; }
+    for (uint32_t e = 0; e < tr.edges.size(); ++e) {
+      at_[fill[tr.edges[e].a]++] = e;
+      at_[fill[tr.edges[e].b]++] = e;
+    }
     // In the tracer's ray order at each vertex (see ray_key).
     std::vector<std::pair<uint32_t, uint32_t>> key(tr.edges.size());
     for (uint32_t e = 0; e < tr.edges.size(); ++e) key[e] = ray_key(tr.edges[e]);
@@ -67,7 +73,10 @@ class Replay {
       for (uint32_t v = 0; v < tr_.vertices.size(); ++v)
         if (new_id_[v] == kNoVertex) number(v);
       for (uint32_t e = 0; e < tr_.edges.size(); ++e)
-        if (!traced_[e]) { edge_order_.push_back(e); edge_from_.push_back(tr_.edges[e].a); }
+        if (!traced_[e]) {
+          edge_order_.push_back(e);
+          edge_from_.push_back(tr_.edges[e].a);
+        }
     }
     TraceResult out;
     out.complete = complete && tr_.complete;
@@ -79,7 +88,10 @@ class Replay {
       TracedEdge e = std::move(tr_.edges[edge_order_[i]]);
       // Oriented from the vertex it was traced from: the direction sigma (n_p x n_q) runs from
       // a to b, so reversing the edge negates sigma.
-      if (e.a != edge_from_[i]) { std::swap(e.a, e.b); e.sigma = -e.sigma; }
+      if (e.a != edge_from_[i]) {
+        std::swap(e.a, e.b);
+        e.sigma = -e.sigma;
+      }
       e.a = new_id_[e.a];
       e.b = new_id_[e.b];
       out.edges.push_back(std::move(e));
@@ -158,7 +170,7 @@ class Replay {
   std::vector<char> traced_;           // per edge of tr_
   std::vector<uint32_t> vertex_order_, edge_order_, edge_from_;
   std::vector<std::pair<uint32_t, uint32_t>> fifo_;  // queued rays (vertex, edge), in order
-  size_t next_ = 0;                                   // without `from`: the next ray to take
+  size_t next_ = 0;                                  // without `from`: the next ray to take
   std::priority_queue<std::pair<double, uint32_t>, std::vector<std::pair<double, uint32_t>>, std::greater<>> rays_;
 };
 

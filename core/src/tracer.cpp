@@ -9,10 +9,6 @@
 //    set or a plane that cuts the segment earlier, which becomes the next candidate.
 #include "tracer.h"
 
-#include "u64_set.h"
-#include "compiler_hints.h"
-#include "vertex_filter.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -20,6 +16,10 @@
 #include <limits>
 #include <optional>
 #include <queue>
+
+#include "compiler_hints.h"
+#include "u64_set.h"
+#include "vertex_filter.h"
 
 namespace kergen {
 
@@ -55,7 +55,8 @@ size_t nearest_hit(const double* ax, const double* ay, const double* az, const d
     const size_t m = std::min(kBlock, n - s);
     Vec4 lo = inf4;
     for (size_t i = 0; i < m; i += kLanes) {
-      const Vec4 X = KERGEN_LOAD4(ax + s + i), Y = KERGEN_LOAD4(ay + s + i), Z = KERGEN_LOAD4(az + s + i), D = KERGEN_LOAD4(ad + s + i);
+      const Vec4 X = KERGEN_LOAD4(ax + s + i), Y = KERGEN_LOAD4(ay + s + i), Z = KERGEN_LOAD4(az + s + i),
+                 D = KERGEN_LOAD4(ad + s + i);
       const Vec4 a = X * u0 + Y * u1 + Z * u2;
       const Vec4 f = X * x + Y * y + Z * z + D;
       const Vec4 t = a > zero4 ? -f / a : inf4;
@@ -66,7 +67,10 @@ size_t nearest_hit(const double* ax, const double* ay, const double* az, const d
     if (block_min < best) {
       best = block_min;
       for (size_t i = 0; i < m; ++i)
-        if (hits[i] == block_min) { best_i = s + i; break; }
+        if (hits[i] == block_min) {
+          best_i = s + i;
+          break;
+        }
     }
   }
   return best_i;
@@ -83,7 +87,8 @@ void near_planes(const double* ax, const double* ay, const double* az, const dou
   const Vec4 x = {p[0], p[0], p[0], p[0]}, y = {p[1], p[1], p[1], p[1]}, z = {p[2], p[2], p[2], p[2]};
   const Vec4 C1 = {c1, c1, c1, c1}, C2 = {c2, c2, c2, c2}, scale = {ms, ms, ms, ms};
   for (size_t i = 0; i < n; i += kLanes) {
-    const Vec4 f = KERGEN_LOAD4(ax + i) * x + KERGEN_LOAD4(ay + i) * y + KERGEN_LOAD4(az + i) * z + KERGEN_LOAD4(ad + i);
+    const Vec4 f =
+        KERGEN_LOAD4(ax + i) * x + KERGEN_LOAD4(ay + i) * y + KERGEN_LOAD4(az + i) * z + KERGEN_LOAD4(ad + i);
     const Vec4 b = KERGEN_LOAD4(ben + i) * C1 + KERGEN_LOAD4(bn1 + i) * C2 + KERGEN_LOAD4(be0 + i);
     const Mask4 near = f >= b * scale;
     if ((near[0] | near[1] | near[2] | near[3]) == 0) continue;
@@ -112,7 +117,10 @@ uint64_t line_key(const PlaneSet& ps, const Ids& planes) {
   uint32_t a = planes[0];
   uint32_t b = kNoPlane;
   for (size_t i = 1; i < planes.size(); ++i)
-    if (planes[i] != ps.opposite(a)) { b = planes[i]; break; }
+    if (planes[i] != ps.opposite(a)) {
+      b = planes[i];
+      break;
+    }
   return (uint64_t(a) << 32) | b;
 }
 
@@ -176,11 +184,19 @@ struct PlaneArrays {
 
   void build(const PlaneSet& ps, const std::vector<uint32_t>& list) {
     const size_t n = list.size(), padded = (n + kLanes - 1) / kLanes * kLanes;
-    ax.assign(padded, 0); ay.assign(padded, 0); az.assign(padded, 0); ad.assign(padded, -1);
-    bn1.assign(padded, 0); ben.assign(padded, 0); be0.assign(padded, 0);
+    ax.assign(padded, 0);
+    ay.assign(padded, 0);
+    az.assign(padded, 0);
+    ad.assign(padded, -1);
+    bn1.assign(padded, 0);
+    ben.assign(padded, 0);
+    be0.assign(padded, 0);
     for (size_t i = 0; i < n; ++i) {
       uint32_t l = list[i];
-      ax[i] = ps.nx()[l]; ay[i] = ps.ny()[l]; az[i] = ps.nz()[l]; ad[i] = ps.d()[l];
+      ax[i] = ps.nx()[l];
+      ay[i] = ps.ny()[l];
+      az[i] = ps.nz()[l];
+      ad[i] = ps.d()[l];
       const auto c = ps.approx(l);
       const PlaneFilterTerms t = plane_filter_terms(ax[i], ay[i], az[i], ad[i], c.n[0].e, c.n[1].e, c.n[2].e, c.d.e);
       bn1[i] = t.n1;
@@ -211,7 +227,10 @@ uint32_t certify_over(const PlaneSet& ps, const std::vector<uint32_t>& list, con
   arr.near(w, cand);  // every other plane is certainly strictly inside at w
   for (uint32_t i : cand) {
     const uint32_t l = list[i];
-    if (!known_tight_mark.empty() && known_tight_mark[l]) { tight.push_back(l); continue; }
+    if (!known_tight_mark.empty() && known_tight_mark[l]) {
+      tight.push_back(l);
+      continue;
+    }
     int s = side(ps, l, w);
     if (s > 0) return l;
     if (s == 0) tight.push_back(l);
@@ -230,7 +249,10 @@ uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active,
   const VertexFilter filter(w);
   for (uint32_t l : active) {
     if (filter.sign(ps.approx(l)) < 0) continue;
-    if (!known_tight_mark.empty() && known_tight_mark[l]) { tight.push_back(l); continue; }
+    if (!known_tight_mark.empty() && known_tight_mark[l]) {
+      tight.push_back(l);
+      continue;
+    }
     const int s = side(ps, l, w);
     if (s > 0) return l;
     if (s == 0) tight.push_back(l);
@@ -295,7 +317,10 @@ class Tracer {
       bool survives = true;
       for (uint32_t i : cand_) {
         int sgn = side(ps_, added[i], tv.geom);
-        if (sgn > 0) { survives = false; break; }
+        if (sgn > 0) {
+          survives = false;
+          break;
+        }
         if (sgn == 0) tight_added[v].push_back(added[i]);
       }
       if (!survives) continue;
@@ -307,11 +332,17 @@ class Tracer {
       res_.vertices.push_back({tv.geom, std::move(tight)});
       vertex_ids_.insert(res_.vertices.back().tight, new_id[v]);
       for (uint32_t l : res_.vertices.back().tight) {
-        if (slot_[l] == kNoPlane) { res_.internal_error = true; return finish(); }  // caller broke the contract
+        if (slot_[l] == kNoPlane) {
+          res_.internal_error = true;
+          return finish();
+        }  // caller broke the contract
         link_vertex_on(slot_[l], new_id[v]);
       }
     }
-    if (res_.vertices.empty()) { res_.internal_error = true; return finish(); }  // the LP vertex always survives
+    if (res_.vertices.empty()) {
+      res_.internal_error = true;
+      return finish();
+    }  // the LP vertex always survives
     for (const TracedEdge& e : prev.edges) {
       if (new_id[e.a] == kNoVertex || new_id[e.b] == kNoVertex) continue;
       TracedEdge k = e;
@@ -365,8 +396,10 @@ class Tracer {
     const uint32_t e = uint32_t(on_vertex_.size());
     on_vertex_.push_back(v);
     on_next_.push_back(kNoVertex);
-    if (on_head_[slot] == kNoVertex) on_head_[slot] = e;
-    else on_next_[on_tail_[slot]] = e;
+    if (on_head_[slot] == kNoVertex)
+      on_head_[slot] = e;
+    else
+      on_next_[on_tail_[slot]] = e;
     on_tail_[slot] = e;
   }
 
@@ -396,7 +429,10 @@ class Tracer {
         // they are. Testing in index order found them only after ~i tries: a 1000-face apex
         // cost (tight planes)^3 / 6 tests.
         auto sign_of = [&](size_t k) KERGEN_INLINE {
-          if (k == i || k == j) { s[k] = 0; return; }
+          if (k == i || k == j) {
+            s[k] = 0;
+            return;
+          }
           // det3(n_k, n_i, n_j) is the sorted triple's determinant, negated when k lies between
           // i and j (one transposition; k < i or k > j is a rotation).
           const int parity = i < k && k < j ? -1 : 1;
@@ -436,7 +472,9 @@ class Tracer {
         if (traced_.contains(key) || std::find(seen_.begin(), seen_.end(), key) != seen_.end()) continue;
         seen_.push_back(key);
         Ray ray;
-        ray.from = v; ray.p = p; ray.q = q;
+        ray.from = v;
+        ray.p = p;
+        ray.q = q;
         ray.sigma = pos ? -1 : 1;
         ray.line_begin = uint32_t(line_pool_.size());
         ray.line_size = uint32_t(line_.size());
@@ -511,7 +549,10 @@ class Tracer {
     size_t bi = nearest_hit(arr_.ax.data(), arr_.ay.data(), arr_.az.data(), arr_.ad.data(), arr_.ax.size(), p, u);
     for (size_t k = 0; k < G.size(); ++k) {
       uint32_t i = slot_[G[k]];
-      arr_.ax[i] = saved_[k][0]; arr_.ay[i] = saved_[k][1]; arr_.az[i] = saved_[k][2]; arr_.ad[i] = saved_[k][3];
+      arr_.ax[i] = saved_[k][0];
+      arr_.ay[i] = saved_[k][1];
+      arr_.az[i] = saved_[k][2];
+      arr_.ad[i] = saved_[k][3];
     }
     saved_.clear();
     if (bi < n && approaching(ray, active_[bi])) return active_[bi];
@@ -548,7 +589,10 @@ class Tracer {
   bool trace(const Ray& ray) {
     ++res_.traced_lines;
     uint32_t r = scan(ray);
-    if (r == kNoPlane) { res_.internal_error = true; return false; }  // unbounded ray
+    if (r == kNoPlane) {
+      res_.internal_error = true;
+      return false;
+    }  // unbounded ray
     // (The pool may grow while the ray is traced: spans into it are taken afresh.)
     const uint32_t* line = line_pool_.data() + ray.line_begin;
     for (uint32_t i = 0; i < ray.line_size; ++i) mark_[line[i]] = 1;
@@ -566,11 +610,20 @@ class Tracer {
       if (violator == kNoPlane) break;
       // A violator cuts the segment before the candidate, so it approaches along the ray and is
       // strictly closer. Anything else means the candidate came from an unreliable scan.
-      if (approaching(ray, violator)) { r = violator; continue; }
-      if (exact_done) { res_.internal_error = true; break; }
+      if (approaching(ray, violator)) {
+        r = violator;
+        continue;
+      }
+      if (exact_done) {
+        res_.internal_error = true;
+        break;
+      }
       r = exact_scan(ray);
       exact_done = true;
-      if (r == kNoPlane) { res_.internal_error = true; break; }
+      if (r == kNoPlane) {
+        res_.internal_error = true;
+        break;
+      }
     }
     for (uint32_t i = 0; i < ray.line_size; ++i) mark_[line[i]] = 0;
     if (res_.internal_error) return false;
@@ -582,7 +635,11 @@ class Tracer {
     }
     traced_.insert(ray.key);
     TracedEdge e;
-    e.a = ray.from; e.b = to; e.p = ray.p; e.q = ray.q; e.sigma = ray.sigma;
+    e.a = ray.from;
+    e.b = to;
+    e.p = ray.p;
+    e.q = ray.q;
+    e.sigma = ray.sigma;
     e.planes.assign(line_pool_.begin() + ray.line_begin, line_pool_.begin() + ray.line_begin + ray.line_size);
     res_.edges.push_back(std::move(e));
     return true;

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "kergen/kergen.h"
 #include "exact/predicates.h"
+#include "kergen/kergen.h"
 #include "small_vector.h"
 
 namespace kergen {
@@ -25,8 +25,8 @@ struct TracedVertex {
 };
 
 struct TracedEdge {
-  uint32_t a = 0, b = 0;       // traced from a to b
-  uint32_t p = 0, q = 0;       // the direction is sigma * (n_p x n_q)
+  uint32_t a = 0, b = 0;  // traced from a to b
+  uint32_t p = 0, q = 0;  // the direction is sigma * (n_p x n_q)
   int sigma = 1;
   PlaneIds planes;  // every plane containing the edge, sorted
 };
@@ -34,8 +34,8 @@ struct TracedEdge {
 struct TraceResult {
   std::vector<TracedVertex> vertices;
   std::vector<TracedEdge> edges;
-  bool complete = true;        // false for a partial kernel (a stopped step replay)
-  bool internal_error = false; // a certification failed (never expected; reported, not hidden)
+  bool complete = true;         // false for a partial kernel (a stopped step replay)
+  bool internal_error = false;  // a certification failed (never expected; reported, not hidden)
   size_t traced_lines = 0;
 };
 

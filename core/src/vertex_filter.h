@@ -19,7 +19,8 @@ class VertexFilter {
   // test must decide.
   int sign(const PlaneCoef<Approx>& c) const {
     const double f = c.n[0].v * x_[0] + c.n[1].v * x_[1] + c.n[2].v * x_[2] + c.d.v;
-    const PlaneFilterTerms p = plane_filter_terms(c.n[0].v, c.n[1].v, c.n[2].v, c.d.v, c.n[0].e, c.n[1].e, c.n[2].e, c.d.e);
+    const PlaneFilterTerms p =
+        plane_filter_terms(c.n[0].v, c.n[1].v, c.n[2].v, c.d.v, c.n[0].e, c.n[1].e, c.n[2].e, c.d.e);
     const double b = vertex_filter_bound(p, terms_) * exact::kBoundScale;
     return f < -b ? -1 : (f > b ? 1 : 0);
   }

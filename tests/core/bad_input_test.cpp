@@ -73,12 +73,18 @@ class JsonParser {
     if (c == '{') {
       v.kind = Json::Object;
       ++p_;
-      if (peek() == '}') { ++p_; return v; }
+      if (peek() == '}') {
+        ++p_;
+        return v;
+      }
       for (;;) {
         std::string k = string_lit();
         expect(':');
         v.obj[k] = value();
-        if (peek() == ',') { ++p_; continue; }
+        if (peek() == ',') {
+          ++p_;
+          continue;
+        }
         expect('}');
         return v;
       }
@@ -86,10 +92,16 @@ class JsonParser {
     if (c == '[') {
       v.kind = Json::Array;
       ++p_;
-      if (peek() == ']') { ++p_; return v; }
+      if (peek() == ']') {
+        ++p_;
+        return v;
+      }
       for (;;) {
         v.arr.push_back(value());
-        if (peek() == ',') { ++p_; continue; }
+        if (peek() == ',') {
+          ++p_;
+          continue;
+        }
         expect(']');
         return v;
       }
@@ -120,7 +132,10 @@ class JsonParser {
     std::string out;
     while (p_ < s_.size() && s_[p_] != '"') {
       char c = s_[p_++];
-      if (c != '\\') { out += c; continue; }
+      if (c != '\\') {
+        out += c;
+        continue;
+      }
       char e = s_[p_++];
       switch (e) {
         case 'n': out += '\n'; break;
@@ -131,9 +146,16 @@ class JsonParser {
         case 'u': {
           unsigned cp = std::stoul(s_.substr(p_, 4), nullptr, 16);
           p_ += 4;
-          if (cp < 0x80) out += char(cp);
-          else if (cp < 0x800) { out += char(0xc0 | (cp >> 6)); out += char(0x80 | (cp & 0x3f)); }
-          else { out += char(0xe0 | (cp >> 12)); out += char(0x80 | ((cp >> 6) & 0x3f)); out += char(0x80 | (cp & 0x3f)); }
+          if (cp < 0x80)
+            out += char(cp);
+          else if (cp < 0x800) {
+            out += char(0xc0 | (cp >> 6));
+            out += char(0x80 | (cp & 0x3f));
+          } else {
+            out += char(0xe0 | (cp >> 12));
+            out += char(0x80 | ((cp >> 6) & 0x3f));
+            out += char(0x80 | (cp & 0x3f));
+          }
           break;
         }
         default: out += e;
@@ -285,16 +307,38 @@ std::vector<size_t> row_ids() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Table, BadInput, ::testing::ValuesIn(row_ids()),
-                         [](const ::testing::TestParamInfo<size_t>& info) { return table()["rows"].arr[info.param]["name"].str; });
+                         [](const ::testing::TestParamInfo<size_t>& info) {
+                           return table()["rows"].arr[info.param]["name"].str;
+                         });
 
 TEST(BadInputTable, CoversTheRequiredCases) {
   // The rows the reliability promise names; the table may grow, not lose these.
-  const char* required[] = {"off_empty", "stl_empty", "off_garbage", "stl_garbage", "stl_truncated", "stl_count_one_more",
-                            "obj_index_out_of_range", "obj_index_zero", "obj_negative_out_of_range",
-                            "mesh_face_two_vertices", "mesh_nan", "mesh_inf", "mesh_duplicate_face", "mesh_back_to_back",
-                            "mesh_open", "mesh_non_manifold_edge", "mesh_two_components", "mesh_inverted", "mesh_flat",
-                            "bad_empty2", "bad_invalidvertex", "bad_back_to_back", "bad_zero_area_triangle",
-                            "bad_toomanyvertices", "bad_unparseable", "bad_tardis"};
+  const char* required[] = {"off_empty",
+                            "stl_empty",
+                            "off_garbage",
+                            "stl_garbage",
+                            "stl_truncated",
+                            "stl_count_one_more",
+                            "obj_index_out_of_range",
+                            "obj_index_zero",
+                            "obj_negative_out_of_range",
+                            "mesh_face_two_vertices",
+                            "mesh_nan",
+                            "mesh_inf",
+                            "mesh_duplicate_face",
+                            "mesh_back_to_back",
+                            "mesh_open",
+                            "mesh_non_manifold_edge",
+                            "mesh_two_components",
+                            "mesh_inverted",
+                            "mesh_flat",
+                            "bad_empty2",
+                            "bad_invalidvertex",
+                            "bad_back_to_back",
+                            "bad_zero_area_triangle",
+                            "bad_toomanyvertices",
+                            "bad_unparseable",
+                            "bad_tardis"};
   std::map<std::string, int> names;
   for (const Json& r : table()["rows"].arr) names[r["name"].str]++;
   for (const char* n : required) EXPECT_EQ(names[n], 1) << n;

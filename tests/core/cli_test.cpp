@@ -1,6 +1,5 @@
 // The `kergen` command: exit codes, JSON lines, folders, -o. Runs the built binary via popen.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -145,8 +144,8 @@ TEST_F(CliTest, BoxJsonIsPolyhedronWithItsVolume) {
   EXPECT_NEAR(json_number(line, "area"), 2 * (6.0 + 1.0 + 1.5), 1e-12);
   EXPECT_NE(json_raw(line, "kernel_point"), "null");
   for (const char* key : {"warnings", "stats", "input_faces", "distinct_planes", "active_planes", "traced_lines",
-                          "exact_fallbacks", "ms_parse", "ms_validate", "ms_planes", "ms_lp", "ms_trace",
-                          "ms_assemble", "ms_total", "deepest_point", "inscribed_radius", "message"})
+                          "exact_fallbacks", "ms_parse", "ms_validate", "ms_planes", "ms_lp", "ms_trace", "ms_assemble",
+                          "ms_total", "deepest_point", "inscribed_radius", "message"})
     EXPECT_NE(json_raw(line, key), "<missing>") << key;
   EXPECT_EQ(json_raw(line, "input_faces"), "6");
   EXPECT_TRUE(r.err.empty()) << "single mesh: no progress output: " << r.err;
@@ -289,9 +288,11 @@ TEST_F(CliTest, JobsGiveTheSameOutputInInputOrder) {
   for (int i = 0; i < 6; ++i) write_box("box" + std::to_string(i) + ".off", 1 + i, 2, 3);
   std::string message;
   ASSERT_EQ(kergen::write_mesh_file((dir_ / "a_sphere.off").string(), kergen_test::bumpy_sphere(120, 61), &message),
-            kergen::Error::Ok) << message;
+            kergen::Error::Ok)
+      << message;
   ASSERT_EQ(kergen::write_mesh_file((dir_ / "box2_sphere.obj").string(), kergen_test::bumpy_sphere(40, 21), &message),
-            kergen::Error::Ok) << message;
+            kergen::Error::Ok)
+      << message;
   { std::ofstream(dir_ / "box3_empty.stl"); }
   { std::ofstream(dir_ / "box4_bad.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"; }
   const std::string folder = shell_quote(dir_.string());

@@ -1,12 +1,13 @@
 // Incremental cuts: K_S cut by the planes outside S gives exactly the polytope that tracing the
 // cut part again (update_kernel_trace) and tracing everything from scratch give — the same
 // vertices (as tight sets) and the same edges (as pairs of tight sets, with their plane sets).
+#include "cutting.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <set>
 
-#include "cutting.h"
 #include "fixtures.h"
 #include "lp.h"
 #include "mesh_prep.h"
@@ -194,7 +195,10 @@ TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
   auto sum = [&](int count) {
     double c[4] = {0, 0, 0, 0};
     for (int i = 0; i < count; ++i) {
-      c[0] += s.ps->nx()[face[i]]; c[1] += s.ps->ny()[face[i]]; c[2] += s.ps->nz()[face[i]]; c[3] += s.ps->d()[face[i]];
+      c[0] += s.ps->nx()[face[i]];
+      c[1] += s.ps->ny()[face[i]];
+      c[2] += s.ps->nz()[face[i]];
+      c[3] += s.ps->d()[face[i]];
     }
     return s.ps->add_explicit(c[0], c[1], c[2], c[3]);
   };
@@ -206,8 +210,7 @@ TEST(Cutting, RecordsPlanesThatTouchWithoutCutting) {
   EXPECT_EQ(cut.vertices.size(), 8u);
   EXPECT_TRUE(canonical(cut) == canonical(full));
   size_t on_corner = 0;
-  for (const auto& v : cut.vertices)
-    on_corner += std::binary_search(v.tight.begin(), v.tight.end(), added[1]);
+  for (const auto& v : cut.vertices) on_corner += std::binary_search(v.tight.begin(), v.tight.end(), added[1]);
   EXPECT_EQ(on_corner, 1u);
 }
 

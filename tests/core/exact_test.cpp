@@ -1,13 +1,13 @@
 // Exact arithmetic and predicates against integer arithmetic (__int128) as the independent truth.
 #include <gtest/gtest.h>
 
-#include <random>
 #include <iterator>
+#include <random>
 #include <vector>
 
 #include "exact/expansion.h"
-#include "exact/wide_product.h"
 #include "exact/predicates.h"
+#include "exact/wide_product.h"
 
 namespace {
 
@@ -17,8 +17,13 @@ using kergen::exact::Expansion;
 // orient3d on small integer coordinates is exact in __int128.
 int orient_int(const int64_t* a, const int64_t* b, const int64_t* c, const int64_t* p) {
   __int128 u[3], v[3], w[3];
-  for (int k = 0; k < 3; ++k) { u[k] = b[k] - a[k]; v[k] = c[k] - a[k]; w[k] = p[k] - a[k]; }
-  __int128 d = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
+  for (int k = 0; k < 3; ++k) {
+    u[k] = b[k] - a[k];
+    v[k] = c[k] - a[k];
+    w[k] = p[k] - a[k];
+  }
+  __int128 d =
+      u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
   return d > 0 ? 1 : (d < 0 ? -1 : 0);
 }
 
@@ -57,11 +62,12 @@ TEST(Exact, FilteredDet3BoundContainsTheExactDeterminant) {
   for (int i = 0; i < 20000; ++i) {
     double x[9];
     for (double& v : x) v = U(rng);
-    if (i % 2) for (int k = 0; k < 3; ++k) x[6 + k] = x[k] + x[3 + k] * 0.5 + U(rng) * 1e-12;  // nearly singular
+    if (i % 2)
+      for (int k = 0; k < 3; ++k) x[6 + k] = x[k] + x[3 + k] * 0.5 + U(rng) * 1e-12;  // nearly singular
     Approx a[9];
     for (int k = 0; k < 9; ++k) {
       const double e = (i % 3) ? std::fabs(x[k]) * 1e-14 * (1 + k) : 0;  // known entries or uncertain ones
-      const double shown = x[k] + (U(rng) * e);                           // any value within +- e
+      const double shown = x[k] + (U(rng) * e);                          // any value within +- e
       a[k] = Approx(shown, e + kergen::exact::kEps * std::fabs(shown) * 2);
     }
     const Approx d = kergen::det3(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8]);
@@ -314,9 +320,11 @@ TEST(Exact, CollinearIsExact) {
   double c[3] = {a[0] + 2 * (b[0] - a[0]), a[1] + 2 * (b[1] - a[1]), a[2] + 2 * (b[2] - a[2])};
   // c is computed in double: collinear only if the arithmetic was exact, which orient decides.
   bool truth = (Expansion::difference(c[0], a[0]) * Expansion::difference(b[1], a[1]) -
-                Expansion::difference(c[1], a[1]) * Expansion::difference(b[0], a[0])).sign() == 0 &&
+                Expansion::difference(c[1], a[1]) * Expansion::difference(b[0], a[0]))
+                       .sign() == 0 &&
                (Expansion::difference(c[1], a[1]) * Expansion::difference(b[2], a[2]) -
-                Expansion::difference(c[2], a[2]) * Expansion::difference(b[1], a[1])).sign() == 0;
+                Expansion::difference(c[2], a[2]) * Expansion::difference(b[1], a[1]))
+                       .sign() == 0;
   EXPECT_EQ(kergen::collinear(a, b, c), truth);
   double p[3] = {0, 0, 0}, q[3] = {1, 1, 1}, r[3] = {3, 3, 3}, s[3] = {3, 3, 3.0000000000000004};
   EXPECT_TRUE(kergen::collinear(p, q, r));
@@ -331,8 +339,20 @@ TEST(Exact, CollinearIsExact) {
 TEST(WideProduct, PortableFormEqualsNativeProducts) {
   using kergen::exact::Int128;
   using kergen::exact::portable_wide_product;
-  const int64_t edges[] = {0, 1, -1, 2, -2, INT64_MAX, INT64_MIN + 1, int64_t(1) << 62, -(int64_t(1) << 62),
-                           0xffffffffll, -0xffffffffll, 0x100000000ll, 0x7fffffff, -0x80000000ll};
+  const int64_t edges[] = {0,
+                           1,
+                           -1,
+                           2,
+                           -2,
+                           INT64_MAX,
+                           INT64_MIN + 1,
+                           int64_t(1) << 62,
+                           -(int64_t(1) << 62),
+                           0xffffffffll,
+                           -0xffffffffll,
+                           0x100000000ll,
+                           0x7fffffff,
+                           -0x80000000ll};
   std::mt19937_64 rng(7);
   std::vector<int64_t> values(std::begin(edges), std::end(edges));
   for (int bits = 1; bits <= 63; ++bits)

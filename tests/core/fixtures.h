@@ -95,7 +95,9 @@ inline Mesh tessellated_cube(int n) {
     return v;
   };
   // For each face: origin corner, two in-face axes (u, v) with u x v = outward normal.
-  struct F { int o[3], u[3], v[3]; };
+  struct F {
+    int o[3], u[3], v[3];
+  };
   const F faces[6] = {{{n, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}},
                       {{0, n, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}},
                       {{0, 0, n}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}};
@@ -103,7 +105,8 @@ inline Mesh tessellated_cube(int n) {
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
         auto P = [&](int a, int b) {
-          return id(f.o[0] + a * f.u[0] + b * f.v[0], f.o[1] + a * f.u[1] + b * f.v[1], f.o[2] + a * f.u[2] + b * f.v[2]);
+          return id(f.o[0] + a * f.u[0] + b * f.v[0], f.o[1] + a * f.u[1] + b * f.v[1],
+                    f.o[2] + a * f.u[2] + b * f.v[2]);
         };
         uint32_t a = P(i, j), b = P(i + 1, j), c = P(i + 1, j + 1), d = P(i, j + 1);
         add_face(m, {a, b, c});
@@ -120,7 +123,10 @@ inline Mesh prism(const std::vector<std::array<double, 2>>& poly, double h = 1) 
   for (const auto& p : poly) add_point(m, p[0], p[1], 0);
   for (const auto& p : poly) add_point(m, p[0], p[1], h);
   std::vector<uint32_t> bottom, top;
-  for (uint32_t i = 0; i < n; ++i) { bottom.push_back(n - 1 - i); top.push_back(n + i); }
+  for (uint32_t i = 0; i < n; ++i) {
+    bottom.push_back(n - 1 - i);
+    top.push_back(n + i);
+  }
   m.indices.insert(m.indices.end(), bottom.begin(), bottom.end());
   m.face_sizes.push_back(n);
   add_face(m, top);
@@ -135,13 +141,15 @@ inline Mesh prism(const std::vector<std::array<double, 2>>& poly, double h = 1) 
 inline Mesh l_prism() { return prism({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}); }
 // Plus with arm half-width w and arm reach 1: kernel is the central square, volume 4 w^2.
 inline Mesh plus_prism(double w) {
-  return prism({{w, -w}, {1, -w}, {1, w}, {w, w}, {w, 1}, {-w, 1}, {-w, w}, {-1, w}, {-1, -w}, {-w, -w}, {-w, -1}, {w, -1}});
+  return prism(
+      {{w, -w}, {1, -w}, {1, w}, {w, w}, {w, 1}, {-w, 1}, {-w, w}, {-1, w}, {-1, -w}, {-w, -w}, {-w, -1}, {w, -1}});
 }
 // S/Z: two bars meeting along y = 1: kernel is the rectangle {y = 1, 1 <= x <= 2} x [0, 1].
 inline Mesh s_prism() { return prism({{1, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 2}, {0, 2}, {0, 1}, {1, 1}}); }
 // Pinwheel of four arms around the origin: kernel is the segment {(0,0)} x [0, 1].
 inline Mesh pinwheel_prism() {
-  return prism({{2, 0}, {2, 1}, {0, 1}, {0, 2}, {-1, 2}, {-1, 0}, {-2, 0}, {-2, -1}, {0, -1}, {0, -2}, {1, -2}, {1, 0}});
+  return prism(
+      {{2, 0}, {2, 1}, {0, 1}, {0, 2}, {-1, 2}, {-1, 0}, {-2, 0}, {-2, -1}, {0, -1}, {0, -2}, {1, -2}, {1, 0}});
 }
 // U: not star-shaped.
 inline Mesh u_prism() { return prism({{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}}); }
@@ -257,8 +265,10 @@ inline Mesh cubes_sharing_edge() {
   const uint32_t remap_shared[8] = {3, 0, 0, 0, 7, 0, 0, 0};
   std::vector<uint32_t> remap(8);
   for (uint32_t i = 0; i < 8; ++i) {
-    if (i == 0 || i == 4) remap[i] = remap_shared[i];
-    else remap[i] = add_point(a, b.positions[3 * i], b.positions[3 * i + 1], b.positions[3 * i + 2]);
+    if (i == 0 || i == 4)
+      remap[i] = remap_shared[i];
+    else
+      remap[i] = add_point(a, b.positions[3 * i], b.positions[3 * i + 1], b.positions[3 * i + 2]);
   }
   for (uint32_t v : b.indices) a.indices.push_back(remap[v]);
   return a;
@@ -299,7 +309,8 @@ inline Mesh bumpy_sphere(int nu, int nv, double amp = 0.2) {
   for (int j = 1; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
       const double th = pi * j / nv, ph = 2 * pi * i / nu, r = 1 + amp * std::sin(3 * th) * std::cos(2 * ph);
-      m.positions.insert(m.positions.end(), {r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
+      m.positions.insert(m.positions.end(),
+                         {r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
     }
   auto id = [&](int j, int i) { return uint32_t(2 + (j - 1) * nu + (i % nu)); };
   for (int i = 0; i < nu; ++i) {
@@ -324,11 +335,11 @@ struct GeodesicSphere {
 };
 inline GeodesicSphere geodesic_sphere(int n) {
   const double t = (1 + std::sqrt(5.0)) / 2;
-  const double ico[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                             {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  const int faces[20][3] = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                            {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  const double ico[12][3] = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                             {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  const int faces[20][3] = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                            {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   GeodesicSphere g;
   // A point is named by its integer weights on the icosahedron's corners, so points on shared
   // edges are made once.
@@ -360,7 +371,9 @@ inline GeodesicSphere geodesic_sphere(int n) {
     const double* a = &P[3 * size_t(g.mesh.indices[k])];
     const double* b = &P[3 * size_t(g.mesh.indices[k + 1])];
     const double* c = &P[3 * size_t(g.mesh.indices[k + 2])];
-    g.volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+    g.volume +=
+        (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) /
+        6;
   }
   return g;
 }

@@ -1,6 +1,9 @@
 // Mesh file readers and writers (kergen/io.h): round trips, format variants, welding, strict errors,
 // and the outcome for every file of the shared format/bad fixture folders.
+#include "kergen/io.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdint>
@@ -12,10 +15,6 @@
 #include <set>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
-
-#include "kergen/io.h"
 
 namespace {
 
@@ -32,7 +31,7 @@ Mesh quad_cube(double size = 1.0) {
     m.positions.push_back((i & 2) ? size : 0.0);
     m.positions.push_back((i & 4) ? size : 0.0);
   }
-  m.indices = {0, 2, 3, 1,  4, 5, 7, 6,  0, 1, 5, 4,  2, 6, 7, 3,  0, 4, 6, 2,  1, 3, 7, 5};
+  m.indices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
   m.face_sizes = {4, 4, 4, 4, 4, 4};
   return m;
 }
@@ -69,9 +68,9 @@ std::multiset<std::vector<float>> triangle_set(const Mesh& m) {
 
 std::string shared_meshes() { return KERGEN_SHARED_MESHES; }
 
-#define REQUIRE_SHARED_MESHES()                                                                  \
-  do {                                                                                           \
-    if (!fs::is_directory(shared_meshes() + "/fixtures"))                                        \
+#define REQUIRE_SHARED_MESHES()                                                                   \
+  do {                                                                                            \
+    if (!fs::is_directory(shared_meshes() + "/fixtures"))                                         \
       GTEST_SKIP() << "shared meshes not found at " << shared_meshes() << " (fixtures/ missing)"; \
   } while (0)
 
@@ -88,7 +87,7 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 
 TEST(IoTest, OffRoundTripKeepsEveryBit) {
   Mesh m = quad_cube();
-  m.positions[0] = 0.1;                  // not exactly representable in decimal
+  m.positions[0] = 0.1;  // not exactly representable in decimal
   m.positions[4] = -1.0 / 3.0;
   m.positions[8] = 1e-300;
   m.positions[9] = 6.02214076e23;
@@ -244,8 +243,8 @@ TEST(IoTest, ObjPolygonsCommentsAndIgnoredRecords) {
   const char* text =
       "\xEF\xBB\xBF# BOM, then comments\r\n"
       "mtllib x.mtl\r\no thing\r\ng group one\r\ns off\r\nusemtl red\r\n"
-      "v 0 0 0 1.0\r\n"                   // w component
-      "v 1 0 0 0.5 0.5 0.5\r\n"           // vertex colour
+      "v 0 0 0 1.0\r\n"          // w component
+      "v 1 0 0 0.5 0.5 0.5\r\n"  // vertex colour
       "v   1   1   0   # trailing comment\r\n"
       "v\t0\t1\t0\r\n"
       "v 0.5 0.5 1\r\n"
@@ -282,38 +281,46 @@ void expect_errors(ReadResult (*reader)(std::string_view, const std::string&), c
 }
 
 TEST(IoTest, ObjErrorsNameLineAndReason) {
-  expect_errors(kergen::read_obj, {
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", Error::ParseError, "in.txt:4: vertex index 0"},
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", Error::ParseError, "in.txt:4: vertex index 4 out of range"},
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", Error::ParseError, "in.txt:4: relative vertex index -4"},
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", Error::ParseError, "in.txt:4: face has 2 vertices"},
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", Error::ParseError, "in.txt:4: invalid face vertex 'x'"},
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/1/1/1\n", Error::ParseError, "in.txt:4: invalid face vertex"},
-      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999\n", Error::ParseError, "in.txt:4: vertex index 99999999999"},
-      {"v 0 0\n", Error::ParseError, "in.txt:1: vertex needs 3 coordinates, found 2"},
-      {"\nv 0 0 abc\n", Error::ParseError, "in.txt:2: invalid number 'abc'"},
-      {"v 0 0 1.5.2\n", Error::ParseError, "invalid number '1.5.2'"},
-      {"v 0 0 nan\n", Error::ParseError, "in.txt:1: non-finite coordinate 'nan'"},
-      {"v 0 -inf 0\n", Error::ParseError, "in.txt:1: non-finite coordinate '-inf'"},
-      {"v 0 1e999 0\n", Error::ParseError, "in.txt:1: non-finite coordinate '1e999'"},
-      {"v 0 0 0\nv 1 0 0\n", Error::EmptyInput, "in.txt: no faces"},
-      {"v 0 0 0\nv 1 0 0\nl 1 2\n", Error::EmptyInput, "no faces (only points/lines)"},
-      {"# nothing\n", Error::EmptyInput, "no vertices and no faces"},
-      {"", Error::EmptyInput, "in.txt: empty file"},
-      {"  \n\n", Error::EmptyInput, "in.txt: empty file"},
-      {"\xFF\xFEv\0 \0", Error::ParseError, "UTF-16 is not supported"},
-  });
+  expect_errors(
+      kergen::read_obj,
+      {
+          {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", Error::ParseError, "in.txt:4: vertex index 0"},
+          {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", Error::ParseError, "in.txt:4: vertex index 4 out of range"},
+          {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", Error::ParseError, "in.txt:4: relative vertex index -4"},
+          {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", Error::ParseError, "in.txt:4: face has 2 vertices"},
+          {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", Error::ParseError, "in.txt:4: invalid face vertex 'x'"},
+          {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/1/1/1\n", Error::ParseError, "in.txt:4: invalid face vertex"},
+          {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999\n", Error::ParseError, "in.txt:4: vertex index 99999999999"},
+          {"v 0 0\n", Error::ParseError, "in.txt:1: vertex needs 3 coordinates, found 2"},
+          {"\nv 0 0 abc\n", Error::ParseError, "in.txt:2: invalid number 'abc'"},
+          {"v 0 0 1.5.2\n", Error::ParseError, "invalid number '1.5.2'"},
+          {"v 0 0 nan\n", Error::ParseError, "in.txt:1: non-finite coordinate 'nan'"},
+          {"v 0 -inf 0\n", Error::ParseError, "in.txt:1: non-finite coordinate '-inf'"},
+          {"v 0 1e999 0\n", Error::ParseError, "in.txt:1: non-finite coordinate '1e999'"},
+          {"v 0 0 0\nv 1 0 0\n", Error::EmptyInput, "in.txt: no faces"},
+          {"v 0 0 0\nv 1 0 0\nl 1 2\n", Error::EmptyInput, "no faces (only points/lines)"},
+          {"# nothing\n", Error::EmptyInput, "no vertices and no faces"},
+          {"", Error::EmptyInput, "in.txt: empty file"},
+          {"  \n\n", Error::EmptyInput, "in.txt: empty file"},
+          {"\xFF\xFEv\0 \0", Error::ParseError, "UTF-16 is not supported"},
+      });
 }
 
 TEST(IoTest, NumbersAreParsedExactly) {
   ReadResult r = kergen::read_obj(
-      "v 0.1 -0 1e-400\n"            // underflow rounds to zero
+      "v 0.1 -0 1e-400\n"  // underflow rounds to zero
       "v +2. .5 -1E+2\n"
       "v 4.9406564584124654e-324 1.7976931348623157e308 123456789012345678901234567890\n"
       "f 1 2 3\n");
   ASSERT_TRUE(r.ok()) << r.message;
-  const std::vector<double> expected = {0.1, -0.0, 0.0, 2.0, 0.5, -100.0,
-                                        4.9406564584124654e-324, 1.7976931348623157e308,
+  const std::vector<double> expected = {0.1,
+                                        -0.0,
+                                        0.0,
+                                        2.0,
+                                        0.5,
+                                        -100.0,
+                                        4.9406564584124654e-324,
+                                        1.7976931348623157e308,
                                         123456789012345678901234567890.0};
   ASSERT_EQ(r.mesh.positions.size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(r.mesh.positions[i], expected[i]) << i;
@@ -334,8 +341,9 @@ TEST(IoTest, OffVariants) {
   EXPECT_EQ(r.mesh.num_vertices(), 4u);
   EXPECT_EQ(r.mesh.num_faces(), 4u);
 
-  r = kergen::read_off("COFF\n4 4 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n0 0 1 1 1 1 1\n"
-                       "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  r = kergen::read_off(
+      "COFF\n4 4 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n0 0 1 1 1 1 1\n"
+      "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.mesh.positions[3], 1.0);
   EXPECT_EQ(r.mesh.positions[4], 0.0);
@@ -346,25 +354,30 @@ TEST(IoTest, OffVariants) {
 }
 
 TEST(IoTest, OffErrorsNameLineAndReason) {
-  expect_errors(kergen::read_off, {
-      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", Error::ParseError, "in.txt:6: vertex index 3 out of range"},
-      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n", Error::ParseError, "in.txt:6: vertex index -1 out of range"},
-      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", Error::ParseError, "in.txt:6: face has 2 vertices"},
-      {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", Error::ParseError, "in.txt:6: face declares 4 vertices"},
-      {"OFF\n3 1 0\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:4: invalid number 'x'"},
-      {"OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:4: non-finite coordinate"},
-      {"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", Error::ParseError, "unexpected end of file: 1 of 2 faces read"},
-      {"OFF\n300 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:2: header declares 300 vertices and 2 faces but only 26 bytes follow"},
-      {"OFF\n1000000000000 1000000000000 0\n0 0 0\n", Error::ParseError, "in.txt:2: header declares 1000000000000 vertices"},
-      {"OFF\n-3 1 0\n", Error::ParseError, "in.txt:2: invalid vertex count '-3'"},
-      {"OFF\n3 x 0\n", Error::ParseError, "in.txt:2: invalid face count 'x'"},
-      {"OFF\n", Error::ParseError, "missing vertex/face counts"},
-      {"PLY\n3 1 0\n", Error::ParseError, "in.txt:1: expected an OFF header, found 'PLY'"},
-      {"4OFF\n3 1 0\n", Error::ParseError, "4D / n-dimensional OFF is not supported"},
-      {"OFF BINARY\n", Error::ParseError, "binary OFF is not supported"},
-      {"OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", Error::EmptyInput, "in.txt: no faces"},
-      {"", Error::EmptyInput, "empty file"},
-  });
+  expect_errors(
+      kergen::read_off,
+      {
+          {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", Error::ParseError, "in.txt:6: vertex index 3 out of range"},
+          {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n", Error::ParseError, "in.txt:6: vertex index -1 out of range"},
+          {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", Error::ParseError, "in.txt:6: face has 2 vertices"},
+          {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", Error::ParseError, "in.txt:6: face declares 4 vertices"},
+          {"OFF\n3 1 0\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:4: invalid number 'x'"},
+          {"OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n", Error::ParseError, "in.txt:4: non-finite coordinate"},
+          {"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", Error::ParseError,
+           "unexpected end of file: 1 of 2 faces read"},
+          {"OFF\n300 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", Error::ParseError,
+           "in.txt:2: header declares 300 vertices and 2 faces but only 26 bytes follow"},
+          {"OFF\n1000000000000 1000000000000 0\n0 0 0\n", Error::ParseError,
+           "in.txt:2: header declares 1000000000000 vertices"},
+          {"OFF\n-3 1 0\n", Error::ParseError, "in.txt:2: invalid vertex count '-3'"},
+          {"OFF\n3 x 0\n", Error::ParseError, "in.txt:2: invalid face count 'x'"},
+          {"OFF\n", Error::ParseError, "missing vertex/face counts"},
+          {"PLY\n3 1 0\n", Error::ParseError, "in.txt:1: expected an OFF header, found 'PLY'"},
+          {"4OFF\n3 1 0\n", Error::ParseError, "4D / n-dimensional OFF is not supported"},
+          {"OFF BINARY\n", Error::ParseError, "binary OFF is not supported"},
+          {"OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", Error::EmptyInput, "in.txt: no faces"},
+          {"", Error::EmptyInput, "empty file"},
+      });
 }
 
 TEST(IoTest, OffTruncatedFile) {
@@ -416,7 +429,8 @@ TEST(IoTest, StlWeldsByExactEqualityOnly) {
       "solid w\n"
       "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
       // -0 welds with 0; 1.0000000000000002 (next double after 1) does not weld with 1.
-      "facet normal 0 0 0\nouter loop\nvertex -0 -0 -0\nvertex 1.0000000000000002 0 0\nvertex 0 1.0 0\nendloop\nendfacet\n"
+      "facet normal 0 0 0\nouter loop\nvertex -0 -0 -0\nvertex 1.0000000000000002 0 0\nvertex 0 1.0 "
+      "0\nendloop\nendfacet\n"
       "endsolid w\n";
   ReadResult r = kergen::read_stl(s);
   ASSERT_TRUE(r.ok()) << r.message;
@@ -468,23 +482,25 @@ TEST(IoTest, StlBinaryNonFiniteCoordinateNamesTheByte) {
 }
 
 TEST(IoTest, StlErrors) {
-  expect_errors(kergen::read_stl, {
-      {"", Error::EmptyInput, "in.txt: empty file"},
-      {"solid x\nendsolid x\n", Error::EmptyInput, "in.txt: no facets"},
-      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n endloop\n endfacet\nendsolid\n",
-       Error::ParseError, "in.txt:6: facet has 2 vertices"},
-      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 1 1 0\n vertex 1 2 0\n",
-       Error::ParseError, "in.txt:7: facet has more than 3 vertices"},
-      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 1 1 0\n endloop\n",
-       Error::ParseError, "unexpected end of file inside a facet"},
-      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0 0\n", Error::ParseError,
-       "in.txt:4: unexpected '0' after 'vertex x y z'"},
-      {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 nan 0\n", Error::ParseError,
-       "in.txt:4: non-finite coordinate 'nan'"},
-      {"solid x\n facet 0 0 1\n", Error::ParseError, "in.txt:2: expected 'facet normal nx ny nz'"},
-      {"solid x\n vertex 0 0 0\n", Error::ParseError, "in.txt:2: expected 'facet' or 'endsolid', found 'vertex'"},
-      {"tiny", Error::ParseError, "in.txt: byte 0: not an STL file"},
-  });
+  expect_errors(
+      kergen::read_stl,
+      {
+          {"", Error::EmptyInput, "in.txt: empty file"},
+          {"solid x\nendsolid x\n", Error::EmptyInput, "in.txt: no facets"},
+          {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n endloop\n endfacet\nendsolid\n",
+           Error::ParseError, "in.txt:6: facet has 2 vertices"},
+          {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 1 1 0\n vertex 1 2 0\n",
+           Error::ParseError, "in.txt:7: facet has more than 3 vertices"},
+          {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n vertex 1 1 0\n endloop\n",
+           Error::ParseError, "unexpected end of file inside a facet"},
+          {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0 0\n", Error::ParseError,
+           "in.txt:4: unexpected '0' after 'vertex x y z'"},
+          {"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 nan 0\n", Error::ParseError,
+           "in.txt:4: non-finite coordinate 'nan'"},
+          {"solid x\n facet 0 0 1\n", Error::ParseError, "in.txt:2: expected 'facet normal nx ny nz'"},
+          {"solid x\n vertex 0 0 0\n", Error::ParseError, "in.txt:2: expected 'facet' or 'endsolid', found 'vertex'"},
+          {"tiny", Error::ParseError, "in.txt: byte 0: not an STL file"},
+      });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -515,14 +531,30 @@ void put_ply_value(std::string& out, double value, const std::string& type, Ply 
   unsigned char bytes[8];
   size_t n = 0;
   auto raw = [&](const void* p, size_t size) { std::memcpy(bytes, p, n = size); };
-  if (type == "char" || type == "int8") { int8_t v = int8_t(value); raw(&v, 1); }
-  else if (type == "uchar" || type == "uint8") { uint8_t v = uint8_t(value); raw(&v, 1); }
-  else if (type == "short" || type == "int16") { int16_t v = int16_t(value); raw(&v, 2); }
-  else if (type == "ushort" || type == "uint16") { uint16_t v = uint16_t(value); raw(&v, 2); }
-  else if (type == "int" || type == "int32") { int32_t v = int32_t(value); raw(&v, 4); }
-  else if (type == "uint" || type == "uint32") { uint32_t v = uint32_t(value); raw(&v, 4); }
-  else if (type == "float" || type == "float32") { float v = float(value); raw(&v, 4); }
-  else { raw(&value, 8); }
+  if (type == "char" || type == "int8") {
+    int8_t v = int8_t(value);
+    raw(&v, 1);
+  } else if (type == "uchar" || type == "uint8") {
+    uint8_t v = uint8_t(value);
+    raw(&v, 1);
+  } else if (type == "short" || type == "int16") {
+    int16_t v = int16_t(value);
+    raw(&v, 2);
+  } else if (type == "ushort" || type == "uint16") {
+    uint16_t v = uint16_t(value);
+    raw(&v, 2);
+  } else if (type == "int" || type == "int32") {
+    int32_t v = int32_t(value);
+    raw(&v, 4);
+  } else if (type == "uint" || type == "uint32") {
+    uint32_t v = uint32_t(value);
+    raw(&v, 4);
+  } else if (type == "float" || type == "float32") {
+    float v = float(value);
+    raw(&v, 4);
+  } else {
+    raw(&value, 8);
+  }
   if (encoding == Ply::BigEndian) std::reverse(bytes, bytes + n);  // the test host is little-endian
   out.append(reinterpret_cast<const char*>(bytes), n);
 }
@@ -557,7 +589,8 @@ std::string ply_file(const Mesh& m, const PlyOptions& o) {
     end_line();
   }
   if (o.extras) {
-    for (int e = 0; e < 2; ++e) value(e, "int"), value(e + 1, "int"), value(1, "uint8"), value(0.25, "double"), end_line();
+    for (int e = 0; e < 2; ++e)
+      value(e, "int"), value(e + 1, "int"), value(1, "uint8"), value(0.25, "double"), end_line();
   }
   std::vector<uint32_t> sizes = sizes_of(m);
   size_t offset = 0;
@@ -597,8 +630,11 @@ TEST(IoTest, PlySameCubeInEveryEncodingAsOff) {
 
 TEST(IoTest, PlyScalarTypesAndListTypes) {
   const Mesh cube = quad_cube(2.0);
-  const char* types[][3] = {{"char", "uchar", "short"}, {"ushort", "int", "uint"}, {"float", "float32", "float64"},
-                            {"int8", "uint8", "int16"}, {"uint16", "int32", "uint32"}};
+  const char* types[][3] = {{"char", "uchar", "short"},
+                            {"ushort", "int", "uint"},
+                            {"float", "float32", "float64"},
+                            {"int8", "uint8", "int16"},
+                            {"uint16", "int32", "uint32"}};
   const char* counts[] = {"char", "uchar", "short", "ushort", "int", "uint"};
   const char* indices[] = {"ushort", "int", "uint", "int32", "uint32", "short"};
   int variant = 0;
@@ -646,24 +682,34 @@ std::string ply_text(const char* vertices, const char* faces) { return std::stri
 
 TEST(IoTest, PlyAsciiErrorsNameLineAndReason) {
   const char* v = "0 0 0\n1 0 0\n0 1 0\n";  // lines 10-12
-  expect_errors(kergen::read_ply, {
-      {ply_text(v, "3 0 1 3\n"), Error::ParseError, "in.txt:13: vertex index 3 out of range (the file has 3 vertices)"},
-      {ply_text(v, "3 0 1 -1\n"), Error::ParseError, "in.txt:13: vertex index -1 out of range"},
-      {ply_text(v, "3 0 1 x\n"), Error::ParseError, "in.txt:13: invalid vertex index 'x'"},
-      {ply_text(v, "2 0 1\n"), Error::ParseError, "in.txt:13: face has 2 vertices (at least 3 needed)"},
-      {ply_text(v, "-3 0 1 2\n"), Error::ParseError, "in.txt:13: negative list count -3"},
-      {ply_text(v, "three 0 1 2\n"), Error::ParseError, "in.txt:13: invalid list count 'three'"},
-      {ply_text(v, "4 0 1 2\n"), Error::ParseError, "in.txt:13: too few values for element 'face' (the line has 4)"},
-      {ply_text(v, "3 0 1 2 7\n"), Error::ParseError, "in.txt:13: the line has more than the 4 values element 'face' declares"},
-      {ply_text(v, ""), Error::ParseError, "in.txt:12: unexpected end of file: 0 of 1 faces read"},
-      {ply_text("0 0 0\n1 0 x\n0 1 0\n", "3 0 1 2\n"), Error::ParseError, "in.txt:11: invalid number 'x'"},
-      {ply_text("0 0 0\n1 0 nan\n0 1 0\n", "3 0 1 2\n"), Error::ParseError, "in.txt:11: non-finite coordinate 'nan'"},
-      {ply_text("0 0 0\n1 0 1e999\n0 1 0\n", "3 0 1 2\n"), Error::ParseError, "in.txt:11: non-finite coordinate '1e999'"},
-      {ply_text("0 0 0\n1 0\n0 1 0\n", "3 0 1 2\n"), Error::ParseError, "in.txt:11: too few values for element 'vertex' (the line has 2)"},
-      {ply_text("0 0 0\n1 0 0 1\n0 1 0\n", "3 0 1 2\n"), Error::ParseError, "in.txt:11: the line has more than the 3 values element 'vertex' declares"},
-      // Blank lines pass the size check (2 bytes per element) but hold no element.
-      {ply_text("0 0 0\n\n\n\n\n\n", ""), Error::ParseError, "in.txt:15: unexpected end of file: 1 of 3 vertices read"},
-  });
+  expect_errors(
+      kergen::read_ply,
+      {
+          {ply_text(v, "3 0 1 3\n"), Error::ParseError,
+           "in.txt:13: vertex index 3 out of range (the file has 3 vertices)"},
+          {ply_text(v, "3 0 1 -1\n"), Error::ParseError, "in.txt:13: vertex index -1 out of range"},
+          {ply_text(v, "3 0 1 x\n"), Error::ParseError, "in.txt:13: invalid vertex index 'x'"},
+          {ply_text(v, "2 0 1\n"), Error::ParseError, "in.txt:13: face has 2 vertices (at least 3 needed)"},
+          {ply_text(v, "-3 0 1 2\n"), Error::ParseError, "in.txt:13: negative list count -3"},
+          {ply_text(v, "three 0 1 2\n"), Error::ParseError, "in.txt:13: invalid list count 'three'"},
+          {ply_text(v, "4 0 1 2\n"), Error::ParseError,
+           "in.txt:13: too few values for element 'face' (the line has 4)"},
+          {ply_text(v, "3 0 1 2 7\n"), Error::ParseError,
+           "in.txt:13: the line has more than the 4 values element 'face' declares"},
+          {ply_text(v, ""), Error::ParseError, "in.txt:12: unexpected end of file: 0 of 1 faces read"},
+          {ply_text("0 0 0\n1 0 x\n0 1 0\n", "3 0 1 2\n"), Error::ParseError, "in.txt:11: invalid number 'x'"},
+          {ply_text("0 0 0\n1 0 nan\n0 1 0\n", "3 0 1 2\n"), Error::ParseError,
+           "in.txt:11: non-finite coordinate 'nan'"},
+          {ply_text("0 0 0\n1 0 1e999\n0 1 0\n", "3 0 1 2\n"), Error::ParseError,
+           "in.txt:11: non-finite coordinate '1e999'"},
+          {ply_text("0 0 0\n1 0\n0 1 0\n", "3 0 1 2\n"), Error::ParseError,
+           "in.txt:11: too few values for element 'vertex' (the line has 2)"},
+          {ply_text("0 0 0\n1 0 0 1\n0 1 0\n", "3 0 1 2\n"), Error::ParseError,
+           "in.txt:11: the line has more than the 3 values element 'vertex' declares"},
+          // Blank lines pass the size check (2 bytes per element) but hold no element.
+          {ply_text("0 0 0\n\n\n\n\n\n", ""), Error::ParseError,
+           "in.txt:15: unexpected end of file: 1 of 3 vertices read"},
+      });
 }
 
 TEST(IoTest, PlyHeaderErrorsNameLineAndReason) {
@@ -672,37 +718,50 @@ TEST(IoTest, PlyHeaderErrorsNameLineAndReason) {
     size_t at = text.find(from);
     return text.replace(at, from.size(), to);
   };
-  expect_errors(kergen::read_ply, {
-      {"plx\nformat ascii 1.0\n", Error::ParseError, "in.txt:1: expected 'ply' on the first line, found 'plx'"},
-      {with("format ascii 1.0", "format ascii 2.0"), Error::ParseError, "in.txt:2: unsupported PLY version '2.0' (1.0 expected)"},
-      {with("format ascii 1.0", "format binary 1.0"), Error::ParseError, "in.txt:2: unknown PLY format 'binary'"},
-      {with("format ascii 1.0\n", ""), Error::ParseError, "in.txt:8: the header has no 'format' line"},
-      {with("format ascii 1.0\n", "format ascii 1.0\nformat ascii 1.0\n"), Error::ParseError, "in.txt:3: second 'format' line"},
-      {with("element vertex 3", "element vertex -3"), Error::ParseError, "in.txt:3: invalid element count '-3'"},
-      {with("element vertex 3", "element vertex"), Error::ParseError, "in.txt:3: expected 'element <name> <count>'"},
-      {with("element vertex 3", "element vertex 1000000000000"), Error::ParseError,
-       "in.txt:3: header declares 1000000000000 vertices but only 26 bytes of data follow"},
-      {with("element face 1", "element face 13"), Error::ParseError, "in.txt:7: header declares 13 faces but only 26 bytes"},
-      {with("element face 1", "element vertex 1"), Error::ParseError, "in.txt:7: second 'vertex' element"},
-      {with("element vertex 3\n", "property float w\nelement vertex 3\n"), Error::ParseError, "in.txt:3: property before any element"},
-      {with("property float z", "property real z"), Error::ParseError, "in.txt:6: unknown property type 'real'"},
-      {with("property float z", "property float"), Error::ParseError, "in.txt:6: property needs a name"},
-      {with("property float z", "property float z w"), Error::ParseError, "in.txt:6: unexpected 'w' after the property name"},
-      {with("property float z", "property float y"), Error::ParseError, "in.txt:6: second vertex property 'y'"},
-      {with("property float z", "property float w"), Error::ParseError, "in.txt:3: vertex element has no 'z' property"},
-      {with("property float z", "property list uchar float z"), Error::ParseError, "in.txt:6: vertex property 'z' is a list, not a number"},
-      {with("list uchar int", "list float int"), Error::ParseError, "in.txt:8: list count type 'float' is not an integer type"},
-      {with("list uchar int", "list uchar float"), Error::ParseError, "in.txt:8: face property 'vertex_indices' must be a list of integers"},
-      {with("property list uchar int vertex_indices", "property uint vertex_indices"), Error::ParseError,
-       "in.txt:8: face property 'vertex_indices' must be a list of integers"},
-      {with("vertex_indices", "corners"), Error::ParseError, "in.txt:7: face element has no 'vertex_indices' list"},
-      {with("end_header", "end_header now"), Error::ParseError, "in.txt:9: unexpected 'now' after 'end_header'"},
-      {with("end_header", "end_heading"), Error::ParseError, "in.txt:9: unknown header keyword 'end_heading'"},
-      {"ply\nformat ascii 1.0\nelement vertex 0\n", Error::ParseError, "in.txt:3: the header has no 'end_header' line"},
-      {with("element face 1", "element face 0"), Error::EmptyInput, "in.txt: no faces"},
-      {"ply\nformat ascii 1.0\nend_header\n", Error::EmptyInput, "in.txt: no vertices and no faces"},
-      {"", Error::EmptyInput, "in.txt: empty file"},
-  });
+  expect_errors(
+      kergen::read_ply,
+      {
+          {"plx\nformat ascii 1.0\n", Error::ParseError, "in.txt:1: expected 'ply' on the first line, found 'plx'"},
+          {with("format ascii 1.0", "format ascii 2.0"), Error::ParseError,
+           "in.txt:2: unsupported PLY version '2.0' (1.0 expected)"},
+          {with("format ascii 1.0", "format binary 1.0"), Error::ParseError, "in.txt:2: unknown PLY format 'binary'"},
+          {with("format ascii 1.0\n", ""), Error::ParseError, "in.txt:8: the header has no 'format' line"},
+          {with("format ascii 1.0\n", "format ascii 1.0\nformat ascii 1.0\n"), Error::ParseError,
+           "in.txt:3: second 'format' line"},
+          {with("element vertex 3", "element vertex -3"), Error::ParseError, "in.txt:3: invalid element count '-3'"},
+          {with("element vertex 3", "element vertex"), Error::ParseError,
+           "in.txt:3: expected 'element <name> <count>'"},
+          {with("element vertex 3", "element vertex 1000000000000"), Error::ParseError,
+           "in.txt:3: header declares 1000000000000 vertices but only 26 bytes of data follow"},
+          {with("element face 1", "element face 13"), Error::ParseError,
+           "in.txt:7: header declares 13 faces but only 26 bytes"},
+          {with("element face 1", "element vertex 1"), Error::ParseError, "in.txt:7: second 'vertex' element"},
+          {with("element vertex 3\n", "property float w\nelement vertex 3\n"), Error::ParseError,
+           "in.txt:3: property before any element"},
+          {with("property float z", "property real z"), Error::ParseError, "in.txt:6: unknown property type 'real'"},
+          {with("property float z", "property float"), Error::ParseError, "in.txt:6: property needs a name"},
+          {with("property float z", "property float z w"), Error::ParseError,
+           "in.txt:6: unexpected 'w' after the property name"},
+          {with("property float z", "property float y"), Error::ParseError, "in.txt:6: second vertex property 'y'"},
+          {with("property float z", "property float w"), Error::ParseError,
+           "in.txt:3: vertex element has no 'z' property"},
+          {with("property float z", "property list uchar float z"), Error::ParseError,
+           "in.txt:6: vertex property 'z' is a list, not a number"},
+          {with("list uchar int", "list float int"), Error::ParseError,
+           "in.txt:8: list count type 'float' is not an integer type"},
+          {with("list uchar int", "list uchar float"), Error::ParseError,
+           "in.txt:8: face property 'vertex_indices' must be a list of integers"},
+          {with("property list uchar int vertex_indices", "property uint vertex_indices"), Error::ParseError,
+           "in.txt:8: face property 'vertex_indices' must be a list of integers"},
+          {with("vertex_indices", "corners"), Error::ParseError, "in.txt:7: face element has no 'vertex_indices' list"},
+          {with("end_header", "end_header now"), Error::ParseError, "in.txt:9: unexpected 'now' after 'end_header'"},
+          {with("end_header", "end_heading"), Error::ParseError, "in.txt:9: unknown header keyword 'end_heading'"},
+          {"ply\nformat ascii 1.0\nelement vertex 0\n", Error::ParseError,
+           "in.txt:3: the header has no 'end_header' line"},
+          {with("element face 1", "element face 0"), Error::EmptyInput, "in.txt: no faces"},
+          {"ply\nformat ascii 1.0\nend_header\n", Error::EmptyInput, "in.txt: no vertices and no faces"},
+          {"", Error::EmptyInput, "in.txt: empty file"},
+      });
 }
 
 // Byte offsets of the binary cube written by ply_file without extras: header, then 8 vertices of
@@ -728,7 +787,8 @@ TEST(IoTest, PlyBinaryErrorsNameTheByte) {
     };
     expect(good.substr(0, good.size() - 3), Error::ParseError,
            "b.ply: byte " + std::to_string(faces + 5 * 17 + 13) + ": unexpected end of file: 5 of 6 faces read");
-    expect(good.substr(0, h + 30), Error::ParseError, "b.ply:3: header declares 8 vertices but only 30 bytes of data follow");
+    expect(good.substr(0, h + 30), Error::ParseError,
+           "b.ply:3: header declares 8 vertices but only 30 bytes of data follow");
     expect(patched(h + 2 * 24 + 8, std::nan(""), "double"), Error::ParseError,
            "b.ply: byte " + std::to_string(h + 56) + ": non-finite coordinate in vertex 2");
     expect(patched(h + 5 * 24 + 16, -HUGE_VAL, "double"), Error::ParseError,
@@ -811,8 +871,9 @@ TEST(IoTest, ReadMeshFileErrors) {
   { std::ofstream(text, std::ios::binary) << "some notes\n"; }
   r = kergen::read_mesh_file(text);
   EXPECT_EQ(r.error, Error::ParseError);
-  EXPECT_EQ(r.message, text + ": unknown mesh format: the name does not end in .off, .obj, .stl or .ply and the "
-                              "content is none of them");
+  EXPECT_EQ(r.message, text +
+                           ": unknown mesh format: the name does not end in .off, .obj, .stl or .ply and the "
+                           "content is none of them");
   fs::remove_all(dir);
 }
 
@@ -835,8 +896,8 @@ TEST(IoTest, DetectFormatByContent) {
   ply.encoding = Ply::BigEndian;
   EXPECT_EQ(kergen::detect_format(ply_file(cube, ply)), MeshFormat::Ply);
   EXPECT_EQ(kergen::detect_format("ply\r\nformat ascii 1.0\r\n"), MeshFormat::Ply);
-  for (const char* unknown : {"", "\n\n", "# only a comment\n", "hello world\n", "OFF4\n", "plywood\n",
-                              "solidified 1 2 3\n", "3 1 0\n"})
+  for (const char* unknown :
+       {"", "\n\n", "# only a comment\n", "hello world\n", "OFF4\n", "plywood\n", "solidified 1 2 3\n", "3 1 0\n"})
     EXPECT_EQ(kergen::detect_format(unknown), MeshFormat::Unknown) << unknown;
 }
 
@@ -854,8 +915,9 @@ TEST(IoTest, ReadMeshUsesFormatThenNameThenContent) {
   EXPECT_EQ(r.message, "blank: empty file");
   r = kergen::read_mesh("3 1 0\n", kergen::MeshFormat::Unknown);
   EXPECT_EQ(r.error, Error::ParseError);
-  EXPECT_EQ(r.message, "<memory>: unknown mesh format: the name does not end in .off, .obj, .stl or .ply and the "
-                       "content is none of them");
+  EXPECT_EQ(r.message,
+            "<memory>: unknown mesh format: the name does not end in .off, .obj, .stl or .ply and the "
+            "content is none of them");
 }
 
 // The outcome judged right for every shared fixture: Ok with the face count, or the error and a
@@ -863,7 +925,7 @@ TEST(IoTest, ReadMeshUsesFormatThenNameThenContent) {
 // core's business: those files parse.
 struct FixtureOutcome {
   Error error;
-  size_t faces;            // when Ok
+  size_t faces;              // when Ok
   const char* message_part;  // when not Ok
 };
 
@@ -892,28 +954,29 @@ void check_fixture_folder(const std::string& folder, const std::map<std::string,
 
 TEST(IoFixtures, FormatsFolder) {
   REQUIRE_SHARED_MESHES();
-  check_fixture_folder(shared_meshes() + "/fixtures/formats",
-                       {
-                           {"3DSMaxExport.STL", {Error::Ok, 2000, ""}},
-                           {"Cube.off", {Error::Ok, 6, ""}},
-                           {"box.obj", {Error::Ok, 6, ""}},
-                           {"box_UTF16BE.obj", {Error::ParseError, 0, "box_UTF16BE.obj:1: UTF-16 is not supported"}},
-                           {"box_mat_with_spaces.obj", {Error::Ok, 6, ""}},
-                           {"box_without_lineending.obj", {Error::Ok, 6, ""}},
-                           {"concave_polygon.obj", {Error::Ok, 1, ""}},
-                           {"cube_usemtl.obj", {Error::Ok, 12, ""}},
-                           {"cube_with_vertexcolors.obj", {Error::Ok, 12, ""}},
-                           {"import_ascii.stl", {Error::Ok, 46, ""}},
-                           {"import_binary.stl", {Error::Ok, 46, ""}},
-                           {"multiple_spaces.obj", {Error::Ok, 1, ""}},
-                           // "3.1+e2" is not a number (the '+' precedes the 'e').
-                           {"number_formats.obj", {Error::ParseError, 0, "number_formats.obj:11: invalid number '3.1+e2'"}},
-                           {"sphereWithHole.stl", {Error::Ok, 285, ""}},
-                           {"testline.obj", {Error::EmptyInput, 0, "no faces (only points/lines)"}},
-                           {"testpoints.obj", {Error::EmptyInput, 0, "no faces (only points/lines)"}},
-                           {"triangle_with_empty_solid.stl", {Error::Ok, 1, ""}},
-                           {"triangle_with_two_solids.stl", {Error::Ok, 2, ""}},
-                       });
+  check_fixture_folder(
+      shared_meshes() + "/fixtures/formats",
+      {
+          {"3DSMaxExport.STL", {Error::Ok, 2000, ""}},
+          {"Cube.off", {Error::Ok, 6, ""}},
+          {"box.obj", {Error::Ok, 6, ""}},
+          {"box_UTF16BE.obj", {Error::ParseError, 0, "box_UTF16BE.obj:1: UTF-16 is not supported"}},
+          {"box_mat_with_spaces.obj", {Error::Ok, 6, ""}},
+          {"box_without_lineending.obj", {Error::Ok, 6, ""}},
+          {"concave_polygon.obj", {Error::Ok, 1, ""}},
+          {"cube_usemtl.obj", {Error::Ok, 12, ""}},
+          {"cube_with_vertexcolors.obj", {Error::Ok, 12, ""}},
+          {"import_ascii.stl", {Error::Ok, 46, ""}},
+          {"import_binary.stl", {Error::Ok, 46, ""}},
+          {"multiple_spaces.obj", {Error::Ok, 1, ""}},
+          // "3.1+e2" is not a number (the '+' precedes the 'e').
+          {"number_formats.obj", {Error::ParseError, 0, "number_formats.obj:11: invalid number '3.1+e2'"}},
+          {"sphereWithHole.stl", {Error::Ok, 285, ""}},
+          {"testline.obj", {Error::EmptyInput, 0, "no faces (only points/lines)"}},
+          {"testpoints.obj", {Error::EmptyInput, 0, "no faces (only points/lines)"}},
+          {"triangle_with_empty_solid.stl", {Error::Ok, 1, ""}},
+          {"triangle_with_two_solids.stl", {Error::Ok, 2, ""}},
+      });
 }
 
 TEST(IoFixtures, FormatsSameShapeAcrossFormats) {
@@ -938,17 +1001,18 @@ TEST(IoFixtures, FormatsSameShapeAcrossFormats) {
 
 TEST(IoFixtures, BadFolder) {
   REQUIRE_SHARED_MESHES();
-  check_fixture_folder(shared_meshes() + "/fixtures/bad",
-                       {
-                           // Well-formed binary STL of a broken model: the core judges it.
-                           {"bad-stl-tardis.stl", {Error::Ok, 3636, ""}},
-                           {"empty2.stl", {Error::EmptyInput, 0, "no facets"}},
-                           {"invalidvertex.stl", {Error::ParseError, 0, "invalidvertex.stl:89: invalid number 'blah'"}},
-                           {"issue1580-back-to-back.stl", {Error::Ok, 10, ""}},
-                           {"issue1580-zero-area-triangle.stl", {Error::Ok, 14, ""}},
-                           {"toomanyvertices.stl", {Error::ParseError, 0, "toomanyvertices.stl:91: facet has more than 3 vertices"}},
-                           {"unparseable.stl", {Error::ParseError, 0, "unparseable.stl:4: invalid number '\\x10'"}},
-                       });
+  check_fixture_folder(
+      shared_meshes() + "/fixtures/bad",
+      {
+          // Well-formed binary STL of a broken model: the core judges it.
+          {"bad-stl-tardis.stl", {Error::Ok, 3636, ""}},
+          {"empty2.stl", {Error::EmptyInput, 0, "no facets"}},
+          {"invalidvertex.stl", {Error::ParseError, 0, "invalidvertex.stl:89: invalid number 'blah'"}},
+          {"issue1580-back-to-back.stl", {Error::Ok, 10, ""}},
+          {"issue1580-zero-area-triangle.stl", {Error::Ok, 14, ""}},
+          {"toomanyvertices.stl", {Error::ParseError, 0, "toomanyvertices.stl:91: facet has more than 3 vertices"}},
+          {"unparseable.stl", {Error::ParseError, 0, "unparseable.stl:4: invalid number '\\x10'"}},
+      });
 }
 
 TEST(IoFixtures, EveryMeshFixtureParses) {

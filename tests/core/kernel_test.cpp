@@ -29,9 +29,7 @@ void expect_valid_polyhedron(const Mesh& input, const Kernel& k) {
   try {
     kfuzz::check_kernel(input.view(), k, false, true);
     kfuzz::check_convex_faces_and_distinct_vertices(k);
-  } catch (const std::runtime_error& e) {
-    ADD_FAILURE() << e.what();
-  }
+  } catch (const std::runtime_error& e) { ADD_FAILURE() << e.what(); }
   kfuzz::violation_handler = nullptr;
 }
 
@@ -52,8 +50,11 @@ TEST(Kernel, UnitCube) {
 }
 
 TEST(Kernel, CubeTranslatedAndScaled) {
-  struct T { double s, t; } cases[] = {{1, 1e6}, {1e-3, 0}, {1e3, 0}, {1e-3, -7e5}, {1e300 / 4, 0}, {1e-300, 0},
-                                      {1e-310, 0} /* subnormal only */, {4e307, 0} /* near the top */};
+  struct T {
+    double s, t;
+  } cases[] = {
+      {1, 1e6},  {1e-3, 0}, {1e3, 0}, {1e-3, -7e5}, {1e300 / 4, 0}, {1e-300, 0}, {1e-310, 0} /* subnormal only */,
+      {4e307, 0} /* near the top */};
   for (const auto& c : cases) {
     Mesh m = transformed(unit_cube(), c.s, c.t, c.t, c.t);
     Kernel k = run(m);
@@ -63,7 +64,8 @@ TEST(Kernel, CubeTranslatedAndScaled) {
     // The box as the doubles describe it (the shift rounds its sides).
     double side = m.positions[3 * 7] - m.positions[0];
     double expect = side * side * side;
-    if (std::isfinite(expect) && expect > 1e-290) EXPECT_NEAR(k.volume / expect, 1, 1e-12) << "scale " << c.s << " shift " << c.t;
+    if (std::isfinite(expect) && expect > 1e-290)
+      EXPECT_NEAR(k.volume / expect, 1, 1e-12) << "scale " << c.s << " shift " << c.t;
     EXPECT_NEAR(k.volume_ratio, 1, 1e-12) << "scale " << c.s << " shift " << c.t;
   }
 }
@@ -163,8 +165,10 @@ TEST(Kernel, LargeConvexKernelIsTheShape) {
       // The kernel's vertices are the input points (exactly: they are computed exactly, then
       // rounded once).
       std::vector<std::array<double, 3>> in, out;
-      for (size_t i = 0; i < points; ++i) in.push_back({g.mesh.positions[3 * i], g.mesh.positions[3 * i + 1], g.mesh.positions[3 * i + 2]});
-      for (size_t i = 0; i < k.num_vertices(); ++i) out.push_back({k.vertices[3 * i], k.vertices[3 * i + 1], k.vertices[3 * i + 2]});
+      for (size_t i = 0; i < points; ++i)
+        in.push_back({g.mesh.positions[3 * i], g.mesh.positions[3 * i + 1], g.mesh.positions[3 * i + 2]});
+      for (size_t i = 0; i < k.num_vertices(); ++i)
+        out.push_back({k.vertices[3 * i], k.vertices[3 * i + 1], k.vertices[3 * i + 2]});
       std::sort(in.begin(), in.end());
       std::sort(out.begin(), out.end());
       EXPECT_EQ(in, out) << n << " seed " << seed;
@@ -213,7 +217,8 @@ TEST(Kernel, FaceCullingKeepsTheKernel) {
       // planes of the split sides (their faces are most of the sample), and every face on such a
       // plane touches it: half of the faces do, and culling gives up.
       {"S prism, far sides split (flat kernel)", subdivided_s_prism({256, 128, 1, 1, 256, 128, 1, 1}), false, false},
-      {"S prism, all sides split (flat kernel)", subdivided_s_prism({128, 128, 128, 128, 128, 128, 128, 128}), false, false},
+      {"S prism, all sides split (flat kernel)", subdivided_s_prism({128, 128, 128, 128, 128, 128, 128, 128}), false,
+       false},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
@@ -232,8 +237,10 @@ TEST(Kernel, FaceCullingKeepsTheKernel) {
       EXPECT_EQ(a.num_edges(), b.num_edges()) << c.name;
       EXPECT_EQ(a.num_faces(), b.num_faces()) << c.name;
       std::vector<std::array<double, 3>> va, vb;
-      for (size_t i = 0; i < a.num_vertices(); ++i) va.push_back({a.vertices[3 * i], a.vertices[3 * i + 1], a.vertices[3 * i + 2]});
-      for (size_t i = 0; i < b.num_vertices(); ++i) vb.push_back({b.vertices[3 * i], b.vertices[3 * i + 1], b.vertices[3 * i + 2]});
+      for (size_t i = 0; i < a.num_vertices(); ++i)
+        va.push_back({a.vertices[3 * i], a.vertices[3 * i + 1], a.vertices[3 * i + 2]});
+      for (size_t i = 0; i < b.num_vertices(); ++i)
+        vb.push_back({b.vertices[3 * i], b.vertices[3 * i + 1], b.vertices[3 * i + 2]});
       std::sort(va.begin(), va.end());
       std::sort(vb.begin(), vb.end());
       EXPECT_EQ(va, vb) << c.name << " seed " << seed;
@@ -433,7 +440,8 @@ TEST(Kernel, FindKernelPointIsAKernelVertex) {
   Kernel k = run(m);
   bool found = false;
   for (size_t v = 0; v < k.num_vertices(); ++v)
-    found |= k.vertices[3 * v] == p.point[0] && k.vertices[3 * v + 1] == p.point[1] && k.vertices[3 * v + 2] == p.point[2];
+    found |=
+        k.vertices[3 * v] == p.point[0] && k.vertices[3 * v + 1] == p.point[1] && k.vertices[3 * v + 2] == p.point[2];
   EXPECT_TRUE(found);
 }
 
@@ -444,8 +452,8 @@ TEST(Kernel, FindKernelPointIsAKernelVertex) {
 // ones in the last bit.
 TEST(Kernel, KernelPointIsAnOutputVertexForEverySeed) {
   Mesh star;
-  star.positions = {0.5545, 0.4858, 0.5371, 0.7, 0.45, 0.9,   0.49, 0.21, 0.15, 0.73, 0.25, 0.14, 0.22, 0.51, 0.49,
-                    0.12,   0.61,   0.77,   0.35, 0.45, 0.83, 0.67, 0.98, 0.48, 0.79, 0.52, 0.85};
+  star.positions = {0.5545, 0.4858, 0.5371, 0.7,  0.45, 0.9,  0.49, 0.21, 0.15, 0.73, 0.25, 0.14, 0.22, 0.51,
+                    0.49,   0.12,   0.61,   0.77, 0.35, 0.45, 0.83, 0.67, 0.98, 0.48, 0.79, 0.52, 0.85};
   star.indices = {2, 5, 4, 2, 6, 5, 6, 2, 1, 5, 6, 1, 5, 1, 8, 2, 7, 3, 7, 0, 3,
                   4, 5, 7, 5, 8, 7, 4, 7, 2, 1, 0, 8, 8, 0, 7, 2, 3, 1, 1, 3, 0};
   const Mesh meshes[] = {star, transformed(dented_cube(), 0.3, 0.1, 0.7, -0.2)};
@@ -668,8 +676,14 @@ TEST(Kernel, ZeroAreaFacesAreDroppedAndReported) {
   std::vector<uint32_t> idx;
   for (size_t t = 0; t < m.indices.size(); t += 3) {
     uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
-    if (a == 0 && b == 3 && c == 1) { idx.insert(idx.end(), {0, 3, mid, mid, 3, 1}); continue; }
-    if (a == 0 && b == 1 && c == 5) { idx.insert(idx.end(), {0, mid, 5, mid, 1, 5}); continue; }
+    if (a == 0 && b == 3 && c == 1) {
+      idx.insert(idx.end(), {0, 3, mid, mid, 3, 1});
+      continue;
+    }
+    if (a == 0 && b == 1 && c == 5) {
+      idx.insert(idx.end(), {0, mid, 5, mid, 1, 5});
+      continue;
+    }
     idx.insert(idx.end(), {a, b, c});
   }
   m.indices = idx;
@@ -682,8 +696,14 @@ TEST(Kernel, ZeroAreaFacesAreDroppedAndReported) {
   idx.clear();
   for (size_t t = 0; t < s.indices.size(); t += 3) {
     uint32_t a = s.indices[t], b = s.indices[t + 1], c = s.indices[t + 2];
-    if (a == 0 && b == 3 && c == 1) { idx.insert(idx.end(), {0, 3, 1, 0, 1, mm}); continue; }
-    if (a == 0 && b == 1 && c == 5) { idx.insert(idx.end(), {0, mm, 5, mm, 1, 5}); continue; }
+    if (a == 0 && b == 3 && c == 1) {
+      idx.insert(idx.end(), {0, 3, 1, 0, 1, mm});
+      continue;
+    }
+    if (a == 0 && b == 1 && c == 5) {
+      idx.insert(idx.end(), {0, mm, 5, mm, 1, 5});
+      continue;
+    }
     idx.insert(idx.end(), {a, b, c});
   }
   s.indices = idx;

@@ -3,12 +3,13 @@
 // constraints (lp_hint): on well-conditioned input its planes are the exact optimum's (each
 // passes through the vertex the exact LP returns), and its conflicts are real conflicts (the
 // exact LP on those planes alone is infeasible); its misses cost time, never answers.
+#include "lp.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "fixtures.h"
-#include "lp.h"
 #include "lp_hint.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
@@ -41,7 +42,10 @@ TEST(Lp, RandomDirectionsHitTheExtremeKernelVertex) {
     Planes p(m);
     for (int i = 0; i < 40; ++i) {
       double c[3] = {N(rng), N(rng), N(rng)};
-      if (i < 6) { c[0] = c[1] = c[2] = 0; c[i / 2] = i % 2 ? 1 : -1; }  // axis directions: ties
+      if (i < 6) {
+        c[0] = c[1] = c[2] = 0;
+        c[i / 2] = i % 2 ? 1 : -1;
+      }  // axis directions: ties
       LpResult r = solve_lp(*p.ps, p.all, c, 8, uint64_t(i));
       ASSERT_EQ(r.outcome, LpResult::Outcome::Optimal);
       double best = -INFINITY;

@@ -1,4 +1,6 @@
 // prepare_mesh: details of the validation pass that the kernel results do not show directly.
+#include "mesh_prep.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "mesh_prep.h"
 
 namespace {
 
@@ -89,7 +90,8 @@ TEST(MeshPrep, CoordinateExtremaInABlockAndInTheTail) {
       t.positions[at] = bad;
       p = prepare_mesh(t.view(), Options{});
       EXPECT_EQ(p.error, Error::NonFiniteCoordinate) << "coordinate " << at;
-      EXPECT_NE(p.message.find("vertex " + std::to_string(at / 3) + " has a non-finite"), std::string::npos) << p.message;
+      EXPECT_NE(p.message.find("vertex " + std::to_string(at / 3) + " has a non-finite"), std::string::npos)
+          << p.message;
     }
   }
 }
@@ -266,8 +268,10 @@ TEST(MeshPrep, LargeNonConvexPolygonsAreEarClipped) {
         const bool loop_edge = cap ? v == k + (u - k + 1) % k : v == (u + k - 1) % k;
         const auto back = uses.find({v, u});
         const int back_uses = back == uses.end() ? 0 : back->second;
-        if (loop_edge) loop_edges += use.second == 1 && back_uses == 0;
-        else unpaired += use.second != 1 || back_uses != 1;
+        if (loop_edge)
+          loop_edges += use.second == 1 && back_uses == 0;
+        else
+          unpaired += use.second != 1 || back_uses != 1;
       }
       EXPECT_EQ(loop_edges, size_t(k)) << "cap " << cap;
       EXPECT_EQ(unpaired, 0u) << "cap " << cap;

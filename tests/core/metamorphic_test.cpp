@@ -13,9 +13,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <cmath>
 #include <fstream>
 #include <random>
 #include <string>
@@ -141,7 +141,8 @@ Mesh with_loops(const Mesh& like, const std::vector<std::vector<uint32_t>>& loop
 
 std::vector<std::array<double, 3>> sorted_vertices(const Kernel& k) {
   std::vector<std::array<double, 3>> v;
-  for (size_t i = 0; i < k.num_vertices(); ++i) v.push_back({k.vertices[3 * i], k.vertices[3 * i + 1], k.vertices[3 * i + 2]});
+  for (size_t i = 0; i < k.num_vertices(); ++i)
+    v.push_back({k.vertices[3 * i], k.vertices[3 * i + 1], k.vertices[3 * i + 2]});
   std::sort(v.begin(), v.end());
   return v;
 }
@@ -160,7 +161,8 @@ void expect_same_kernel(const Kernel& a, const Kernel& b) {
     for (double c : p) ext = std::max(ext, std::fabs(c));
   for (const auto& p : va) {
     double best = INFINITY;
-    for (const auto& q : vb) best = std::min(best, std::max({std::fabs(p[0] - q[0]), std::fabs(p[1] - q[1]), std::fabs(p[2] - q[2])}));
+    for (const auto& q : vb)
+      best = std::min(best, std::max({std::fabs(p[0] - q[0]), std::fabs(p[1] - q[1]), std::fabs(p[2] - q[2])}));
     EXPECT_LE(best, 1e-12 * ext) << "kernel vertex (" << p[0] << ", " << p[1] << ", " << p[2] << ") has no counterpart";
   }
   EXPECT_NEAR(a.volume, b.volume, 1e-12 * std::fabs(a.volume));
@@ -207,7 +209,10 @@ void check_transform_relation(const std::string& name, const Mesh& m, bool gener
     double maxabs = 0, lo = INFINITY, hi = -INFINITY;
     for (size_t i = 0; i < mt.positions.size(); ++i) {
       maxabs = std::max(maxabs, std::fabs(mt.positions[i]));
-      if (i % 3 == 0) { lo = std::min(lo, mt.positions[i]); hi = std::max(hi, mt.positions[i]); }
+      if (i % 3 == 0) {
+        lo = std::min(lo, mt.positions[i]);
+        hi = std::max(hi, mt.positions[i]);
+      }
     }
     const double moved = c.exact ? 0 : std::ldexp(maxabs, -53) / (hi - lo);
     const double tol = 1e-9 + 1e4 * moved;

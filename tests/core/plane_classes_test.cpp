@@ -2,16 +2,17 @@
 // vertex of one lies on the other's plane (exact orient3d) and their normals point the same way;
 // opposite classes are linked. The meshes crowd one float-key cell with planes that are equal
 // only up to rounding, so the fine double-double keys are exercised next to exact coplanarity.
+#include "plane_classes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
 #include <vector>
 
+#include "exact/predicates.h"
 #include "fixtures.h"
 #include "mesh_prep.h"
-#include "plane_classes.h"
-#include "exact/predicates.h"
 
 namespace {
 
@@ -23,10 +24,18 @@ Mesh rotated(Mesh m, double a, double b, double c) {
   for (size_t i = 0; i < m.positions.size(); i += 3) {
     double x = m.positions[i], y = m.positions[i + 1], z = m.positions[i + 2];
     double t;
-    t = y * std::cos(a) - z * std::sin(a); z = y * std::sin(a) + z * std::cos(a); y = t;
-    t = x * std::cos(b) + z * std::sin(b); z = -x * std::sin(b) + z * std::cos(b); x = t;
-    t = x * std::cos(c) - y * std::sin(c); y = x * std::sin(c) + y * std::cos(c); x = t;
-    m.positions[i] = x; m.positions[i + 1] = y; m.positions[i + 2] = z;
+    t = y * std::cos(a) - z * std::sin(a);
+    z = y * std::sin(a) + z * std::cos(a);
+    y = t;
+    t = x * std::cos(b) + z * std::sin(b);
+    z = -x * std::sin(b) + z * std::cos(b);
+    x = t;
+    t = x * std::cos(c) - y * std::sin(c);
+    y = x * std::sin(c) + y * std::cos(c);
+    x = t;
+    m.positions[i] = x;
+    m.positions[i + 1] = y;
+    m.positions[i + 2] = z;
   }
   return m;
 }
@@ -61,7 +70,10 @@ void expect_classes_match_brute_force(const PreparedMesh& pm, const std::vector<
   for (uint32_t k = 0; k < n; ++k) {
     ref[k] = k;
     for (uint32_t g : firsts)
-      if (same_oriented_plane(pm, chosen[k], chosen[g])) { ref[k] = g; break; }
+      if (same_oriented_plane(pm, chosen[k], chosen[g])) {
+        ref[k] = g;
+        break;
+      }
     if (ref[k] == k) firsts.push_back(k);
   }
   EXPECT_EQ(ps.size(), firsts.size()) << name;

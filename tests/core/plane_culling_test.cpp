@@ -4,11 +4,12 @@
 // vectorized passes and, on a small K_S, the scan of every vertex). Planes a hair away from a
 // vertex on either side, the mesh's own planes and random planes; the tests must also drop most
 // of the planes that hold K_S strictly (a test that keeps everything is sound but useless).
+#include "plane_culling.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "plane_culling.h"
 #include "fixtures.h"
 #include "lp.h"
 #include "mesh_prep.h"
@@ -83,8 +84,14 @@ void check_support_test(const Mesh& m, const char* name, uint64_t seed, Tally& t
   std::vector<double> nx, ny, nz, d, enx, eny, enz, ed;
   for (uint32_t l : tested) {
     const PlaneCoef<Approx> c = ps.approx(l);
-    nx.push_back(c.n[0].v); ny.push_back(c.n[1].v); nz.push_back(c.n[2].v); d.push_back(c.d.v);
-    enx.push_back(c.n[0].e); eny.push_back(c.n[1].e); enz.push_back(c.n[2].e); ed.push_back(c.d.e);
+    nx.push_back(c.n[0].v);
+    ny.push_back(c.n[1].v);
+    nz.push_back(c.n[2].v);
+    d.push_back(c.d.v);
+    enx.push_back(c.n[0].e);
+    eny.push_back(c.n[1].e);
+    enz.push_back(c.n[2].e);
+    ed.push_back(c.d.e);
   }
   const PlaneArrays arrays{nx.data(), ny.data(), nz.data(), d.data(), enx.data(), eny.data(), enz.data(), ed.data()};
   const SupportTest scalar(ks, tested.size()), batched(ks, tested.size(), true);

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "exact/predicates.h"
 #include "fixtures.h"
 #include "kergen/io.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
-#include "exact/predicates.h"
 
 namespace {
 
@@ -223,7 +223,8 @@ TEST(Planes, DDCoordinatesOfNearlyCoplanarTriplesMatchExpansions) {
         for (int end : {-1, 1}) {
           const Expansion bound = (Expansion(x.hi) + Expansion(x.lo)) + Expansion(end * x.e);
           Expansion scaled;  // times 2^shift, component by component (exact)
-          for (size_t i = 0; i < bound.size(); ++i) scaled = scaled + Expansion(std::ldexp(bound.data()[i], ps.exact_shift()));
+          for (size_t i = 0; i < bound.size(); ++i)
+            scaled = scaled + Expansion(std::ldexp(bound.data()[i], ps.exact_shift()));
           const int s = (h.num[k] - scaled * h.den).sign() * den_sign;  // sign of num / den - bound
           if (end < 0 ? s < 0 : s > 0) return false;
         }
@@ -255,8 +256,10 @@ TEST(Planes, DDCoordinatesOfNearlyCoplanarTriplesMatchExpansions) {
       }
     }
   }
-  std::printf("turned cube: %zu vertices, %zu coordinate bounds, %zu quotient bounds; %zu signs the homogeneous stage left, %zu decided\n",
-              vertices, bounds_checked, quotients_checked, homogeneous_undecided, decided);
+  std::printf(
+      "turned cube: %zu vertices, %zu coordinate bounds, %zu quotient bounds; %zu signs the homogeneous stage left, "
+      "%zu decided\n",
+      vertices, bounds_checked, quotients_checked, homogeneous_undecided, decided);
   EXPECT_GT(quotients_checked, bounds_checked / 2);
   EXPECT_GT(homogeneous_undecided, 50u) << "the sample no longer reaches the stage";
   EXPECT_GT(decided, homogeneous_undecided / 2) << "the stage decides too few of the signs it is given";

@@ -1,11 +1,11 @@
 // SmallVector against std::vector: the same contents after the same operations, inside and
 // beyond the inline capacity, through copies and moves.
+#include "small_vector.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
-
-#include "small_vector.h"
 
 namespace {
 

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "climb.h"
-#include "plane_culling.h"
 #include "fixtures.h"
 #include "lp.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
+#include "plane_culling.h"
 #include "tracer.h"
 
 namespace {
@@ -26,8 +26,9 @@ TEST(Twins, CubePositionGivesCubeCellsCell) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> N(0, 1);
   const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
-  std::vector<double> special = {0.0, -0.0, 1.0, -1.0, 0.5, -0.5, 1e-300, -1e-300, 4.9e-324, 1e300, -1e300,
-                                 std::numeric_limits<double>::max(), inf, -inf, nan, 1.0 + 1e-16, 1 - 1e-16};
+  std::vector<double> special = {0.0,    -0.0,    1.0,      -1.0,        0.5,      -0.5,
+                                 1e-300, -1e-300, 4.9e-324, 1e300,       -1e300,   std::numeric_limits<double>::max(),
+                                 inf,    -inf,    nan,      1.0 + 1e-16, 1 - 1e-16};
   std::vector<std::array<double, 3>> normals;
   for (double a : special)
     for (double b : special)
@@ -113,9 +114,14 @@ TEST(Twins, MayReachAllAgreesWithMayReach) {
       const auto& v = k.vertices[rng() % k.vertices.size()].geom;
       const double a = N(rng), b = N(rng), c = N(rng);
       const double off = i % 2 ? std::pow(10.0, -16.0 + double(rng() % 14)) * (rng() % 2 ? 1 : -1) : 0.3 * N(rng);
-      nx.push_back(a); ny.push_back(b); nz.push_back(c);
+      nx.push_back(a);
+      ny.push_back(b);
+      nz.push_back(c);
       d.push_back(-(a * v.x[0].v + b * v.x[1].v + c * v.x[2].v) + off);
-      enx.push_back(0); eny.push_back(0); enz.push_back(0); ed.push_back(0);
+      enx.push_back(0);
+      eny.push_back(0);
+      enz.push_back(0);
+      ed.push_back(0);
     }
     const PlaneArrays arrays{nx.data(), ny.data(), nz.data(), d.data(), enx.data(), eny.data(), enz.data(), ed.data()};
     const SupportTest test(k, nx.size(), true);

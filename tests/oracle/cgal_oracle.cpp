@@ -1,6 +1,7 @@
 // Exact CGAL reference for the mesh kernel; see cgal_oracle.h for what it decides and how.
 #include "cgal_oracle.h"
 
+#include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Gmpq.h>
 #include <CGAL/Gmpzf.h>
@@ -8,7 +9,6 @@
 #include <CGAL/QP_models.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
-#include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
 
 #include <algorithm>
 #include <chrono>
@@ -199,9 +199,8 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
       const uint64_t rev = (key << 32) | (key >> 32);
       auto it = directed.find(rev);
       if (count != 1 || it == directed.end() || it->second != 1 || (key >> 32) == (key & 0xffffffffu)) {
-        r.message = "not closed, manifold and consistently oriented (directed edge used " +
-                    std::to_string(count) + "x, reverse " +
-                    std::to_string(it == directed.end() ? 0u : it->second) + "x)";
+        r.message = "not closed, manifold and consistently oriented (directed edge used " + std::to_string(count) +
+                    "x, reverse " + std::to_string(it == directed.end() ? 0u : it->second) + "x)";
         return r;
       }
     }
@@ -270,7 +269,10 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
       planes.push_back({c, -dot(c, P[t[0]])});
       any = true;
     }
-    if (any) ++r.non_planar_faces; else ++r.degenerate_faces;
+    if (any)
+      ++r.non_planar_faces;
+    else
+      ++r.degenerate_faces;
   }
   r.planes = planes.size();
 
@@ -283,8 +285,7 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
       while (CGAL::is_zero(p.n[lead])) ++lead;
       CGAL::Gmpq s = to_gmpq(p.n[lead]);
       s = CGAL::abs(s);
-      std::array<CGAL::Gmpq, 4> key{to_gmpq(p.n[0]) / s, to_gmpq(p.n[1]) / s, to_gmpq(p.n[2]) / s,
-                                    to_gmpq(p.d) / s};
+      std::array<CGAL::Gmpq, 4> key{to_gmpq(p.n[0]) / s, to_gmpq(p.n[1]) / s, to_gmpq(p.n[2]) / s, to_gmpq(p.d) / s};
       if (seen.emplace(std::move(key), unique.size()).second) unique.push_back(p);
     }
     planes.swap(unique);
@@ -347,24 +348,21 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
         break;
       }
   }
-  Epeck::Point_3 origin = rounded_inside
-                              ? Epeck::Point_3(r.interior[0], r.interior[1], r.interior[2])
-                              : Epeck::Point_3(to_eft(x[0]), to_eft(x[1]), to_eft(x[2]));
+  Epeck::Point_3 origin = rounded_inside ? Epeck::Point_3(r.interior[0], r.interior[1], r.interior[2])
+                                         : Epeck::Point_3(to_eft(x[0]), to_eft(x[1]), to_eft(x[2]));
   std::vector<Epeck::Plane_3> eplanes;
   eplanes.reserve(planes.size());
   for (const Plane& p : planes)
     eplanes.emplace_back(to_eft(to_gmpq(p.n[0])), to_eft(to_gmpq(p.n[1])), to_eft(to_gmpq(p.n[2])),
                          to_eft(to_gmpq(p.d)));
   CGAL::Surface_mesh<Epeck::Point_3> K;
-  CGAL::halfspace_intersection_3(eplanes.begin(), eplanes.end(), K,
-                                 boost::optional<Epeck::Point_3>(origin));
+  CGAL::halfspace_intersection_3(eplanes.begin(), eplanes.end(), K, boost::optional<Epeck::Point_3>(origin));
 
   // Distinct vertices (exact comparison).
   using VI = CGAL::Surface_mesh<Epeck::Point_3>::Vertex_index;
   std::vector<VI> order(K.vertices().begin(), K.vertices().end());
-  std::sort(order.begin(), order.end(), [&](VI a, VI b) {
-    return CGAL::compare_xyz(K.point(a), K.point(b)) == CGAL::SMALLER;
-  });
+  std::sort(order.begin(), order.end(),
+            [&](VI a, VI b) { return CGAL::compare_xyz(K.point(a), K.point(b)) == CGAL::SMALLER; });
   std::vector<size_t> id(K.number_of_vertices() + 1, 0);
   std::vector<std::array<double, 3>> pos;
   for (size_t i = 0; i < order.size(); ++i) {

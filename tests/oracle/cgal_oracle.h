@@ -35,18 +35,18 @@ struct OracleOptions {
 };
 
 struct OracleResult {
-  bool ok = false;               // false: the oracle could not run (message says why)
+  bool ok = false;  // false: the oracle could not run (message says why)
   std::string message;
   Verdict verdict = Verdict::Empty;
-  double t_star = 0;             // LP optimum (double approximation)
+  double t_star = 0;                 // LP optimum (double approximation)
   std::array<double, 3> interior{};  // Full: a strictly interior point (double approximation)
-  bool flipped = false;          // enclosed volume was negative: planes flipped
-  double shape_volume = 0;       // |enclosed volume| (double approximation of the exact sum)
+  bool flipped = false;              // enclosed volume was negative: planes flipped
+  double shape_volume = 0;           // |enclosed volume| (double approximation of the exact sum)
   size_t faces = 0, degenerate_faces = 0, non_planar_faces = 0;
-  size_t planes = 0;             // planes fed to the LP (one per face or fan triangle)
-  size_t distinct_planes = 0;    // after exact deduplication (same oriented plane)
-  bool has_polyhedron = false;   // Full and build_polyhedron
-  double volume = 0;             // kernel volume (Full)
+  size_t planes = 0;                // planes fed to the LP (one per face or fan triangle)
+  size_t distinct_planes = 0;       // after exact deduplication (same oriented plane)
+  bool has_polyhedron = false;      // Full and build_polyhedron
+  double volume = 0;                // kernel volume (Full)
   size_t vertices = 0, facets = 0;  // distinct kernel vertices, kernel facets (Full)
   double ms_planes = 0, ms_lp = 0, ms_hull = 0;
 };

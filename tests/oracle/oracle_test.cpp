@@ -91,12 +91,13 @@ struct SetReport {
   }
   void print() const {
     std::ostringstream os;
-    os << "[" << name << "] " << meshes << " meshes: " << agree << " agree with the oracle, "
-       << mismatches.size() << " mismatches; verdicts empty/flat/full = " << empty << "/" << flat << "/"
-       << full << ", rejected by validation " << rejected;
+    os << "[" << name << "] " << meshes << " meshes: " << agree << " agree with the oracle, " << mismatches.size()
+       << " mismatches; verdicts empty/flat/full = " << empty << "/" << flat << "/" << full
+       << ", rejected by validation " << rejected;
     if (deferred) os << ", " << deferred << " above " << kMaxDefaultFaces << " faces left to the long test";
     os << "\n  time: ours " << ms_ours << " ms, oracle " << ms_oracle << " ms";
-    if (!worst_file.empty()) os << "\n  largest relative volume difference " << worst_rel_volume << " (" << worst_file << ")";
+    if (!worst_file.empty())
+      os << "\n  largest relative volume difference " << worst_rel_volume << " (" << worst_file << ")";
     for (const auto& n : notes) os << "\n  note: " << n;
     for (const auto& m : mismatches) os << "\n  MISMATCH " << m;
     std::printf("%s\n", os.str().c_str());
@@ -151,8 +152,9 @@ void check_mesh(const fs::path& file, SetReport& rep, size_t max_faces) {
   const Verdict v = verdict_of(ours.type);
   (ref.verdict == Verdict::Empty ? rep.empty : ref.verdict == Verdict::Flat ? rep.flat : rep.full)++;
   if (v != ref.verdict || ours.type == kergen::KernelType::Unbounded || !ours.complete)
-    rep.mismatch(rel, std::string("ours ") + kergen::kernel_type_name(ours.type) + (ours.complete ? "" : " (incomplete)") +
-                          ", oracle " + kergen_oracle::verdict_name(ref.verdict) + " (t* = " + std::to_string(ref.t_star) + ")");
+    rep.mismatch(rel, std::string("ours ") + kergen::kernel_type_name(ours.type) +
+                          (ours.complete ? "" : " (incomplete)") + ", oracle " +
+                          kergen_oracle::verdict_name(ref.verdict) + " (t* = " + std::to_string(ref.t_star) + ")");
 
   if (v == Verdict::Full && ref.verdict == Verdict::Full && ref.has_polyhedron) {
     const double diag = kergen_oracle::bbox_diagonal(rr.mesh);
@@ -171,13 +173,15 @@ void check_mesh(const fs::path& file, SetReport& rep, size_t max_faces) {
       os << " E " << ours.num_edges() << " vs " << ref.vertices + ref.facets - 2 << ";";
     if (!os.str().empty()) rep.mismatch(rel, "polyhedron differs:" + os.str());
   } else if (v != Verdict::Full) {
-    if (ours.volume != 0.0) rep.mismatch(rel, "a kernel that is not a polyhedron has volume " + std::to_string(ours.volume));
+    if (ours.volume != 0.0)
+      rep.mismatch(rel, "a kernel that is not a polyhedron has volume " + std::to_string(ours.volume));
   }
 
   if (label == "yes" || label == "no") {
     const bool star = label == "yes";
     if ((v != Verdict::Empty) != star) rep.mismatch(rel, "ours disagrees with labels.tsv star_shaped=" + label);
-    if ((ref.verdict != Verdict::Empty) != star) rep.mismatch(rel, "oracle disagrees with labels.tsv star_shaped=" + label);
+    if ((ref.verdict != Verdict::Empty) != star)
+      rep.mismatch(rel, "oracle disagrees with labels.tsv star_shaped=" + label);
   }
   if (rep.mismatches.size() == before) ++rep.agree;
 }
@@ -198,9 +202,9 @@ std::vector<fs::path> files_in(const fs::path& dir, const std::string& ext) {
   return out;
 }
 
-#define REQUIRE_MESHES(sub)                                                                     \
-  if (!fs::is_directory(kMeshes / (sub)))                                                      \
-  GTEST_SKIP() << "shared mesh folder " << (kMeshes / (sub)).string()                           \
+#define REQUIRE_MESHES(sub)                                           \
+  if (!fs::is_directory(kMeshes / (sub)))                             \
+  GTEST_SKIP() << "shared mesh folder " << (kMeshes / (sub)).string() \
                << " not found (set -DKERGEN_SHARED_MESHES=...); oracle test not run"
 
 void run_set(const std::string& name, const std::vector<fs::path>& files, size_t max_faces) {
@@ -287,9 +291,10 @@ void run_labels(size_t max_faces) {
     if (!has_verdict) {
       ++skipped_rows;
       if (label.rfind("skip", 0) == 0) {
-        EXPECT_TRUE(is_input_error(kp.error)) << rel << " (" << label << "): expected an input error, got "
-                                              << kergen::error_name(kp.error);
-        if (!is_input_error(kp.error)) mismatches.push_back(rel + ": labelled skip, our verdict " + kergen::error_name(kp.error));
+        EXPECT_TRUE(is_input_error(kp.error))
+            << rel << " (" << label << "): expected an input error, got " << kergen::error_name(kp.error);
+        if (!is_input_error(kp.error))
+          mismatches.push_back(rel + ": labelled skip, our verdict " + kergen::error_name(kp.error));
       }
       continue;
     }
@@ -304,11 +309,11 @@ void run_labels(size_t max_faces) {
     EXPECT_EQ(kp.star_shaped, star) << rel << ": ours vs label " << label;
     if (!ref.ok || (ref.verdict != Verdict::Empty) != star) mismatches.push_back(rel + ": oracle vs label " + label);
     if (kp.error != kergen::Error::Ok || kp.star_shaped != star)
-      mismatches.push_back(rel + ": ours (" + kergen::error_name(kp.error) + ", star=" + (kp.star_shaped ? "yes" : "no") +
-                           ") vs label " + label);
+      mismatches.push_back(rel + ": ours (" + kergen::error_name(kp.error) +
+                           ", star=" + (kp.star_shaped ? "yes" : "no") + ") vs label " + label);
   }
-  std::printf("[labels.tsv] %zu verdicts checked, %zu rows without verdict, %zu in formats we do not read",
-              checked, skipped_rows, unreadable);
+  std::printf("[labels.tsv] %zu verdicts checked, %zu rows without verdict, %zu in formats we do not read", checked,
+              skipped_rows, unreadable);
   if (max_faces != SIZE_MAX) std::printf(", %zu above %zu faces left to the long test", deferred, max_faces);
   std::printf("; %zu mismatches\n", mismatches.size());
   for (const auto& m : mismatches) std::printf("  MISMATCH %s\n", m.c_str());
@@ -355,7 +360,7 @@ struct Analytic {
   double volume;
   size_t V, F;
   kergen::KernelType type = kergen::KernelType::Polyhedron;  // expected of our code
-  double area = 0;                                            // expected for a Polygon kernel
+  double area = 0;                                           // expected for a Polygon kernel
 };
 
 std::vector<Analytic> analytic_cases() {
@@ -368,7 +373,7 @@ std::vector<Analytic> analytic_cases() {
   const std::vector<std::array<double, 2>> u{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
   // Plus with arm half-width w = 0.25 (arms to +-1): kernel is the central square -> 4 w^2 * h.
   const double w = 0.25;
-  const std::vector<std::array<double, 2>> plus{{w, -1}, {w, -w}, {1, -w}, {1, w}, {w, w}, {w, 1},
+  const std::vector<std::array<double, 2>> plus{{w, -1}, {w, -w}, {1, -w}, {1, w},   {w, w},   {w, 1},
                                                 {-w, 1}, {-w, w}, {-1, w}, {-1, -w}, {-w, -w}, {-w, -1}};
   std::vector<Analytic> c;
   c.push_back({"unit cube", prism(square, 1), Verdict::Full, 1.0, 8, 6});
@@ -421,14 +426,18 @@ TEST(OracleSelfCheck, AnalyticMeshes) {
 // the exact kernel has many tiny features (vertices ~1e-16 apart). This once exposed a culling
 // miss (a support query stuck on a rounding-level plateau); no shared mesh shows it.
 TEST(OracleGenerated, NearConvexSpheres) {
-  struct Case { int nu, nv; double twist; };
+  struct Case {
+    int nu, nv;
+    double twist;
+  };
   const Case cases[] = {{12, 6, 0}, {20, 10, 0}, {24, 12, 0.05}, {40, 20, 0}, {33, 17, 0.013}};
   int checked = 0;
   for (const Case& c : cases) {
     kergen::Mesh m = kergen_test::uv_sphere(c.nu, c.nv, c.twist);
     kergen::Kernel ours = kergen::compute_kernel(m.view());
     kergen_oracle::OracleResult ref = kergen_oracle::oracle_kernel(m);
-    std::string name = "uv_sphere(" + std::to_string(c.nu) + "," + std::to_string(c.nv) + "," + std::to_string(c.twist) + ")";
+    std::string name =
+        "uv_sphere(" + std::to_string(c.nu) + "," + std::to_string(c.nv) + "," + std::to_string(c.twist) + ")";
     ASSERT_TRUE(ours.ok()) << name << ": " << ours.message;
     ASSERT_TRUE(ref.ok && ref.verdict == Verdict::Full && ref.has_polyhedron) << name << ": " << ref.message;
     EXPECT_EQ(ours.type, kergen::KernelType::Polyhedron) << name;

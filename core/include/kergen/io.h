@@ -26,8 +26,8 @@
 namespace kergen {
 
 struct ReadResult {
-  Error error = Error::Ok;         // Ok, IoError, ParseError, EmptyInput, TooLarge
-  std::string message;             // "<file>:<line>: <reason>"
+  Error error = Error::Ok;  // Ok, IoError, ParseError, EmptyInput, TooLarge
+  std::string message;      // "<file>:<line>: <reason>"
   Mesh mesh;
   bool ok() const { return error == Error::Ok; }
 };

@@ -62,15 +62,15 @@ enum class KernelType : int {
                // clipped to a large box around the mesh (box facets are reported as such)
 };
 
-const char* error_name(Error e);        // "OPEN_MESH", ...
+const char* error_name(Error e);             // "OPEN_MESH", ...
 const char* kernel_type_name(KernelType t);  // "POLYHEDRON", ...
 
 // ---------------------------------------------------------------------------------------------
 // Input. A non-owning view; the arrays must outlive the call.
 struct MeshView {
-  const double* positions = nullptr;   // xyz, 3 * num_vertices
+  const double* positions = nullptr;  // xyz, 3 * num_vertices
   size_t num_vertices = 0;
-  const uint32_t* indices = nullptr;   // concatenated face loops
+  const uint32_t* indices = nullptr;  // concatenated face loops
   size_t num_indices = 0;
   const uint32_t* face_sizes = nullptr;  // nullptr = triangles (num_indices / 3 faces)
   size_t num_faces = 0;                  // used only when face_sizes != nullptr
@@ -108,10 +108,10 @@ struct Mesh {
 struct StepEvent {
   enum class Kind : uint8_t { Vertex, Edge, Face };
   Kind kind = Kind::Vertex;
-  uint32_t id = 0;                 // index into Kernel::vertices / edges / faces of the result
-  uint32_t a = 0, b = 0;           // Edge: endpoint vertex ids
+  uint32_t id = 0;                   // index into Kernel::vertices / edges / faces of the result
+  uint32_t a = 0, b = 0;             // Edge: endpoint vertex ids
   std::array<double, 3> position{};  // Vertex: coordinates
-  const uint32_t* loop = nullptr;  // Face: vertex ids, CCW from outside (valid during the call)
+  const uint32_t* loop = nullptr;    // Face: vertex ids, CCW from outside (valid during the call)
   uint32_t loop_size = 0;
 };
 // Return false to stop; the result then holds the partial kernel reported so far (see above).
@@ -143,13 +143,13 @@ struct Options {
   // and expand the vertex nearest to it first, so the kernel grows around it.
   bool has_from = false;
   std::array<double, 3> from{};
-  StepCallback on_step;            // optional
-  ProgressCallback on_progress;    // optional
-  uint64_t max_steps = 0;          // stop after this many events (0 = no limit)
-  bool allow_open = false;         // accept meshes with holes: result may be Unbounded
-  bool deepest_point = false;      // also compute the centre of the largest inscribed ball
-  uint64_t seed = 0x4b6572476e;    // LP constraint order (results do not depend on it)
-  size_t max_faces = 20'000'000;   // larger inputs get Error::TooLarge instead of exhausting memory
+  StepCallback on_step;           // optional
+  ProgressCallback on_progress;   // optional
+  uint64_t max_steps = 0;         // stop after this many events (0 = no limit)
+  bool allow_open = false;        // accept meshes with holes: result may be Unbounded
+  bool deepest_point = false;     // also compute the centre of the largest inscribed ball
+  uint64_t seed = 0x4b6572476e;   // LP constraint order (results do not depend on it)
+  size_t max_faces = 20'000'000;  // larger inputs get Error::TooLarge instead of exhausting memory
   size_t max_vertices = 20'000'000;
   // Large closed meshes: drop the faces whose planes cannot reach the kernel (they hold the
   // kernel of a sample of faces strictly) before coplanar faces are merged into planes. The
@@ -159,10 +159,10 @@ struct Options {
 
 struct Warning {
   enum class Kind : int {
-    OrientationFlipped,    // faces were clockwise seen from outside; the mesh was flipped
+    OrientationFlipped,      // faces were clockwise seen from outside; the mesh was flipped
     DegenerateFacesDropped,  // zero-area faces (exactly collinear vertices) were ignored
-    NonPlanarFacesSplit,   // polygons whose vertices are not coplanar were split into triangles
-    UnusedVertices,        // vertices not referenced by any face
+    NonPlanarFacesSplit,     // polygons whose vertices are not coplanar were split into triangles
+    UnusedVertices,          // vertices not referenced by any face
   };
   Kind kind;
   size_t count;
@@ -176,12 +176,13 @@ const char* warning_kind_name(Warning::Kind k);
 struct Stats {
   size_t input_vertices = 0;
   size_t input_faces = 0;
-  size_t dropped_faces = 0;        // zero-area faces
-  size_t culled_faces = 0;         // faces dropped before planes are merged: their planes cannot reach the kernel
-  size_t distinct_planes = 0;      // after merging the other faces' coplanar planes (a plane used from both sides counts twice)
-  size_t active_planes = 0;        // planes left after culling (those that can touch the kernel)
+  size_t dropped_faces = 0;  // zero-area faces
+  size_t culled_faces = 0;   // faces dropped before planes are merged: their planes cannot reach the kernel
+  size_t distinct_planes =
+      0;  // after merging the other faces' coplanar planes (a plane used from both sides counts twice)
+  size_t active_planes = 0;  // planes left after culling (those that can touch the kernel)
   size_t traced_lines = 0;
-  size_t exact_fallbacks = 0;      // predicate evaluations the floating-point filter could not decide
+  size_t exact_fallbacks = 0;  // predicate evaluations the floating-point filter could not decide
   double ms_validate = 0, ms_planes = 0, ms_lp = 0, ms_trace = 0, ms_assemble = 0, ms_total = 0;
 };
 
@@ -195,22 +196,22 @@ std::array<StatsField, 14> stats_fields(const Stats& s);
 
 struct Kernel {
   Error error = Error::Ok;
-  std::string message;             // human-readable reason when error != Ok
+  std::string message;  // human-readable reason when error != Ok
   KernelType type = KernelType::Empty;
-  bool complete = true;            // false when stopped early by on_step / max_steps
+  bool complete = true;  // false when stopped early by on_step / max_steps
 
-  std::vector<double> vertices;    // xyz, 3 * V
-  std::vector<uint32_t> edges;     // vertex id pairs, 2 * E
+  std::vector<double> vertices;        // xyz, 3 * V
+  std::vector<uint32_t> edges;         // vertex id pairs, 2 * E
   std::vector<uint32_t> face_indices;  // concatenated convex polygon loops, CCW from outside
   std::vector<uint32_t> face_sizes;    // one per face
   std::vector<uint32_t> triangles;     // the faces fan-triangulated, 3 * T (ready for rendering)
 
-  double volume = 0;               // kernel volume (0 unless Polyhedron and complete)
-  double area = 0;                 // kernel surface area (Polygon: the polygon's area)
-  double shape_volume = 0;         // volume enclosed by the input mesh
-  double volume_ratio = 0;         // volume / shape_volume
+  double volume = 0;        // kernel volume (0 unless Polyhedron and complete)
+  double area = 0;          // kernel surface area (Polygon: the polygon's area)
+  double shape_volume = 0;  // volume enclosed by the input mesh
+  double volume_ratio = 0;  // volume / shape_volume
 
-  bool has_kernel_point = false;   // the LP vertex (a kernel vertex); false when Empty
+  bool has_kernel_point = false;  // the LP vertex (a kernel vertex); false when Empty
   std::array<double, 3> kernel_point{};
   bool has_deepest_point = false;  // with Options::deepest_point and a full-dimensional kernel
   std::array<double, 3> deepest_point{};
@@ -232,8 +233,8 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options = {});
 struct KernelPoint {
   Error error = Error::Ok;
   std::string message;
-  bool star_shaped = false;        // kernel non-empty
-  std::array<double, 3> point{};   // a kernel vertex (when star_shaped)
+  bool star_shaped = false;       // kernel non-empty
+  std::array<double, 3> point{};  // a kernel vertex (when star_shaped)
   std::vector<Warning> warnings;
 };
 KernelPoint find_kernel_point(const MeshView& mesh, const Options& options = {});
@@ -243,7 +244,7 @@ struct Validation {
   Error error = Error::Ok;
   std::string message;
   std::vector<Warning> warnings;
-  double volume = 0;               // enclosed volume after any orientation fix
+  double volume = 0;  // enclosed volume after any orientation fix
 };
 Validation validate_mesh(const MeshView& mesh, const Options& options = {});
 

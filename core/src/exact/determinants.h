@@ -10,8 +10,8 @@
 namespace kergen {
 
 template <class T>
-T det3(const T& a0, const T& a1, const T& a2, const T& b0, const T& b1, const T& b2, const T& c0,
-       const T& c1, const T& c2) {
+T det3(const T& a0, const T& a1, const T& a2, const T& b0, const T& b1, const T& b2, const T& c0, const T& c1,
+       const T& c2) {
   return a0 * (b1 * c2 - b2 * c1) - a1 * (b0 * c2 - b2 * c0) + a2 * (b0 * c1 - b1 * c0);
 }
 // The filtered determinant, the hottest formula of the LP and of vertex construction, with one
@@ -42,8 +42,7 @@ T det3_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>&
 // n_p x n_q: the direction of the line of planes p and q.
 template <class T>
 std::array<T, 3> cross_normals(const PlaneCoef<T>& p, const PlaneCoef<T>& q) {
-  return {p.n[1] * q.n[2] - p.n[2] * q.n[1], p.n[2] * q.n[0] - p.n[0] * q.n[2],
-          p.n[0] * q.n[1] - p.n[1] * q.n[0]};
+  return {p.n[1] * q.n[2] - p.n[2] * q.n[1], p.n[2] * q.n[0] - p.n[0] * q.n[2], p.n[0] * q.n[1] - p.n[1] * q.n[0]};
 }
 
 }  // namespace kergen

@@ -2,12 +2,13 @@
 // Robust Geometric Predicates", Discrete & Computational Geometry 18 (1997): two_sum /
 // two_product error-free transformations, zero-eliminating expansion sum and scaling, compression.
 #include "exact/expansion.h"
-#include "exact/wide_product.h"
 
 #include <algorithm>
 #include <cassert>
 #include <cstdint>
 #include <cstring>
+
+#include "exact/wide_product.h"
 
 namespace kergen {
 namespace exact {
@@ -17,22 +18,43 @@ namespace {
 // h = e + f (zero-eliminating), Shewchuk's fast_expansion_sum_zeroelim; h has room for
 // elen + flen components and may not alias e or f. Returns the length of h.
 size_t expansion_sum(const double* e, size_t elen, const double* f, size_t flen, double* h) {
-  if (elen == 0) { for (size_t i = 0; i < flen; ++i) h[i] = f[i]; return flen; }
-  if (flen == 0) { for (size_t i = 0; i < elen; ++i) h[i] = e[i]; return elen; }
+  if (elen == 0) {
+    for (size_t i = 0; i < flen; ++i) h[i] = f[i];
+    return flen;
+  }
+  if (flen == 0) {
+    for (size_t i = 0; i < elen; ++i) h[i] = e[i];
+    return elen;
+  }
   size_t hlen = 0;
   double Q, Qnew, hh;
   size_t ei = 0, fi = 0;
   double enow = e[0], fnow = f[0];
-  if ((fnow > enow) == (fnow > -enow)) { Q = enow; enow = (++ei < elen) ? e[ei] : 0; }
-  else { Q = fnow; fnow = (++fi < flen) ? f[fi] : 0; }
+  if ((fnow > enow) == (fnow > -enow)) {
+    Q = enow;
+    enow = (++ei < elen) ? e[ei] : 0;
+  } else {
+    Q = fnow;
+    fnow = (++fi < flen) ? f[fi] : 0;
+  }
   if (ei < elen && fi < flen) {
-    if ((fnow > enow) == (fnow > -enow)) { fast_two_sum(enow, Q, Qnew, hh); enow = (++ei < elen) ? e[ei] : 0; }
-    else { fast_two_sum(fnow, Q, Qnew, hh); fnow = (++fi < flen) ? f[fi] : 0; }
+    if ((fnow > enow) == (fnow > -enow)) {
+      fast_two_sum(enow, Q, Qnew, hh);
+      enow = (++ei < elen) ? e[ei] : 0;
+    } else {
+      fast_two_sum(fnow, Q, Qnew, hh);
+      fnow = (++fi < flen) ? f[fi] : 0;
+    }
     Q = Qnew;
     if (hh != 0) h[hlen++] = hh;
     while (ei < elen && fi < flen) {
-      if ((fnow > enow) == (fnow > -enow)) { two_sum(Q, enow, Qnew, hh); enow = (++ei < elen) ? e[ei] : 0; }
-      else { two_sum(Q, fnow, Qnew, hh); fnow = (++fi < flen) ? f[fi] : 0; }
+      if ((fnow > enow) == (fnow > -enow)) {
+        two_sum(Q, enow, Qnew, hh);
+        enow = (++ei < elen) ? e[ei] : 0;
+      } else {
+        two_sum(Q, fnow, Qnew, hh);
+        fnow = (++fi < flen) ? f[fi] : 0;
+      }
       Q = Qnew;
       if (hh != 0) h[hlen++] = hh;
     }
@@ -141,7 +163,6 @@ bool to_common_grid(const double (&x)[n], int max_bits, int64_t (&q)[n]) {
   }
   return (fractions << 1) == 0;
 }
-
 
 // Sign of det3(u, v, w) for integer rows with every |entry| < 2^62, exactly.
 // Bounds: each 2x2 minor is a difference of two products below 2^124, so below 2^125 in
@@ -282,9 +303,10 @@ int orient3d_adaptive(const double* a, const double* b, const double* c, const d
   if (det >= bound_b || -det >= bound_b) return det > 0 ? 1 : (det < 0 ? -1 : 0);  // bound 0: det exact
   // Stage C: the first-order terms of the difference tails, in floating point.
   const double bound_c = (26.0 + 288.0 * kEps) * kEps * kEps * permanent + (3.0 + 8.0 * kEps) * kEps * std::fabs(det);
-  det += (u[2] * ((v[0] * wt[1] + w[1] * vt[0]) - (v[1] * wt[0] + w[0] * vt[1])) + ut[2] * (v[0] * w[1] - v[1] * w[0])) +
-         (v[2] * ((w[0] * ut[1] + u[1] * wt[0]) - (w[1] * ut[0] + u[0] * wt[1])) + vt[2] * (w[0] * u[1] - w[1] * u[0])) +
-         (w[2] * ((u[0] * vt[1] + v[1] * ut[0]) - (u[1] * vt[0] + v[0] * ut[1])) + wt[2] * (u[0] * v[1] - u[1] * v[0]));
+  det +=
+      (u[2] * ((v[0] * wt[1] + w[1] * vt[0]) - (v[1] * wt[0] + w[0] * vt[1])) + ut[2] * (v[0] * w[1] - v[1] * w[0])) +
+      (v[2] * ((w[0] * ut[1] + u[1] * wt[0]) - (w[1] * ut[0] + u[0] * wt[1])) + vt[2] * (w[0] * u[1] - w[1] * u[0])) +
+      (w[2] * ((u[0] * vt[1] + v[1] * ut[0]) - (u[1] * vt[0] + v[0] * ut[1])) + wt[2] * (u[0] * v[1] - u[1] * v[0]));
   if (det >= bound_c || -det >= bound_c) return det > 0 ? 1 : (det < 0 ? -1 : 0);
   return 2;
 }
@@ -300,8 +322,11 @@ void Expansion::compress() {
   size_t bottom = n - 1;
   for (size_t i = n - 1; i-- > 0;) {
     fast_two_sum(Q, p_[i], Qnew, q);
-    if (q != 0) { g[bottom--] = Qnew; Q = q; }
-    else Q = Qnew;
+    if (q != 0) {
+      g[bottom--] = Qnew;
+      Q = q;
+    } else
+      Q = Qnew;
   }
   size_t top = 0;
   for (size_t i = bottom + 1; i < n; ++i) {

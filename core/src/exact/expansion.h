@@ -18,7 +18,7 @@ namespace kergen {
 namespace exact {
 
 constexpr double kEps = 1.1102230246251565e-16;  // 2^-53, unit roundoff
-constexpr double kU2 = kEps * kEps;  // 2^-106: double-double rounding scale
+constexpr double kU2 = kEps * kEps;              // 2^-106: double-double rounding scale
 // Inflation applied to every bound so the bound's own rounding never makes it too small; the
 // absolute floor covers underflow in products of tiny values.
 constexpr double kBoundScale = 1.0 + 8 * kEps;
@@ -62,11 +62,22 @@ inline void two_product(double a, double b, double& x, double& y) {
 class Expansion {
  public:
   Expansion() = default;
-  explicit Expansion(double x) { if (x != 0) { p_[0] = x; n_ = 1; } }
+  explicit Expansion(double x) {
+    if (x != 0) {
+      p_[0] = x;
+      n_ = 1;
+    }
+  }
   Expansion(const Expansion& o) { assign(o.p_, o.n_); }
   Expansion(Expansion&& o) noexcept { take(std::move(o)); }
-  Expansion& operator=(const Expansion& o) { if (this != &o) assign(o.p_, o.n_); return *this; }
-  Expansion& operator=(Expansion&& o) noexcept { if (this != &o) take(std::move(o)); return *this; }
+  Expansion& operator=(const Expansion& o) {
+    if (this != &o) assign(o.p_, o.n_);
+    return *this;
+  }
+  Expansion& operator=(Expansion&& o) noexcept {
+    if (this != &o) take(std::move(o));
+    return *this;
+  }
 
   int sign() const { return n_ == 0 ? 0 : (p_[n_ - 1] > 0 ? 1 : -1); }
   double estimate() const;  // the value rounded (nearly correctly) to a double
@@ -87,8 +98,12 @@ class Expansion {
   // Components live inline up to kInline (no allocation for the common small predicates).
   static constexpr size_t kInline = 24;
   double* reserve(size_t cap) {
-    if (cap <= kInline) { p_ = buf_; }
-    else { if (heap_.size() < cap) heap_.resize(cap); p_ = heap_.data(); }
+    if (cap <= kInline) {
+      p_ = buf_;
+    } else {
+      if (heap_.size() < cap) heap_.resize(cap);
+      p_ = heap_.data();
+    }
     return p_;
   }
   void assign(const double* src, size_t n) {
@@ -97,8 +112,15 @@ class Expansion {
     n_ = n;
   }
   void take(Expansion&& o) {
-    if (o.p_ == o.buf_) { assign(o.p_, o.n_); }
-    else { heap_ = std::move(o.heap_); p_ = heap_.data(); n_ = o.n_; o.p_ = o.buf_; o.n_ = 0; }
+    if (o.p_ == o.buf_) {
+      assign(o.p_, o.n_);
+    } else {
+      heap_ = std::move(o.heap_);
+      p_ = heap_.data();
+      n_ = o.n_;
+      o.p_ = o.buf_;
+      o.n_ = 0;
+    }
   }
 
   double buf_[kInline];

@@ -136,7 +136,10 @@ inline int sign_det3_on_line(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_
   const double *X = ps.point(x), *Y = ps.point(y);
   uint32_t w = kNoPlane;
   for (uint32_t r : ps.rep(b))
-    if (r != x && r != y && !collinear(X, Y, ps.point(r), shift)) { w = r; break; }
+    if (r != x && r != y && !collinear(X, Y, ps.point(r), shift)) {
+      w = r;
+      break;
+    }
   if (w == kNoPlane) return 2;
   const double* W = ps.point(w);
   // s: n_b is parallel to d x e, so n_b . (d x e) = +-|n_b||d x e| has no cancellation.
@@ -190,7 +193,8 @@ void on_line(const PlaneCoef<T>& c, const double* X, const double* Y, T num[3], 
 // num = x den - f_c(x) u and den = n_c . u = det3(n_a, n_b, n_c) (Cramer's degrees, but about a
 // third of its products, and f_c(x) stays accurate when the vertex is near x).
 template <class T>
-void on_point_line(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, const double* X, T num[3], T& den) {
+void on_point_line(const PlaneCoef<T>& a, const PlaneCoef<T>& b, const PlaneCoef<T>& c, const double* X, T num[3],
+                   T& den) {
   const std::array<T, 3> u = cross_normals(a, b);
   den = c.n[0] * u[0] + c.n[1] * u[1] + c.n[2] * u[2];
   const T fx = plane_value(c, X);

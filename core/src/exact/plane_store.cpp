@@ -27,10 +27,14 @@ void PlaneSet::add_from_triangles(const std::array<uint32_t, 3>* tri, const uint
     const PlaneCoef<Approx> p = plane_from_points<Approx>(point(t[0]), point(t[1]), point(t[2]));
     const size_t i = first + k;
     rep_[i] = t;
-    nx_[i] = p.n[0].v; enx_[i] = p.n[0].e;
-    ny_[i] = p.n[1].v; eny_[i] = p.n[1].e;
-    nz_[i] = p.n[2].v; enz_[i] = p.n[2].e;
-    d_[i] = p.d.v; ed_[i] = p.d.e;
+    nx_[i] = p.n[0].v;
+    enx_[i] = p.n[0].e;
+    ny_[i] = p.n[1].v;
+    eny_[i] = p.n[1].e;
+    nz_[i] = p.n[2].v;
+    enz_[i] = p.n[2].e;
+    d_[i] = p.d.v;
+    ed_[i] = p.d.e;
     opposite_[i] = kNoPlane;
   }
 }
@@ -49,10 +53,14 @@ void PlaneSet::keep_staged(const std::array<uint32_t, 3>* tri, const uint32_t* w
   for (size_t k = 0; k < n; ++k) {
     const size_t i = first + k, j = first + which[k];
     rep_[i] = tri[which[k]];
-    nx_[i] = nx_[j]; enx_[i] = enx_[j];
-    ny_[i] = ny_[j]; eny_[i] = eny_[j];
-    nz_[i] = nz_[j]; enz_[i] = enz_[j];
-    d_[i] = d_[j]; ed_[i] = ed_[j];
+    nx_[i] = nx_[j];
+    enx_[i] = enx_[j];
+    ny_[i] = ny_[j];
+    eny_[i] = eny_[j];
+    nz_[i] = nz_[j];
+    enz_[i] = enz_[j];
+    d_[i] = d_[j];
+    ed_[i] = ed_[j];
     opposite_[i] = kNoPlane;
   }
   for (auto* v : {&nx_, &ny_, &nz_, &d_, &enx_, &eny_, &enz_, &ed_}) v->resize(first + n);
@@ -60,10 +68,14 @@ void PlaneSet::keep_staged(const std::array<uint32_t, 3>* tri, const uint32_t* w
 
 uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
   rep_.push_back({kNoPlane, kNoPlane, kNoPlane});
-  nx_.push_back(nx); enx_.push_back(0);
-  ny_.push_back(ny); eny_.push_back(0);
-  nz_.push_back(nz); enz_.push_back(0);
-  d_.push_back(d); ed_.push_back(0);
+  nx_.push_back(nx);
+  enx_.push_back(0);
+  ny_.push_back(ny);
+  eny_.push_back(0);
+  nz_.push_back(nz);
+  enz_.push_back(0);
+  d_.push_back(d);
+  ed_.push_back(0);
   opposite_.push_back(kNoPlane);
   return uint32_t(size() - 1);
 }
@@ -71,8 +83,14 @@ uint32_t PlaneSet::add_explicit(double nx, double ny, double nz, double d) {
 void PlaneSet::pop_last() {
   const uint32_t i = uint32_t(size() - 1);
   rep_.pop_back();
-  nx_.pop_back(); ny_.pop_back(); nz_.pop_back(); d_.pop_back();
-  enx_.pop_back(); eny_.pop_back(); enz_.pop_back(); ed_.pop_back();
+  nx_.pop_back();
+  ny_.pop_back();
+  nz_.pop_back();
+  d_.pop_back();
+  enx_.pop_back();
+  eny_.pop_back();
+  enz_.pop_back();
+  ed_.pop_back();
   opposite_.pop_back();
   exact_.erase(i);
   dd_.erase(i);
@@ -84,7 +102,9 @@ const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
     auto p = std::make_unique<PlaneCoef<Expansion>>();
     if (explicit_plane(i)) {
       // n . x + d = 0 in coordinates times 2^shift: n . x' + 2^shift d = 0.
-      p->n[0] = Expansion(nx_[i]); p->n[1] = Expansion(ny_[i]); p->n[2] = Expansion(nz_[i]);
+      p->n[0] = Expansion(nx_[i]);
+      p->n[1] = Expansion(ny_[i]);
+      p->n[2] = Expansion(nz_[i]);
       p->d = Expansion(std::ldexp(d_[i], exact_shift_));
     } else {
       Scaled a(point(rep_[i][0]), exact_shift_), b(point(rep_[i][1]), exact_shift_), c(point(rep_[i][2]), exact_shift_);
@@ -105,7 +125,6 @@ PlaneCoef<Expansion> exact_plane(const double* a, const double* b, const double*
   Scaled sa(a, shift), sb(b, shift), sc(c, shift);
   return plane_from_points<Expansion>(sa.v, sb.v, sc.v);
 }
-
 
 PlaneCoef<exact::ApproxDD> dd_plane(const double* a, const double* b, const double* c) {
   return plane_from_points<exact::ApproxDD>(a, b, c);

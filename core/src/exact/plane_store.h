@@ -36,7 +36,8 @@ constexpr int32_t kPointNotSearched = -2;
 class PlaneSet {
  public:
   // Input points (already scaled), referenced by index.
-  explicit PlaneSet(const std::vector<double>* points, int exact_shift = 0) : points_(points), exact_shift_(exact_shift) {}
+  explicit PlaneSet(const std::vector<double>* points, int exact_shift = 0)
+      : points_(points), exact_shift_(exact_shift) {}
   // Exact evaluations work on the points times 2^exact_shift (see PreparedMesh::exact_shift).
   int exact_shift() const { return exact_shift_; }
   // The extent of the shape (its bounding box's largest side, scaled units). Vertex coordinates
@@ -62,10 +63,14 @@ class PlaneSet {
   void stage(size_t n);
   void put(size_t j, const PlaneCoef<Approx>& c) {
     const size_t i = size() + j;
-    nx_[i] = c.n[0].v; enx_[i] = c.n[0].e;
-    ny_[i] = c.n[1].v; eny_[i] = c.n[1].e;
-    nz_[i] = c.n[2].v; enz_[i] = c.n[2].e;
-    d_[i] = c.d.v; ed_[i] = c.d.e;
+    nx_[i] = c.n[0].v;
+    enx_[i] = c.n[0].e;
+    ny_[i] = c.n[1].v;
+    eny_[i] = c.n[1].e;
+    nz_[i] = c.n[2].v;
+    enz_[i] = c.n[2].e;
+    d_[i] = c.d.v;
+    ed_[i] = c.d.e;
   }
   void keep_staged(const std::array<uint32_t, 3>* tri, const uint32_t* which, size_t n);
   uint32_t add_explicit(double nx, double ny, double nz, double d);
@@ -77,7 +82,10 @@ class PlaneSet {
 
   // Opposite plane (same geometric plane, inner side reversed), or kNoPlane.
   uint32_t opposite(uint32_t i) const { return opposite_[i]; }
-  void set_opposite(uint32_t i, uint32_t j) { opposite_[i] = j; opposite_[j] = i; }
+  void set_opposite(uint32_t i, uint32_t j) {
+    opposite_[i] = j;
+    opposite_[j] = i;
+  }
 
   // Incidence known by construction, as compressed rows (sorted, unique): the mesh vertices on
   // each plane (vertices of its faces). Planes added after set_incidence (bounding planes) have
@@ -108,7 +116,8 @@ class PlaneSet {
   const PlaneCoef<Expansion>& exact(uint32_t i) const;
   // Double-double coefficients (exact for explicit planes), computed on first use.
   const PlaneCoef<exact::ApproxDD>& dd(uint32_t i) const;
-  template <class T> PlaneCoef<T> coef(uint32_t i) const;
+  template <class T>
+  PlaneCoef<T> coef(uint32_t i) const;
 
   const double* point(uint32_t p) const { return &(*points_)[3 * size_t(p)]; }
   size_t num_points() const { return points_->size() / 3; }
@@ -140,9 +149,13 @@ class PlaneSet {
 };
 
 template <>
-inline PlaneCoef<Approx> PlaneSet::coef<Approx>(uint32_t i) const { return approx(i); }
+inline PlaneCoef<Approx> PlaneSet::coef<Approx>(uint32_t i) const {
+  return approx(i);
+}
 template <>
-inline PlaneCoef<Expansion> PlaneSet::coef<Expansion>(uint32_t i) const { return exact(i); }
+inline PlaneCoef<Expansion> PlaneSet::coef<Expansion>(uint32_t i) const {
+  return exact(i);
+}
 
 // Plane of an input triangle with error bounds, without adding it to a set (inline: the
 // per-face loops of plane classes and face culling call it once per face). One pass of doubles
@@ -161,7 +174,8 @@ inline PlaneCoef<Approx> approx_plane(const double* a, const double* b, const do
   for (int k = 0; k < 3; ++k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     const double p = u[i] * v[j], q = u[j] * v[i], n = p - q;
-    r.n[k] = Approx(n, (3 * kEps * (std::fabs(p) + std::fabs(q)) + kEps * std::fabs(n)) * kBoundScale + kUnderflowFloor);
+    r.n[k] =
+        Approx(n, (3 * kEps * (std::fabs(p) + std::fabs(q)) + kEps * std::fabs(n)) * kBoundScale + kUnderflowFloor);
   }
   const double p0 = r.n[0].v * a[0], p1 = r.n[1].v * a[1], p2 = r.n[2].v * a[2];
   const double s01 = p0 + p1, s = s01 + p2;

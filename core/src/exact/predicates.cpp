@@ -45,7 +45,8 @@ int sign_det3_vector(const PlaneSet& ps, const double v[3], uint32_t a, uint32_t
   if (s != 2) return s;
   ++ps.exact_fallbacks;
   const auto &ea = ps.exact(a), &eb = ps.exact(b);
-  return det3(Expansion(v[0]), Expansion(v[1]), Expansion(v[2]), ea.n[0], ea.n[1], ea.n[2], eb.n[0], eb.n[1], eb.n[2]).sign();
+  return det3(Expansion(v[0]), Expansion(v[1]), Expansion(v[2]), ea.n[0], ea.n[1], ea.n[2], eb.n[0], eb.n[1], eb.n[2])
+      .sign();
 }
 
 LineDirection::LineDirection(const PlaneSet& ps, uint32_t p, uint32_t q) : p(p), q(q) {

@@ -46,7 +46,8 @@ bool dd_coordinates(const ExactHomogeneous& h, int shift, exact::ApproxDD out[3]
     const double e = magnitude_above(rest2) / den_below * exact::kBoundScale;
     if (!std::isfinite(hi) || !std::isfinite(e)) return false;
     // Back from 2^shift units: exact unless a part becomes subnormal (the floor covers that).
-    out[k] = exact::ApproxDD(std::ldexp(hi, -shift), std::ldexp(lo, -shift), std::ldexp(e, -shift) + exact::kUnderflowFloor);
+    out[k] =
+        exact::ApproxDD(std::ldexp(hi, -shift), std::ldexp(lo, -shift), std::ldexp(e, -shift) + exact::kUnderflowFloor);
   }
   return true;
 }
@@ -150,7 +151,8 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, c
     const auto& r = ps.rep(third);
     for (uint32_t p : ps.points_on(p1)) {
       if (!may_be_it(p) || !ps.point_on_plane(p, p2)) continue;
-      if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift()) == 0) return int32_t(p);
+      if (orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(p), ps.exact_shift()) == 0)
+        return int32_t(p);
     }
   }
   return kNoPoint;
@@ -158,7 +160,9 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, c
 
 VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point) {
   VertexGeom v;
-  v.basis[0] = a; v.basis[1] = b; v.basis[2] = c;
+  v.basis[0] = a;
+  v.basis[1] = b;
+  v.basis[2] = c;
   // Cramer's denominator is the normals' determinant: when its filter is certain it gives the
   // exact sign too (sign_det3_normals would evaluate it again first).
   const PlaneCoef<Approx> pa = ps.approx(a), pb = ps.approx(b), pc = ps.approx(c);
@@ -202,7 +206,8 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
         double x = num / den;
         double enm = dnum[k].e + exact::kEps * std::fabs(num);
         double e = ((enm + std::fabs(x) * eden) / (std::fabs(den) - eden) + 2 * exact::kEps * std::fabs(x)) *
-                   exact::kBoundScale + exact::kUnderflowFloor;
+                       exact::kBoundScale +
+                   exact::kUnderflowFloor;
         v.x[k] = Approx(x, e);
         if (e > ps.coordinate_tolerance(x)) good = false;
       }
@@ -223,7 +228,10 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
 void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], double lo[3]) {
   if (v.mesh_point != kNoPoint) {
     const double* p = ps.point(uint32_t(v.mesh_point));
-    for (int k = 0; k < 3; ++k) { hi[k] = p[k]; lo[k] = 0; }
+    for (int k = 0; k < 3; ++k) {
+      hi[k] = p[k];
+      lo[k] = 0;
+    }
     return;
   }
   const DDHomogeneous& h = dd_homogeneous(ps, v);
