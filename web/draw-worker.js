@@ -1,0 +1,22 @@
+// The demo's drawing worker: turns a parsed mesh into what the view draws (draw-prep.js), off
+// the page's thread — for a million triangles that is a few hundred ms of work. It keeps the
+// last mesh so the faces' edges can be asked for later (the edge toggle on a big mesh).
+//
+// main → worker: { type: 'prepare', id, mesh, edges }  |  { type: 'edges', id }
+// worker → main: { id, drawing }                        |  { id, edges }
+import { prepareDrawing, drawingBuffers, faceEdges } from './draw-prep.js';
+
+let last = null;
+
+self.onmessage = ({ data }) => {
+  if (data.type === 'prepare') {
+    last = data.mesh;
+    const drawing = prepareDrawing(last, { edges: data.edges });
+    // Triangle meshes are drawn with their own indices: send a copy, keep the mesh whole.
+    if (drawing.triangles === last.indices) drawing.triangles = last.indices.slice();
+    self.postMessage({ id: data.id, drawing }, drawingBuffers(drawing));
+  } else if (data.type === 'edges') {
+    const edges = last ? faceEdges(last.indices, last.faceSizes, last.positions.length / 3) : new Uint32Array(0);
+    self.postMessage({ id: data.id, edges }, [edges.buffer]);
+  }
+};
