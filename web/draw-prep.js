@@ -88,12 +88,74 @@ export function faceEdges(indices, faceSizes, nv) {
   return lines.slice(0, m);
 }
 
+// Vertex clustering on a grid of `res` cells along the longest side: every vertex moves to the
+// mean of its cell's vertices, and triangles that collapse are dropped. The shape stays within a
+// cell of the original, which is all a semi-transparent overlay needs.
+function cluster(pos, triangles, res) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < pos.length; i++) {
+    const c = i % 3;
+    if (pos[i] < lo[c]) lo[c] = pos[i];
+    if (pos[i] > hi[c]) hi[c] = pos[i];
+  }
+  const h = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / res || 1;
+  const n = [0, 1, 2].map((c) => Math.floor((hi[c] - lo[c]) / h) + 1);
+  const cellOf = new Map();
+  const remap = new Uint32Array(pos.length / 3);
+  const sums = [];
+  for (let v = 0; v < remap.length; v++) {
+    const ix = Math.floor((pos[3 * v] - lo[0]) / h), iy = Math.floor((pos[3 * v + 1] - lo[1]) / h), iz = Math.floor((pos[3 * v + 2] - lo[2]) / h);
+    const key = ix + n[0] * (iy + n[1] * iz);
+    let id = cellOf.get(key);
+    if (id === undefined) {
+      id = sums.length / 4;
+      cellOf.set(key, id);
+      sums.push(0, 0, 0, 0);
+    }
+    remap[v] = id;
+    sums[4 * id] += pos[3 * v];
+    sums[4 * id + 1] += pos[3 * v + 1];
+    sums[4 * id + 2] += pos[3 * v + 2];
+    sums[4 * id + 3]++;
+  }
+  const positions = new Float32Array((sums.length / 4) * 3);
+  for (let id = 0; id < sums.length / 4; id++) {
+    for (let c = 0; c < 3; c++) positions[3 * id + c] = sums[4 * id + c] / sums[4 * id + 3];
+  }
+  const out = new Uint32Array(triangles.length);
+  let m = 0;
+  for (let t = 0; t < triangles.length; t += 3) {
+    const a = remap[triangles[t]], b = remap[triangles[t + 1]], c = remap[triangles[t + 2]];
+    if (a === b || b === c || a === c) continue;
+    out[m++] = a;
+    out[m++] = b;
+    out[m++] = c;
+  }
+  return { positions, triangles: out.slice(0, m) };
+}
+
+// A coarser copy of a big surface to draw, with at most about `target` triangles. Software WebGL
+// (SwiftShader) spends ~1 s per frame on a million triangles, and with a software compositor the
+// page's thread waits for each frame.
+export function simplify(pos, triangles, target) {
+  // A closed surface on a grid of res cells per side has ~4 res² triangles after clustering.
+  let res = Math.max(8, Math.floor(Math.sqrt(target / 4)));
+  let best = null;
+  for (let attempt = 0; attempt < 4; attempt++) {
+    const c = cluster(pos, triangles, res);
+    if (!best || c.triangles.length <= 3 * target * 1.2) best = c;
+    if (c.triangles.length <= 3 * target * 1.2) break;
+    res = Math.max(4, Math.floor(res * Math.sqrt((3 * target) / c.triangles.length) * 0.95));
+  }
+  return best;
+}
+
 /**
  * mesh: { positions (xyz), indices, faceSizes (null: triangles) }. Returns { center, radius,
  * positions: Float32Array (centred), triangles: Uint32Array, edges: Uint32Array | null, faces,
  * drawable } — drawable is false when a face refers to a missing vertex (the package reports it).
  */
-export function prepareDrawing(mesh, { edges = false } = {}) {
+export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } = {}) {
   const { positions, indices, faceSizes } = mesh;
   const nv = positions.length / 3;
   const { center, radius } = bounds(positions);
@@ -108,7 +170,13 @@ export function prepareDrawing(mesh, { edges = false } = {}) {
     pos[i + 2] = positions[i + 2] - center[2];
   }
   const triangles = drawnTriangles(positions, indices, faceSizes);
-  return { center, radius, faces, drawable, positions: pos, triangles, edges: edges ? faceEdges(indices, faceSizes, nv) : null };
+  if (triangles.length / 3 > maxTriangles) {
+    // Drawn simplified; `edges` then are the drawn triangles' edges.
+    const s = simplify(pos, triangles, maxTriangles);
+    return { center, radius, faces, drawable, simplified: true, positions: s.positions, triangles: s.triangles,
+      edges: edges ? faceEdges(s.triangles, null, s.positions.length / 3) : null };
+  }
+  return { center, radius, faces, drawable, simplified: false, positions: pos, triangles, edges: edges ? faceEdges(indices, faceSizes, nv) : null };
 }
 
 /** The buffers of a prepareDrawing() result, for a transfer list. */

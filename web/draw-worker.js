@@ -6,14 +6,16 @@
 // worker → main: { id, drawing }                        |  { id, edges }
 import { prepareDrawing, drawingBuffers, faceEdges } from './draw-prep.js';
 
-let last = null;
+let last = null; // the mesh whose edges can still be asked for: the drawn one
+
 
 self.onmessage = ({ data }) => {
   if (data.type === 'prepare') {
-    last = data.mesh;
-    const drawing = prepareDrawing(last, { edges: data.edges });
-    // Triangle meshes are drawn with their own indices: send a copy, keep the mesh whole.
+    const drawing = prepareDrawing(data.mesh, { edges: data.edges, maxTriangles: data.maxTriangles });
+    last = drawing.simplified ? { positions: drawing.positions, indices: drawing.triangles, faceSizes: null } : data.mesh;
+    // Keep what `last` refers to whole: send copies of the arrays shared with it.
     if (drawing.triangles === last.indices) drawing.triangles = last.indices.slice();
+    if (drawing.positions === last.positions) drawing.positions = last.positions.slice();
     self.postMessage({ id: data.id, drawing }, drawingBuffers(drawing));
   } else if (data.type === 'edges') {
     const edges = last ? faceEdges(last.indices, last.faceSizes, last.positions.length / 3) : new Uint32Array(0);

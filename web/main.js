@@ -13,9 +13,14 @@ import { prepareDrawing } from './draw-prep.js';
 // by default (a dense wireframe hides the kernel and costs every frame).
 const INLINE_FACES = 20000;
 const EDGE_FACES = 50000;
+// Above this many triangles the view draws a simplified copy of the input (draw-prep.js simplify).
+const DRAW_TRIANGLES = 10000;
 // A full replay at speed 1× takes at most this long, whatever the kernel's size.
 const REPLAY_SECONDS = 10;
 const MIN_STEPS_PER_S = 40;
+// ?stream=0: compute without step events (the replay is then built from the result); for
+// measuring what streaming costs (bench/browser_bench.mjs).
+const STREAM = new URLSearchParams(location.search).get('stream') !== '0';
 
 const $ = (id) => document.getElementById(id);
 const ui = {
@@ -203,6 +208,7 @@ function showDrawing(d) {
   state.edgesReady = !!d.edges;
   ui.showEdges.checked = d.faces <= EDGE_FACES;
   ui.edgesNote.textContent = d.faces > EDGE_FACES ? `(${fmtCount(d.faces)} faces: off by default)` : '';
+  if (d.simplified) ui.edgesNote.textContent += ` The view draws a simplified copy of the shape (${fmtCount(d.triangles.length / 3)} triangles); the kernel is computed on the real one.`;
   viewer.edgesVisible = ui.showEdges.checked;
   viewer.setInputDrawing(d);
   state.inputShown = true;
@@ -224,7 +230,7 @@ async function showMesh(mesh, token) {
     return;
   }
   const buffers = [...new Set([mesh.positions.buffer, mesh.indices.buffer, mesh.faceSizes?.buffer].filter(Boolean))];
-  const { drawing } = await drawRequest({ type: 'prepare', mesh, edges }, buffers);
+  const { drawing } = await drawRequest({ type: 'prepare', mesh, edges, maxTriangles: DRAW_TRIANGLES }, buffers);
   if (token === state.token) showDrawing(drawing);
 }
 
@@ -256,10 +262,11 @@ async function runKernel(token, start) {
   state.timing.posted = performance.now();
   let result;
   try {
+    const onStep = (ev) => {
+      if (token === state.token) pushEvent(ev);
+    };
     result = await start({
-      onStep: (ev) => {
-        if (token === state.token) pushEvent(ev);
-      },
+      ...(STREAM ? { onStep } : {}),
       onProgress: (p) => {
         if (token === state.token) onProgress(p);
       },

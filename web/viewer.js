@@ -81,10 +81,12 @@ export class KernelView {
     this.faceBuf = new GrowableBuffer(this.facesGeo);
     this.points = new THREE.Points(this.pointsGeo, new THREE.PointsMaterial({ color: KERNEL_EDGE, size: 6, sizeAttenuation: false }));
     this.lines = new THREE.LineSegments(this.linesGeo, new THREE.LineBasicMaterial({ color: KERNEL_EDGE }));
+    // Lambert shading: with software WebGL every pixel of PBR shading is paid on the CPU, and
+    // the page's thread waits for the frame (see Viewer.render).
     this.faces = new THREE.Mesh(
       this.facesGeo,
-      new THREE.MeshStandardMaterial({
-        color: KERNEL_BLUE, flatShading: true, roughness: 0.55, metalness: 0.0, side: THREE.DoubleSide,
+      new THREE.MeshLambertMaterial({
+        color: KERNEL_BLUE, flatShading: true, side: THREE.DoubleSide,
         polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
       }),
     );
@@ -253,15 +255,42 @@ export class Viewer {
     window.matchMedia?.('(prefers-color-scheme: dark)').addEventListener?.('change', () => this.applyTheme());
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
+    this.warmUp();
+  }
+
+  // Draws one frame with a triangle of every material at page load: compiling a shader and, with
+  // software WebGL, generating its pipeline on first use cost a few hundred ms, which would
+  // otherwise fall in the middle of a file's computation.
+  warmUp() {
+    const geo = new THREE.BufferGeometry();
+    // In front of the camera (at the origin, looking down -z until the first fit()), so that
+    // fragments are drawn: software rasterizers build the pixel stage only then.
+    geo.setAttribute('position', new THREE.BufferAttribute(new Float32Array([-0.1, -0.1, -1, 0.1, -0.1, -1, 0, 0.1, -1]), 3));
+    geo.setIndex(new THREE.BufferAttribute(new Uint32Array([0, 1, 2]), 1));
+    // One dummy per material in the scene (kernel, newest edge, kernel point) and the input's.
+    const dummies = [new THREE.Mesh(geo, this.inputMaterial), new THREE.LineSegments(geo, this.wireMaterial)];
+    dummies[0].renderOrder = 2;
+    this.scene.traverse((o) => {
+      if (o.isMesh) dummies.push(new THREE.Mesh(geo, o.material));
+      else if (o.isLineSegments) dummies.push(new THREE.LineSegments(geo, o.material));
+      else if (o.isPoints) dummies.push(new THREE.Points(geo, o.material));
+    });
+    this.inputGroup.add(...dummies);
+    this.renderer.render(this.scene, this.camera);
+    this.inputGroup.remove(...dummies);
+    geo.dispose();
+    this.dirty = true;
   }
 
   // Materials live as long as the page: a new material would cost a shader compile per mesh.
   makeInputMaterials() {
     // The input is pushed back in depth: the kernel's faces lie in some of its face planes and
     // must win there (no z-fighting stripes of amber over blue).
-    this.inputMaterial = new THREE.MeshStandardMaterial({
+    // One pass for both sides (three draws a transparent double-sided mesh twice by default):
+    // half the fill cost, and a translucent overlay needs no back-to-front accuracy.
+    this.inputMaterial = new THREE.MeshLambertMaterial({
       color: 0xe3a04a, transparent: true, opacity: this.opacity, depthWrite: false, side: THREE.DoubleSide,
-      flatShading: true, roughness: 0.8, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 4,
+      forceSinglePass: true, flatShading: true, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 4,
     });
     this.wireMaterial = new THREE.LineBasicMaterial({ color: 0x7a5a2a, transparent: true, opacity: 0.28, depthWrite: false });
   }

@@ -14,13 +14,14 @@
 
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
-import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { SAMPLES, sampleById } from '../../web/samples.js';
 import { checkSamples, expectedKernel } from './samples-check.mjs';
+import { serve, writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
+import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -95,32 +96,6 @@ function buildIfNeeded() {
   assert(r.status === 0, 'vite build failed');
 }
 
-const MIME = {
-  '.html': 'text/html; charset=utf-8', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
-  '.wasm': 'application/wasm', '.json': 'application/json', '.svg': 'image/svg+xml', '.png': 'image/png',
-};
-
-function serve(root) {
-  const server = http.createServer((req, res) => {
-    const url = new URL(req.url, 'http://127.0.0.1');
-    let file = path.normalize(path.join(root, decodeURIComponent(url.pathname)));
-    if (!file.startsWith(root)) {
-      res.writeHead(403).end();
-      return;
-    }
-    if (fs.existsSync(file) && fs.statSync(file).isDirectory()) file = path.join(file, 'index.html');
-    fs.readFile(file, (err, data) => {
-      if (err) {
-        res.writeHead(404).end('not found');
-        return;
-      }
-      res.writeHead(200, { 'Content-Type': MIME[path.extname(file)] ?? 'application/octet-stream', 'Cache-Control': 'no-store' });
-      res.end(data);
-    });
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
-
 // ---------------------------------------------------------------------------------------------
 // Mesh files written by the tests (from the project's own generators)
 
@@ -138,19 +113,13 @@ function writeOBJ(file, { positions, indices }) {
   fs.writeFileSync(file, lines.join('\n') + '\n');
 }
 
-function writeBinarySTL(file, { positions, indices }) {
-  const n = indices.length / 3;
-  const buf = Buffer.alloc(84 + 50 * n);
-  buf.write('binary STL written by tests/e2e/run.mjs', 0);
-  buf.writeUInt32LE(n, 80);
-  for (let t = 0; t < n; t++) {
-    const o = 84 + 50 * t;
-    for (let k = 0; k < 3; k++) {
-      const v = indices[3 * t + k];
-      for (let c = 0; c < 3; c++) buf.writeFloatLE(positions[3 * v + c], o + 12 + 12 * k + 4 * c);
-    }
-  }
-  fs.writeFileSync(file, buf);
+function writePLY(file, { positions, indices }) {
+  const nv = positions.length / 3, nf = indices.length / 3;
+  const lines = ['ply', 'format ascii 1.0', 'comment written by tests/e2e/run.mjs', `element vertex ${nv}`, 'property double x',
+    'property double y', 'property double z', `element face ${nf}`, 'property list uchar int vertex_indices', 'end_header'];
+  for (let i = 0; i < positions.length; i += 3) lines.push(`${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
+  for (let i = 0; i < indices.length; i += 3) lines.push(`3 ${indices[i]} ${indices[i + 1]} ${indices[i + 2]}`);
+  fs.writeFileSync(file, lines.join('\n') + '\n');
 }
 
 function writeAsciiSTL(file, { positions, indices }) {
@@ -205,6 +174,19 @@ function writeEdgeSharingCubes(file) {
     map.push(id.get(key));
   }
   writeQuadOFF(file, verts, [...CUBE_Q, ...CUBE_Q.map((q) => q.map((v) => map[v]))]);
+}
+
+// '' when the package (in Node) reads `file`, else why not.
+async function packageReadsFile(file) {
+  const K = await import('../../wasm/index.js');
+  if (typeof K.readMeshSync !== 'function') return 'this package build has no readMeshSync';
+  await K.init();
+  try {
+    K.readMeshSync(new Uint8Array(fs.readFileSync(file)), { name: path.basename(file) });
+    return '';
+  } catch (err) {
+    return `${err.code}: ${err.message}`;
+  }
 }
 
 function nativeKernel(file) {
@@ -341,7 +323,8 @@ async function main() {
   }
 
   buildIfNeeded();
-  const server = await serve(webDist);
+  const served = new Map(); // test files the page can fetch: '/__files/<name>' → path
+  const server = await serve(webDist, served);
   const base = `http://127.0.0.1:${server.address().port}/`;
   console.log(`e2e: serving web/dist at ${base}`);
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-e2e-chromium-'));
@@ -402,9 +385,9 @@ async function main() {
 
     // 4. Animation: plays on its own, scrubber shows growing prefixes, jump to end.
     await test('animation: plays, scrubber prefixes grow, jump to end, screenshot mid-animation', async () => {
-      await page.evaluate(() => { // slow playback so that the first second shows a partial kernel
+      await page.evaluate(() => { // slow playback (1/8×) so that the first second shows a partial kernel
         const sp = document.getElementById('speed');
-        sp.value = '4';
+        sp.value = '-3';
         sp.dispatchEvent(new Event('input', { bubbles: true }));
       });
       const done = await loadSample(page, 'gear');
@@ -413,7 +396,7 @@ async function main() {
       assert(total === V + E + F, `timeline has ${total} steps, result has ${V}+${E}+${F}`);
       await page.waitForTimeout(800);
       const playing = await readState(page);
-      assert(playing.step > 0 && playing.step < total, `after 0.8 s playing at 16 steps/s the step is ${playing.step} of ${total}`);
+      assert(playing.step > 0 && playing.step < total, `after 0.8 s playing at 1/8× (5 steps/s) the step is ${playing.step} of ${total}`);
       const ks = [0, Math.floor(total * 0.15), Math.floor(total * 0.4), Math.floor(total * 0.75), total];
       const seen = [];
       for (const k of ks) seen.push((await scrubTo(page, k)).shown);
@@ -479,6 +462,99 @@ async function main() {
       });
     }
 
+    // PLY, when the package reads it (ascii PLY written here: vertex x y z, face vertex_indices).
+    const plyFile = path.join(tmp, 'gear.ply');
+    writePLY(plyFile, sampleById('gear').build());
+    const plyProblem = await packageReadsFile(plyFile);
+    if (plyProblem) skip('file picker: ascii PLY', `the package does not read it: ${plyProblem}`);
+    else {
+      await test('file picker: ascii PLY gear.ply', async () => {
+        const s = await loadFile(page, plyFile);
+        const exp = expectedKernel(sampleById('gear'));
+        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
+        assertClose(Number(s.stats.volume), exp.volume, 1e-9, 'kernel volume');
+      });
+    }
+
+    // The file is read in the worker: the page shows each phase as it comes.
+    await test('file load shows the phases: reading (bytes), validating, planes, lp, tracing, assembling', async () => {
+      const file = path.join(tmp, 'vase.off');
+      writeOFF(file, sampleById('vase').build());
+      const s = await loadFile(page, file);
+      assert(s.status === 'POLYHEDRON', `status ${s.status}`);
+      const phases = (await page.getAttribute('#busy', 'data-phases')).split(',');
+      const want = ['loading', 'reading', 'validating', 'planes', 'lp', 'tracing', 'assembling', 'done'];
+      const missing = want.filter((p) => !phases.includes(p));
+      assert(missing.length === 0, `phases shown: ${phases.join(',')}; missing ${missing.join(',')}`);
+      const order = want.filter((p) => p !== 'loading').map((p) => phases.indexOf(p));
+      assert(order.every((x, i) => i === 0 || x > order[i - 1]), `phase order ${phases.join(',')}`);
+      const wall = await page.textContent('#stat-wall');
+      assert(/^\d+ ms \(|^\d+(\.\d)? s \(/.test(wall), `load → kernel text "${wall}"`);
+    });
+
+    await test('the busy line names the phase while a big file is computed', async () => {
+      const big = path.join(tmp, 'sphere-busy.off');
+      const { radialSphere } = await import('../../web/samples.js');
+      writeOFF(big, radialSphere(100, 200, () => 1));
+      await markPending(page);
+      await page.setInputFiles('#file-input', big);
+      const texts = new Set();
+      const t = Date.now();
+      while (Date.now() - t < 60000) {
+        const st = await page.getAttribute('#status', 'data-state');
+        if (!(await page.isHidden('#busy'))) texts.add((await page.textContent('#busy-text')).replace(/[\d,]+/g, 'N'));
+        if (['done', 'error', 'cancelled'].includes(st)) break;
+        await page.waitForTimeout(20);
+      }
+      const s = await waitFinished(page);
+      assert(s.status === 'POLYHEDRON', `status ${s.status}`);
+      console.log(`     busy texts seen: ${[...texts].join(' | ')}`);
+      assert([...texts].some((x) => /^Tracing the kernel · N steps/.test(x)), `no tracing progress seen: ${[...texts].join(' | ')}`);
+    });
+
+    await test('Show result skips the replay; replay speed 1× fits the kernel in ≤ 10 s', async () => {
+      const done = await loadSample(page, 'bumpy-sphere');
+      const total = done.steps;
+      assert(total > 400, `bumpy sphere kernel has ${total} steps`);
+      await scrubTo(page, 0);
+      await page.click('#play');
+      await page.waitForTimeout(1000);
+      const mid = await readState(page);
+      // 1×: max(40, total / 10) steps per second, so about a tenth per second (frames allow slack).
+      assert(mid.step > total * 0.04 && mid.step < total * 0.3, `after 1 s at 1×: step ${mid.step} of ${total}`);
+      const label = await page.textContent('#speed-label');
+      assert(label.includes(`${Math.round(total / 10)} steps/s`), `speed label "${label}"`);
+      await page.click('#jump-end');
+      await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+      const end = await readState(page);
+      assert(end.step === total && end.shown.faces === Number(done.stats.faces), `after Show result: step ${end.step} of ${total}, ${JSON.stringify(end.shown)}`);
+    });
+
+    await test('shape opacity: 0 hides the shape, 1 makes it opaque; face-edges toggle', async () => {
+      await loadSample(page, 'gear');
+      await jumpToEnd(page);
+      const setRange = (id, v) => page.evaluate(({ id, v }) => {
+        const el = document.getElementById(id);
+        el.value = String(v);
+        el.dispatchEvent(new Event('input', { bubbles: true }));
+      }, { id, v });
+      await page.click('#fit-view');
+      const normal = await shoot(page, 'opacity-default.png');
+      await setRange('opacity', 0);
+      const hidden = await shoot(page, 'opacity-0.png');
+      await setRange('opacity', 1);
+      const opaque = await shoot(page, 'opacity-1.png');
+      await setRange('opacity', 0.22);
+      assert(hidden.amber < 50 && hidden.blue > normal.blue, `opacity 0: ${hidden.amber} amber, ${hidden.blue} blue (default ${normal.blue})`);
+      assert(opaque.amber > 3 * normal.amber && opaque.blue < normal.blue / 2, `opacity 1: ${opaque.amber} amber (default ${normal.amber}), ${opaque.blue} blue`);
+      assert(await page.isChecked('#show-edges'), 'face edges on by default for a small mesh');
+      await page.click('#show-edges');
+      const noEdges = await shoot(page, 'edges-off.png');
+      await page.click('#show-edges');
+      const withEdges = await shoot(page, 'edges-on.png');
+      assert(noEdges.meanLuminance > withEdges.meanLuminance, `edges off should be lighter: ${noEdges.meanLuminance} vs ${withEdges.meanLuminance}`);
+    });
+
     // 6. A real mesh: princeton/350.off via the file picker, against the native CLI.
     const p350 = path.join(sharedMeshes, 'princeton/350.off');
     if (!fs.existsSync(p350)) skip('princeton/350.off', `${p350} not found (shared meshes absent)`);
@@ -521,13 +597,14 @@ async function main() {
     });
 
     const broken = [
-      // (refused by the reader, with its line, as the CLI refuses it)
-      ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'PARSE_ERROR', /line \d+: vertex index 99 out of range \(the file has 8 vertices\)/],
+      // (refused by the package's reader, the CLI's, with the file's name and line)
+      ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'PARSE_ERROR', /bad-index\.off:16: vertex index 99 out of range \(the file has 8 vertices\)/],
       ['open cube (one face missing)', 'open-cube.off', (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)), 'OPEN_MESH', /open/i],
       ['two cubes sharing an edge', 'edge-cubes.off', writeEdgeSharingCubes, 'NON_MANIFOLD_EDGE', /manifold/i],
-      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n8 6 0\n0 0 zero\n'), 'PARSE_ERROR', /line 3: invalid number "zero"/i],
-      ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /STL/],
-      ['unsupported extension', 'mesh.ply', (f) => fs.writeFileSync(f, 'ply\n'), 'PARSE_ERROR', /unsupported/i],
+      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n8 6 0\n0 0 zero\n'), 'PARSE_ERROR', /garbage\.off:3: invalid number "zero"/],
+      ['OBJ face with a bad index', 'bad-face.obj', (f) => fs.writeFileSync(f, 'v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 x\n'), 'PARSE_ERROR', /bad-face\.obj:5: /],
+      ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /short\.stl: .*STL/],
+      ['unsupported file type', 'mesh.xyz', (f) => fs.writeFileSync(f, 'hello\n'), 'PARSE_ERROR', /unsupported/i],
     ];
     for (const [label, fname, make, code, re] of broken) {
       await test(`error message: ${label} → ${code}`, async () => {
@@ -542,18 +619,31 @@ async function main() {
     }
 
     // 8. Export.
-    await test('export OBJ and STL of the plus-prism kernel', async () => {
+    await test('export OBJ, STL and OFF of the plus-prism kernel (the package writer), each read back by the page', async () => {
       const s = await loadSample(page, 'plus-prism');
       assert(s.status === 'POLYHEDRON', s.status);
-      const [objDl] = await Promise.all([page.waitForEvent('download'), page.click('#export-obj')]);
-      const obj = fs.readFileSync(await objDl.path(), 'utf8');
+      const files = {};
+      for (const format of ['obj', 'stl', 'off']) {
+        const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`#export-${format}`)]);
+        assert(dl.suggestedFilename() === `Plus_prism-kernel.${format}` || dl.suggestedFilename().endsWith(`-kernel.${format}`), dl.suggestedFilename());
+        files[format] = path.join(tmp, `exported-kernel.${format}`);
+        fs.copyFileSync(await dl.path(), files[format]);
+      }
+      const obj = fs.readFileSync(files.obj, 'utf8');
       const vs = obj.split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1).map(Number));
       const fs_ = obj.split('\n').filter((l) => l.startsWith('f '));
       assert(vs.length === 8 && fs_.length === 6, `OBJ has ${vs.length} vertices, ${fs_.length} faces`);
       for (const v of vs) assert(Math.abs(Math.abs(v[0]) - 0.3) < 1e-12 && Math.abs(Math.abs(v[1]) - 0.3) < 1e-12, `vertex ${v} off the central column`);
-      const [stlDl] = await Promise.all([page.waitForEvent('download'), page.click('#export-stl')]);
-      const stl = fs.readFileSync(await stlDl.path());
+      const stl = fs.readFileSync(files.stl);
       assert(stl.length === 84 + 50 * 12 && stl.readUInt32LE(80) === 12, `STL: ${stl.length} bytes, ${stl.readUInt32LE(80)} triangles`);
+      const off = fs.readFileSync(files.off, 'utf8').split('\n');
+      assert(/^OFF/.test(off[0]) && /^8 6 /.test(off.find((l, i) => i > 0 && !l.startsWith('#'))), `OFF header ${off.slice(0, 3).join(' | ')}`);
+      // Each file, dropped back on the page, is a cube-like kernel of itself with the same volume.
+      for (const format of ['obj', 'stl', 'off']) {
+        const back = await dropFile(page, files[format]);
+        assert(back.status === 'POLYHEDRON', `${format} read back: ${back.status} ${JSON.stringify(back.message)}`);
+        assertClose(Number(back.stats.volume), Number(s.stats.volume), format === 'stl' ? 1e-6 : 1e-12, `${format} kernel volume`);
+      }
     });
 
     // 9. Drag & drop and timing: princeton/325.off.
@@ -650,6 +740,29 @@ async function main() {
       assert(light.meanLuminance > 170, `light scene mean luminance ${light.meanLuminance.toFixed(0)}`);
       assert(dark.meanLuminance < 70, `dark scene mean luminance ${dark.meanLuminance.toFixed(0)}`);
       assert(light.blue > 2000 && dark.blue > 2000, `kernel blue pixels: light ${light.blue}, dark ${dark.blue}`);
+    });
+
+    // 12. A million-triangle binary STL (50 MB, generated here, never committed): dropped,
+    // computed and shown with no main-thread task over 100 ms.
+    await test('1M-triangle binary STL: drop → kernel with no main-thread task over 100 ms', async () => {
+      const file = path.join(tmp, 'bumpy-1m.stl');
+      writeBinarySTL(file, bumpySphere(1000, 501));
+      served.set('/__files/bumpy-1m.stl', file);
+      await jumpToEnd(page); // an idle page: no replay frames of the previous mesh
+      const r = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
+      assert(r.status === 'POLYHEDRON', `status ${r.status}: ${r.statusText} ${r.message}`);
+      assert(r.inputFaces === 1000000, `input faces ${r.inputFaces}`);
+      const px = await shoot(page, 'big-stl-1m.png');
+      const top = r.tasks.sort((a, b) => b.duration - a.duration).slice(0, 5).map((t) => `${t.duration.toFixed(0)} ms at ${(t.start - 0).toFixed(0)}`);
+      console.log(`     1M STL: drop → kernel shown ${(r.shownMs / 1000).toFixed(2)} s (status after ${(r.doneMs / 1000).toFixed(2)} s);` +
+        ` worker compute ${r.timeText}; page: ${r.wallText}; kernel V ${r.vertices} E ${r.edges} F ${r.faces}, ${r.steps} steps;` +
+        ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber pixels`);
+      assert(r.longest < 100, `longest main-thread task ${r.longest.toFixed(0)} ms`);
+      assert(px.blue > 2000, `kernel hardly visible: ${px.blue} kernel-blue pixels`);
+      assert(px.amber > 1000, `input hardly visible: ${px.amber} amber pixels`);
+      assert(!(await page.isChecked('#show-edges')), 'face edges are off by default for a million faces');
+      if (r.wallMs >= 1000) assert(/^\d+(\.\d)? s \(/.test(r.wallText), `durations over a second in seconds: "${r.wallText}"`);
+      fs.rmSync(file, { force: true });
     });
 
     await test('no uncaught errors or console errors in the page', async () => {
