@@ -7,6 +7,7 @@
 //   - In: index.js mallocs one request block, copies the typed arrays into it (one memcpy-like
 //     `set` each) and passes its address; the MeshView points into it (no copy here). Layout:
 //     f64[kOptionSlots] options (NaN = not given), f64 positions, u32 indices, u32 face sizes.
+//     readMesh's request is the file's bytes followed by the name's UTF-8 bytes.
 //   - Out: one malloc'd result block (pack() below) that index.js copies into fresh JS typed
 //     arrays and objects and frees, so JS never holds C++ objects and never calls delete().
 //   - User errors cross as an error flag plus the core's error_name and message; no C++ exception
@@ -15,7 +16,9 @@
 //     the result block itself could not be allocated (out of memory).
 //   - The step callback is a JS function called once per kergen::StepEvent with the address of a
 //     StepOut on the stack (valid during the call); if it returns `false`, tracing stops (the
-//     wrapper guarantees it never throws into C++).
+//     wrapper guarantees it never throws into C++). The progress callback gets the address of the
+//     core's phase name (a static NUL-terminated string, so the names exist once, in the core)
+//     and the count, as two numbers.
 // index.js (writeRequest, readStep, readResult) reads and writes the same layouts: keep them in sync.
 #include <emscripten/bind.h>
 #include <emscripten/heap.h>
@@ -33,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "kergen/io.h"
 #include "kergen/kergen.h"
 
 using emscripten::val;
@@ -53,7 +57,7 @@ enum Option : uint32_t {
 };
 
 // Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[kNumWarnings]],
-// f64 vertices, u32 edges, face indices, face sizes, triangles, then the text: NUL-terminated
+// f64 vertices, u32 edges, face indices, face sizes, triangles, u8 bytes, then the text: NUL-terminated
 // UTF-8 strings: name (kernel status, "" for findPoint, or the error code), message ("" unless
 // error), then kind and message of each warning.
 enum Head : uint32_t {
@@ -69,6 +73,8 @@ enum Head : uint32_t {
   kNumFaceIndices,
   kNumFaces,
   kNumTriangleValues,
+  kNumBytes,  // raw bytes after the arrays (writeMesh's file)
+  kPadding,
   kHeadWords
 };
 static_assert(kHeadWords % 2 == 0, "the f64 section after the head must stay 8-byte aligned");
@@ -96,6 +102,17 @@ static_assert(static_cast<int>(kergen::StepEvent::Kind::Vertex) == 0 &&
                   static_cast<int>(kergen::StepEvent::Kind::Face) == 2,
               "StepOut kinds");
 
+// Codes index.js sends: readMesh/writeMesh formats (its FORMATS list) and kernel types (STATUSES).
+static_assert(static_cast<int>(kergen::MeshFormat::Unknown) == 0 && static_cast<int>(kergen::MeshFormat::Off) == 1 &&
+                  static_cast<int>(kergen::MeshFormat::Obj) == 2 && static_cast<int>(kergen::MeshFormat::Stl) == 3,
+              "format codes of index.js");
+static_assert(static_cast<int>(kergen::KernelType::Empty) == 0 && static_cast<int>(kergen::KernelType::Point) == 1 &&
+                  static_cast<int>(kergen::KernelType::Segment) == 2 &&
+                  static_cast<int>(kergen::KernelType::Polygon) == 3 &&
+                  static_cast<int>(kergen::KernelType::Polyhedron) == 4 &&
+                  static_cast<int>(kergen::KernelType::Unbounded) == 5,
+              "kernel type codes of index.js (its STATUSES)");
+
 const char* warning_kind_name(kergen::Warning::Kind k) {
   switch (k) {
     case kergen::Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
@@ -106,14 +123,28 @@ const char* warning_kind_name(kergen::Warning::Kind k) {
   return "UNKNOWN";
 }
 
-// What goes into a result block; arrays stay owned by the caller until pack() has copied them.
+// What goes into a result block; arrays stay owned by the caller until pack() has copied them
+// (null = none). readMesh sends a mesh as vertices (positions), face indices and face sizes.
 struct Out {
   uint32_t head[kHeadWords] = {};
   double scalars[kScalars] = {};
   const char* name = "";
   std::string message;
   const std::vector<kergen::Warning>* warnings = nullptr;
-  const kergen::Kernel* kernel = nullptr;  // vertices, edges, faces, triangles
+  const std::vector<double>* vertices = nullptr;
+  const std::vector<uint32_t>* edges = nullptr;
+  const std::vector<uint32_t>* face_indices = nullptr;
+  const std::vector<uint32_t>* face_sizes = nullptr;
+  const std::vector<uint32_t>* triangles = nullptr;
+  const std::string* bytes = nullptr;
+
+  void set_kernel(const kergen::Kernel& k) {
+    vertices = &k.vertices;
+    edges = &k.edges;
+    face_indices = &k.face_indices;
+    face_sizes = &k.face_sizes;
+    triangles = &k.triangles;
+  }
 };
 
 template <typename T>
@@ -127,13 +158,14 @@ uintptr_t pack(Out& o) {
   static const std::vector<kergen::Warning> kNone;
   static const std::vector<double> kNoValues;
   static const std::vector<uint32_t> kNoIndices;
+  static const std::string kNoBytes;
   const std::vector<kergen::Warning>& ws = o.warnings ? *o.warnings : kNone;
-  const kergen::Kernel* k = o.kernel;
-  const std::vector<double>& vertices = k ? k->vertices : kNoValues;
-  const std::vector<uint32_t>& edges = k ? k->edges : kNoIndices;
-  const std::vector<uint32_t>& face_indices = k ? k->face_indices : kNoIndices;
-  const std::vector<uint32_t>& face_sizes = k ? k->face_sizes : kNoIndices;
-  const std::vector<uint32_t>& triangles = k ? k->triangles : kNoIndices;
+  const std::vector<double>& vertices = o.vertices ? *o.vertices : kNoValues;
+  const std::vector<uint32_t>& edges = o.edges ? *o.edges : kNoIndices;
+  const std::vector<uint32_t>& face_indices = o.face_indices ? *o.face_indices : kNoIndices;
+  const std::vector<uint32_t>& face_sizes = o.face_sizes ? *o.face_sizes : kNoIndices;
+  const std::vector<uint32_t>& triangles = o.triangles ? *o.triangles : kNoIndices;
+  const std::string& bytes_out = o.bytes ? *o.bytes : kNoBytes;
 
   std::string text = o.name;
   text += '\0';
@@ -154,9 +186,11 @@ uintptr_t pack(Out& o) {
   o.head[kNumFaceIndices] = static_cast<uint32_t>(face_indices.size());
   o.head[kNumFaces] = static_cast<uint32_t>(face_sizes.size());
   o.head[kNumTriangleValues] = static_cast<uint32_t>(triangles.size());
+  o.head[kNumBytes] = static_cast<uint32_t>(bytes_out.size());
 
   const size_t bytes = sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
-                       4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size()) + text.size();
+                       4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size()) +
+                       bytes_out.size() + text.size();
   char* block = static_cast<char*>(std::malloc(bytes));
   if (!block) return 0;
   char* at = put(block, o.head, kHeadWords);
@@ -167,6 +201,7 @@ uintptr_t pack(Out& o) {
   at = put(at, face_indices.data(), face_indices.size());
   at = put(at, face_sizes.data(), face_sizes.size());
   at = put(at, triangles.data(), triangles.size());
+  at = put(at, bytes_out.data(), bytes_out.size());
   put(at, text.data(), text.size());
   return reinterpret_cast<uintptr_t>(block);
 }
@@ -179,7 +214,7 @@ uintptr_t error_block(const char* code, const std::string& message) {
 }
 
 // The request block as a MeshView (it points into the block, which index.js frees after the call).
-kergen::MeshView read_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
+kergen::MeshView mesh_view(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   const double* positions = reinterpret_cast<const double*>(request) + kOptionSlots;
   const uint32_t* indices = reinterpret_cast<const uint32_t*>(positions + num_values);
   kergen::MeshView m;
@@ -233,10 +268,17 @@ void put_xyz(const std::array<double, 3>& p, double* out) {
   out[2] = p[2];
 }
 
-// compute(request, numPositionValues, numIndices, numFaceSizes, onStep|null) → result block address.
-uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes, val on_step) {
+// compute(request, numPositionValues, numIndices, numFaceSizes, onStep|null, onProgress|null)
+// → result block address.
+uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes, val on_step,
+                  val on_progress) {
   try {
     kergen::Options options = read_options(request);
+    if (!on_progress.isNull() && !on_progress.isUndefined()) {
+      options.on_progress = [&on_progress](const kergen::Progress& p) {
+        on_progress(reinterpret_cast<uintptr_t>(kergen::progress_phase_name(p.phase)), static_cast<double>(p.count));
+      };
+    }
     if (!on_step.isNull() && !on_step.isUndefined()) {
       options.on_step = [&on_step](const kergen::StepEvent& e) -> bool {
         StepOut s{static_cast<uint32_t>(e.kind),
@@ -250,7 +292,7 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
       };
     }
     const kergen::Kernel k =
-        kergen::compute_kernel(read_mesh(request, num_values, num_indices, num_face_sizes), options);
+        kergen::compute_kernel(mesh_view(request, num_values, num_indices, num_face_sizes), options);
     if (k.error != kergen::Error::Ok) return error_block(kergen::error_name(k.error), k.message);
 
     Out o;
@@ -268,7 +310,7 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
     put_stats(k.stats, o.scalars + kStats);
     o.name = kergen::kernel_type_name(k.type);
     o.warnings = &k.warnings;
-    o.kernel = &k;
+    o.set_kernel(k);
     return pack(o);
   } catch (const std::bad_alloc&) {
     return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
@@ -282,7 +324,7 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
 uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   try {
     const kergen::KernelPoint p =
-        kergen::find_kernel_point(read_mesh(request, num_values, num_indices, num_face_sizes), read_options(request));
+        kergen::find_kernel_point(mesh_view(request, num_values, num_indices, num_face_sizes), read_options(request));
     if (p.error != kergen::Error::Ok) return error_block(kergen::error_name(p.error), p.message);
     Out o;
     o.head[kOk] = 1;
@@ -290,6 +332,62 @@ uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indice
     o.head[kHasKernelPoint] = p.star_shaped;
     put_xyz(p.point, o.scalars + kKernelPoint);
     o.warnings = &p.warnings;
+    return pack(o);
+  } catch (const std::bad_alloc&) {
+    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
+  } catch (const std::exception& e) {
+    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
+  }
+}
+
+// readMesh(request, numBytes, numNameBytes, format) → result block address: the mesh as vertices
+// (positions), face indices and face sizes (none = all triangles), or the reader's error.
+uintptr_t read_mesh(uintptr_t request, uint32_t num_bytes, uint32_t num_name_bytes, uint32_t format) {
+  try {
+    const char* bytes = reinterpret_cast<const char*>(request);
+    const kergen::ReadResult r = kergen::read_mesh(std::string_view(bytes, num_bytes),
+                                                   static_cast<kergen::MeshFormat>(format),
+                                                   std::string(bytes + num_bytes, num_name_bytes));
+    if (!r.ok()) return error_block(kergen::error_name(r.error), r.message);
+    Out o;
+    o.head[kOk] = 1;
+    o.vertices = &r.mesh.positions;
+    o.face_indices = &r.mesh.indices;
+    o.face_sizes = &r.mesh.face_sizes;
+    return pack(o);
+  } catch (const std::bad_alloc&) {
+    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
+  } catch (const std::exception& e) {
+    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
+  }
+}
+
+// writeMesh(request, numPositionValues, numIndices, numFaceSizes, format, kernelType) → result
+// block address with the file's bytes. The request is compute's (options unused). kernelType -1:
+// a plain mesh; otherwise the kergen::KernelType of a kernel result whose vertices and faces the
+// request holds, written as kergen::kernel_mesh makes it.
+uintptr_t write_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes,
+                     uint32_t format, int32_t kernel_type) {
+  try {
+    const kergen::MeshView v = mesh_view(request, num_values, num_indices, num_face_sizes);
+    kergen::Mesh mesh;
+    std::vector<uint32_t> face_sizes(v.face_sizes, v.face_sizes + v.num_faces);
+    if (kernel_type >= 0) {
+      kergen::Kernel k;
+      k.type = static_cast<kergen::KernelType>(kernel_type);
+      k.vertices.assign(v.positions, v.positions + num_values);
+      k.face_indices.assign(v.indices, v.indices + v.num_indices);
+      k.face_sizes = std::move(face_sizes);
+      mesh = kergen::kernel_mesh(k);
+    } else {
+      mesh.positions.assign(v.positions, v.positions + num_values);
+      mesh.indices.assign(v.indices, v.indices + v.num_indices);
+      mesh.face_sizes = std::move(face_sizes);
+    }
+    Out o;
+    o.head[kOk] = 1;
+    const std::string file = kergen::write_mesh(mesh, static_cast<kergen::MeshFormat>(format));
+    o.bytes = &file;
     return pack(o);
   } catch (const std::bad_alloc&) {
     return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
@@ -313,5 +411,7 @@ val memory_stats() {
 EMSCRIPTEN_BINDINGS(kergen) {
   emscripten::function("compute", &compute);
   emscripten::function("findPoint", &find_point);
+  emscripten::function("readMesh", &read_mesh);
+  emscripten::function("writeMesh", &write_mesh);
   emscripten::function("memoryStats", &memory_stats);
 }

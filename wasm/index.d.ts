@@ -26,6 +26,8 @@ export type CoreErrorCode =
   | 'DEGENERATE_INPUT'
   | 'TOO_LARGE'
   | 'INVALID_ARGUMENT'
+  /** readMesh: a malformed file; the message is the CLI's, "name:line: reason" (binary: "name: byte N: reason"). */
+  | 'PARSE_ERROR'
   /** Coordinates span too many orders of magnitude for exact evaluation (e.g. 1 next to 1e-60). */
   | 'COORDINATE_RANGE';
 
@@ -68,11 +70,30 @@ export type StepEvent =
   | { type: 'edge'; id: number; a: number; b: number }
   | { type: 'face'; id: number; loop: number[] };
 
+/** A phase of computeKernel, in the order they run (the core's `kergen::Progress::Phase`). */
+export type KernelPhase = 'validating' | 'planes' | 'lp' | 'tracing' | 'assembling';
+
+/**
+ * Passed to `onProgress` once as each phase begins. `count` is what the phase works on:
+ * 'validating' input faces, 'planes' faces left after zero-area ones are dropped, 'lp' and
+ * 'tracing' distinct planes, 'assembling' kernel vertices found. Phases that do not run are
+ * skipped (a rejected mesh stops after 'validating', a non-star one after 'lp').
+ */
+export interface KernelProgress {
+  phase: KernelPhase;
+  count: number;
+}
+
 export interface KernelOptions {
   /** Grow the kernel from the kernel vertex extreme towards this point. */
   from?: Vec3;
   /** Called once per discovered vertex / edge / face; return `false` to stop (result: complete = false). */
   onStep?: (event: StepEvent) => void | boolean;
+  /**
+   * Called synchronously as each phase begins. If it throws, later phases are not reported, the
+   * trace stops at its next step (when onStep is given) and the error is rethrown by computeKernel.
+   */
+  onProgress?: (progress: KernelProgress) => void;
   /** Stop after this many step events (0 or absent: no limit). */
   maxSteps?: number;
   /** Accept meshes with holes; the result may then be 'UNBOUNDED'. */
@@ -83,8 +104,8 @@ export interface KernelOptions {
   maxFaces?: number;
   /** Refuse inputs with more vertices with `TOO_LARGE` (default 20 000 000). */
   maxVertices?: number;
-  /** Vertices per face, for polygon input (default: every face is a triangle). */
-  faceSizes?: Uint32Array | number[];
+  /** Vertices per face, for polygon input (absent or null: every face is a triangle, as readMesh gives it). */
+  faceSizes?: Uint32Array | number[] | null;
 }
 
 export interface KernelWarning {
@@ -193,6 +214,59 @@ export function findKernelPointSync(positions: PositionsInput, indices: IndicesI
 
 /** True when the kernel is non-empty. */
 export function isStarShaped(positions: PositionsInput, indices: IndicesInput, options?: KernelPointOptions): Promise<boolean>;
+
+/** Mesh file formats readMesh reads. */
+export type MeshFormat = 'off' | 'obj' | 'stl' | 'ply';
+
+export interface ReadMeshOptions {
+  /**
+   * The file's format. Absent: from `name`'s extension (case-insensitive), else from the content
+   * (binary STL by its size, 'solid', 'ply', an OFF header, a first OBJ record).
+   */
+  format?: MeshFormat;
+  /** The file name used in error messages (default '<memory>'), and for the format when absent. */
+  name?: string;
+}
+
+/**
+ * A mesh as the readers give it, ready for `computeKernel(positions, indices, { faceSizes })`.
+ * Each array has an ArrayBuffer of its own (transferable without touching the others).
+ */
+export interface MeshData {
+  /** Vertex coordinates, flat x, y, z, as in the file (STL: corners welded by exact equality). */
+  positions: Float64Array;
+  /** Vertex indices of the faces, concatenated, 0-based. */
+  indices: Uint32Array;
+  /** Vertices per face; null when every face is a triangle. */
+  faceSizes: Uint32Array | null;
+}
+
+/** The bytes of a mesh file: the caller's array is never detached or modified. */
+export type MeshBytes = ArrayBuffer | ArrayBufferView;
+
+/** A mesh to write: positions + concatenated face loops (faceSizes absent/null = triangles). */
+export interface MeshInput {
+  positions: PositionsInput;
+  indices: IndicesInput;
+  faceSizes?: Uint32Array | number[] | null;
+}
+
+/**
+ * Reads an OFF, OBJ, STL or PLY file with the core's readers, exactly as the native CLI reads it
+ * (same mesh, same errors: 'PARSE_ERROR' with "name:line: reason", 'EMPTY_INPUT', 'TOO_LARGE').
+ */
+export function readMesh(bytes: MeshBytes, options?: ReadMeshOptions): Promise<MeshData>;
+/** Synchronous readMesh; requires a finished init(). */
+export function readMeshSync(bytes: MeshBytes, options?: ReadMeshOptions): MeshData;
+
+/**
+ * A mesh file's bytes, written by the core's writers (the same bytes as the CLI's `-o`): a kernel
+ * result (its vertices and polygon faces; point, segment and empty kernels give files without
+ * faces) or a mesh. OBJ and OFF keep every coordinate bit; STL is binary, fan-triangulated,
+ * float. Requires a finished init(). A mesh with a non-finite coordinate or an index past its
+ * vertices is refused ('NON_FINITE_COORDINATE', 'INDEX_OUT_OF_RANGE').
+ */
+export function writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Uint8Array;
 
 /** Wasm heap figures (requires a finished init()). */
 export function memoryStats(): MemoryStats;

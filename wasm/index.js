@@ -201,6 +201,7 @@ function checkOptions(fn, options) {
     }
   }
   if (options.onStep != null && typeof options.onStep !== 'function') throw invalid(fn, 'options.onStep must be a function');
+  if (options.onProgress != null && typeof options.onProgress !== 'function') throw invalid(fn, 'options.onProgress must be a function');
   if (options.faceSizes != null && !(options.faceSizes instanceof Uint32Array || Array.isArray(options.faceSizes))) {
     throw invalid(fn, 'options.faceSizes must be a Uint32Array or an array of integers');
   }
@@ -237,7 +238,8 @@ const H_STAR_SHAPED = 4;
 const H_NUM_WARNINGS = 5;
 const H_TEXT_BYTES = 6;
 const H_NUM_VERTEX_VALUES = 7; // then edge values, face indices, faces, triangle values
-const HEAD_WORDS = 12;
+const H_NUM_BYTES = 12; // writeMesh's file
+const HEAD_WORDS = 14;
 const SCALARS = 25; // f64 after the head, as `enum Scalar`
 const S_STATS = 11; // first of the 14 Stats fields, in their declaration order
 const OUT_OF_MEMORY = 'out of memory (the wasm heap is limited to 4 GB)';
@@ -352,8 +354,10 @@ function readResult(m, ptr) {
     const faceIndices = new Uint32Array(arrays, (at += 4 * numEdgeValues), numFaceIndices);
     const faceSizes = new Uint32Array(arrays, (at += 4 * numFaceIndices), numFaces);
     const triangles = new Uint32Array(arrays, (at += 4 * numFaces), numTriangleValues);
-    const w = v * 2 + 2 * numVertexValues + u32Values; // the text, in u32 words
-    const text = readStrings(m.HEAPU8, w * 4, w * 4 + u32[h + H_TEXT_BYTES]);
+    const bytesStart = (v * 2 + 2 * numVertexValues + u32Values) * 4;
+    const numBytes = u32[h + H_NUM_BYTES];
+    const textStart = bytesStart + numBytes;
+    const text = readStrings(m.HEAPU8, textStart, textStart + u32[h + H_TEXT_BYTES]);
     if (u32[h + H_OK] === 0) return { error: text[0], message: text[1] };
     const warnings = new Array(numWarnings);
     for (let i = 0; i < numWarnings; i++) {
@@ -369,6 +373,7 @@ function readResult(m, ptr) {
       faceIndices,
       faceSizes,
       triangles,
+      bytes: numBytes ? m.HEAPU8.slice(bytesStart, textStart) : null,
       volume: f64[s],
       area: f64[s + 1],
       shapeVolume: f64[s + 2],
@@ -431,6 +436,7 @@ export function computeKernelSync(positions, indices, options = {}) {
   let userError = null;
   let threw = false;
   let onStep = null;
+  let onProgress = null;
   if (options && typeof options.onStep === 'function') {
     const userOnStep = options.onStep;
     onStep = (address) => {
@@ -445,9 +451,25 @@ export function computeKernelSync(positions, indices, options = {}) {
       }
     };
   }
+  if (options && typeof options.onProgress === 'function') {
+    // A progress callback cannot stop the core: after a throw, later phases are not reported, the
+    // trace stops at its next step (when onStep is given) and the error is rethrown at the end.
+    const userOnProgress = options.onProgress;
+    onProgress = (nameAddress, count) => {
+      if (threw) return;
+      const end = m.HEAPU8.indexOf(0, nameAddress);
+      const phase = readStrings(m.HEAPU8, nameAddress, end + 1)[0];
+      try {
+        userOnProgress({ phase, count });
+      } catch (err) {
+        threw = true;
+        userError = err;
+      }
+    };
+  }
   const raw = callWasm(fn, () => {
     const request = writeRequest(m, positions, indices, faceSizes, opts);
-    const block = m.compute(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0, onStep);
+    const block = m.compute(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0, onStep, onProgress);
     m._free(request);
     return readResult(m, block);
   });
@@ -502,4 +524,128 @@ export function memoryStats() {
   const m = requireModule('memoryStats');
   const stats = m.memoryStats();
   return { heapSize: stats.heapSize, heapUsed: stats.heapUsed, jsHandles: m.count_emval_handles() };
+}
+
+// ---- mesh files: the core's readers and writers (kergen/io.h) ---------------------------------
+
+// readMesh / writeMesh format names at their kergen::MeshFormat codes ('' = Unknown: from the name's
+// extension, else from the content); bindings.cpp checks the codes.
+const FORMATS = ['', 'off', 'obj', 'stl'];
+const WRITE_FORMATS = ['obj', 'off', 'stl'];
+const textEncoder = new TextEncoder();
+
+// A Uint8Array over the caller's bytes (never copied, detached or modified here).
+function bytesView(fn, bytes) {
+  let view = null;
+  try {
+    if (bytes instanceof Uint8Array) view = bytes;
+    else if (bytes instanceof ArrayBuffer) view = new Uint8Array(bytes);
+    else if (typeof SharedArrayBuffer === 'function' && bytes instanceof SharedArrayBuffer) view = new Uint8Array(bytes);
+    else if (ArrayBuffer.isView(bytes)) view = new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  } catch {
+    throw invalid(fn, 'bytes is a detached ArrayBuffer (it was transferred); pass a fresh one');
+  }
+  if (!view) {
+    throw invalid(fn, 'bytes must be a Uint8Array, an ArrayBuffer or another ArrayBufferView (encode text with TextEncoder)');
+  }
+  checkNotDetached(fn, 'bytes', view);
+  return view;
+}
+
+function checkReadOptions(fn, options) {
+  if (options === undefined || options === null) return { format: '', name: '<memory>' };
+  if (typeof options !== 'object') throw invalid(fn, 'options must be an object');
+  const { format, name } = options;
+  if (format != null && (typeof format !== 'string' || format === '' || !FORMATS.includes(format))) {
+    throw invalid(fn, `options.format must be one of ${FORMATS.slice(1).map((f) => `'${f}'`).join(', ')} (got ${String(format)})`);
+  }
+  if (name != null && typeof name !== 'string') throw invalid(fn, 'options.name must be a string');
+  return { format: format ?? '', name: name ?? '<memory>' };
+}
+
+/**
+ * Reads an OFF, OBJ, STL or PLY file with the core's readers (the native CLI's), synchronously
+ * (init() must have finished). See index.d.ts.
+ */
+export function readMeshSync(bytes, options = {}) {
+  const fn = 'readMesh';
+  const m = requireModule(fn);
+  const view = bytesView(fn, bytes);
+  const { format, name } = checkReadOptions(fn, options);
+  const nameBytes = textEncoder.encode(name);
+  const raw = callWasm(fn, () => {
+    const size = view.length + nameBytes.length;
+    // malloc takes a 32-bit size; anything larger cannot fit into the heap anyway.
+    const request = size < 2 ** 32 ? m._malloc(Math.max(size, 1)) : 0;
+    if (!request) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
+    m.HEAPU8.set(view, request);
+    m.HEAPU8.set(nameBytes, request + view.length);
+    const block = m.readMesh(request, view.length, nameBytes.length, FORMATS.indexOf(format));
+    m._free(request);
+    return readResult(m, block);
+  });
+  throwIfError(raw);
+  // Each array gets a buffer of its own, so that it can be transferred (to a KernelWorker, say)
+  // without copying or detaching the others.
+  return {
+    positions: raw.vertices.slice(),
+    indices: raw.faceIndices.slice(),
+    faceSizes: raw.faceSizes.length ? raw.faceSizes.slice() : null,
+  };
+}
+
+/** Async variant of readMeshSync (loads the module on first use). */
+export async function readMesh(bytes, options = {}) {
+  await init();
+  return readMeshSync(bytes, options);
+}
+
+// What writeMesh writes: { positions, indices, faceSizes, kernelType } (kernelType -1 for a plain mesh).
+function writableMesh(fn, meshOrKernel) {
+  if (meshOrKernel === null || typeof meshOrKernel !== 'object') {
+    throw invalid(fn, 'the first argument must be a kernel result or a mesh { positions, indices, faceSizes? }');
+  }
+  if (meshOrKernel.status !== undefined) {
+    const kernelType = STATUSES.indexOf(meshOrKernel.status);
+    if (kernelType < 0) throw invalid(fn, `unknown kernel status ${String(meshOrKernel.status)}`);
+    const { vertices, faceIndices, faceSizes } = meshOrKernel;
+    if (!(faceSizes instanceof Uint32Array)) throw invalid(fn, 'a kernel result needs its faceSizes (a Uint32Array)');
+    return { positions: vertices, indices: faceIndices, faceSizes, kernelType };
+  }
+  const { positions, indices, faceSizes } = meshOrKernel;
+  return { positions, indices, faceSizes: faceSizes ?? null, kernelType: -1 };
+}
+
+/**
+ * A mesh file as bytes, written by the core's writers (the native CLI's `-o`): a kernel result
+ * (its vertices and polygon faces; point, segment and empty kernels give files without faces) or
+ * a mesh { positions, indices, faceSizes? }. Requires a finished init(). See index.d.ts.
+ */
+export function writeMesh(meshOrKernel, format) {
+  const fn = 'writeMesh';
+  const m = requireModule(fn);
+  if (!WRITE_FORMATS.includes(format)) {
+    throw invalid(fn, `format must be ${WRITE_FORMATS.map((f) => `'${f}'`).join(', ')} (got ${String(format)})`);
+  }
+  const { positions, indices, faceSizes, kernelType } = writableMesh(fn, meshOrKernel);
+  checkMesh(fn, positions, indices, faceSizes);
+  // A file the readers would refuse is not written: every value must be finite, every index a vertex.
+  for (let i = 0; i < positions.length; i++) {
+    if (!Number.isFinite(positions[i])) throw new KergenError('NON_FINITE_COORDINATE', `${fn}: positions[${i}] = ${positions[i]}`);
+  }
+  const numVertices = positions.length / 3;
+  for (let i = 0; i < indices.length; i++) {
+    if (indices[i] >= numVertices) {
+      throw new KergenError('INDEX_OUT_OF_RANGE', `${fn}: indices[${i}] = ${indices[i]} but the mesh has ${numVertices} vertices`);
+    }
+  }
+  const raw = callWasm(fn, () => {
+    const request = writeRequest(m, positions, indices, faceSizes, {});
+    const numFaceSizes = faceSizes ? faceSizes.length : 0;
+    const block = m.writeMesh(request, positions.length, indices.length, numFaceSizes, FORMATS.indexOf(format), kernelType);
+    m._free(request);
+    return readResult(m, block);
+  });
+  throwIfError(raw);
+  return raw.bytes;
 }

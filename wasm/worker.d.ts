@@ -44,7 +44,8 @@ export interface WorkerComputeFileOptions extends WorkerComputeOptions {
   onMesh?: (mesh: ParsedMesh) => void;
 }
 
-export interface WorkerComputeOptions extends KernelOptions {
+// The worker reports its own progress (below), not computeKernel's phases.
+export interface WorkerComputeOptions extends Omit<KernelOptions, 'onProgress'> {
   /**
    * Called on the main thread for every step, in order (delivered in batches of up to ~50 ms or
    * 2048 events). Returning `false` cancels the computation: the promise rejects with 'CANCELLED'.

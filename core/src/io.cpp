@@ -432,6 +432,18 @@ long long read_count(Tokens& tokens, const std::string& name, size_t line, const
   return value;
 }
 
+// [ST][C][N][4][n]OFF: texture coordinates, colours and normals trail the xyz (ignored by the
+// reader); 4 and n mark the higher-dimensional variants.
+bool is_off_keyword(std::string_view kind, bool& higher_dimension) {
+  if (kind.substr(0, 2) == "ST") kind.remove_prefix(2);
+  if (kind.substr(0, 1) == "C") kind.remove_prefix(1);
+  if (kind.substr(0, 1) == "N") kind.remove_prefix(1);
+  higher_dimension = false;
+  if (kind.substr(0, 1) == "4") kind.remove_prefix(1), higher_dimension = true;
+  if (kind.substr(0, 1) == "n") kind.remove_prefix(1), higher_dimension = true;
+  return kind == "OFF";
+}
+
 void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
   text = prepare_text(text, name);
   LineReader lines(text);
@@ -439,15 +451,8 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
   next_content_line(lines, tokens);  // not empty: prepare_text refused blank files
   std::string_view keyword;
   tokens.next(keyword);
-  // [ST][C][N][4][n]OFF: texture coordinates, colours and normals trail the xyz and are ignored.
-  std::string_view kind = keyword;
-  if (kind.substr(0, 2) == "ST") kind.remove_prefix(2);
-  if (kind.substr(0, 1) == "C") kind.remove_prefix(1);
-  if (kind.substr(0, 1) == "N") kind.remove_prefix(1);
   bool higher_dimension = false;
-  if (kind.substr(0, 1) == "4") kind.remove_prefix(1), higher_dimension = true;
-  if (kind.substr(0, 1) == "n") kind.remove_prefix(1), higher_dimension = true;
-  if (kind != "OFF") fail_at_line(name, lines.line_number(), "expected an OFF header, found " + quoted(keyword));
+  if (!is_off_keyword(keyword, higher_dimension)) fail_at_line(name, lines.line_number(), "expected an OFF header, found " + quoted(keyword));
   if (higher_dimension) fail_at_line(name, lines.line_number(), "4D / n-dimensional OFF is not supported");
   if (tokens.at_end()) {
     if (!next_content_line(lines, tokens)) fail_at_line(name, lines.line_number(), "missing vertex/face counts");
@@ -730,6 +735,42 @@ void parse_stl(std::string_view bytes, const std::string& name, Mesh& mesh) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Format detection by content.
+
+// The first keyword of a text, skipping blank lines and '#' comments (OFF and OBJ allow them
+// before their first record).
+std::string_view first_keyword(std::string_view text) {
+  LineReader lines(text);
+  std::string_view line, keyword;
+  while (lines.next(line)) {
+    Tokens tokens(strip_comment(line));
+    if (tokens.next(keyword)) return keyword;
+  }
+  return {};
+}
+
+bool is_obj_keyword(std::string_view keyword) {
+  static const char* const kKeywords[] = {"v", "vt", "vn", "vp", "f", "fo", "l", "p",
+                                          "o", "g", "s", "mtllib", "usemtl"};
+  return std::any_of(std::begin(kKeywords), std::end(kKeywords), [&](const char* k) { return keyword == k; });
+}
+
+MeshFormat detect_content_format(std::string_view bytes) {
+  // Binary STL first, by its size: its 80-byte header is free text and may say anything.
+  if (bytes.size() >= 84 &&
+      84 + 50 * uint64_t(read_le32(reinterpret_cast<const unsigned char*>(bytes.data()) + 80)) == bytes.size())
+    return MeshFormat::Stl;
+  if (starts_with_solid(bytes)) return MeshFormat::Stl;
+  std::string_view text = bytes;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  const std::string_view keyword = first_keyword(text);
+  bool higher_dimension;
+  if (is_off_keyword(keyword, higher_dimension)) return MeshFormat::Off;
+  if (is_obj_keyword(keyword)) return MeshFormat::Obj;
+  return MeshFormat::Unknown;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Writers.
 
 // %.17g round-trips every double. std::to_chars gives the same text without the locale (and
@@ -815,7 +856,11 @@ ReadResult read_stl(std::string_view bytes, const std::string& name) {
   return run_reader([&](ReadResult& r) { parse_stl(bytes, name, r.mesh); });
 }
 
+MeshFormat detect_format(std::string_view bytes) { return detect_content_format(bytes); }
+
 ReadResult read_mesh(std::string_view bytes, MeshFormat format, const std::string& name) {
+  if (format == MeshFormat::Unknown) format = format_from_path(name);
+  if (format == MeshFormat::Unknown) format = detect_format(bytes);
   switch (format) {
     case MeshFormat::Off: return read_off(bytes, name);
     case MeshFormat::Obj: return read_obj(bytes, name);
@@ -823,8 +868,14 @@ ReadResult read_mesh(std::string_view bytes, MeshFormat format, const std::strin
     case MeshFormat::Unknown: break;
   }
   ReadResult result;
-  result.error = Error::ParseError;
-  result.message = name + ": unknown mesh format (expected .off, .obj or .stl)";
+  if (only_blank(bytes)) {
+    result.error = Error::EmptyInput;
+    result.message = name + ": empty file";
+  } else {
+    result.error = Error::ParseError;
+    result.message = name + ": unknown mesh format: the name does not end in .off, .obj or .stl and the content is "
+                            "none of them";
+  }
   return result;
 }
 
@@ -841,12 +892,6 @@ ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
   struct stat info;
   if (::stat(path.c_str(), &info) != 0) return io_error(std::strerror(errno));
   if (S_ISDIR(info.st_mode)) return io_error("is a directory");
-  const MeshFormat format = format_from_path(path);
-  if (format == MeshFormat::Unknown) {
-    result.error = Error::ParseError;
-    result.message = path + ": unsupported file type (expected .off, .obj or .stl)";
-    return result;
-  }
   auto too_large = [&](uint64_t size) {
     result.error = Error::TooLarge;
     result.message = path + ": file is " + std::to_string(size) + " bytes, more than the limit of " +
@@ -878,7 +923,7 @@ ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
   const bool read_failed = std::ferror(file) != 0;
   std::fclose(file);
   if (read_failed) return io_error("read error");
-  return read_mesh(bytes, format, path);
+  return read_mesh(bytes, MeshFormat::Unknown, path);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -961,19 +1006,27 @@ std::string write_stl_binary(const Mesh& mesh) {
   return out;
 }
 
+std::string write_mesh(const Mesh& mesh, MeshFormat format) {
+  switch (format) {
+    case MeshFormat::Off: return write_off(mesh);
+    case MeshFormat::Obj: return write_obj(mesh);
+    case MeshFormat::Stl: return write_stl_binary(mesh);
+    default: break;
+  }
+  throw std::invalid_argument("write_mesh: no writer for this format (Off, Obj or Stl)");
+}
+
 Error write_mesh_file(const std::string& path, const Mesh& mesh, std::string* message) {
   auto failed = [&](const std::string& reason) {
     if (message) *message = path + ": " + reason;
     return Error::IoError;
   };
   std::string bytes;
+  const MeshFormat format = format_from_path(path);
+  if (format != MeshFormat::Off && format != MeshFormat::Obj && format != MeshFormat::Stl)
+    return failed("unsupported file type (expected .off, .obj or .stl)");
   try {
-    switch (format_from_path(path)) {
-      case MeshFormat::Off: bytes = write_off(mesh); break;
-      case MeshFormat::Obj: bytes = write_obj(mesh); break;
-      case MeshFormat::Stl: bytes = write_stl_binary(mesh); break;
-      case MeshFormat::Unknown: return failed("unsupported file type (expected .off, .obj or .stl)");
-    }
+    bytes = write_mesh(mesh, format);
   } catch (const std::bad_alloc&) {
     return failed("out of memory while formatting the mesh");
   }

@@ -512,15 +512,56 @@ TEST(IoTest, ReadMeshFileErrors) {
   EXPECT_TRUE(contains(r.message, "big.off")) << r.message;
   EXPECT_TRUE(kergen::read_mesh_file(big).ok());
 
-  const std::string ply = (dir / "shape.ply").string();
-  {
-    std::ofstream out(ply);
-    out << "ply\n";
-  }
-  r = kergen::read_mesh_file(ply);
+  // Another extension: the content says the format, or the file is refused as unknown.
+  const std::string text = (dir / "shape.txt").string();
+  { std::ofstream(text, std::ios::binary) << kergen::write_off(quad_cube()); }
+  r = kergen::read_mesh_file(text);
+  ASSERT_TRUE(r.ok()) << r.message;
+  expect_same_mesh(quad_cube(), r.mesh);
+  { std::ofstream(text, std::ios::binary) << "some notes\n"; }
+  r = kergen::read_mesh_file(text);
   EXPECT_EQ(r.error, Error::ParseError);
-  EXPECT_TRUE(contains(r.message, "unsupported file type")) << r.message;
+  EXPECT_EQ(r.message, text + ": unknown mesh format: the name does not end in .off, .obj or .stl and the "
+                              "content is none of them");
   fs::remove_all(dir);
+}
+
+TEST(IoTest, DetectFormatByContent) {
+  using kergen::MeshFormat;
+  const Mesh cube = quad_cube();
+  EXPECT_EQ(kergen::detect_format(kergen::write_off(cube)), MeshFormat::Off);
+  EXPECT_EQ(kergen::detect_format("# made by hand\n\n  COFF\n"), MeshFormat::Off);
+  EXPECT_EQ(kergen::detect_format("STOFF 3 1 0\n"), MeshFormat::Off);
+  EXPECT_EQ(kergen::detect_format(kergen::write_obj(cube)), MeshFormat::Obj);
+  EXPECT_EQ(kergen::detect_format("\xEF\xBB\xBFmtllib a.mtl\nv 0 0 0\n"), MeshFormat::Obj);
+  EXPECT_EQ(kergen::detect_format("g part\r\nf 1 2 3\r\n"), MeshFormat::Obj);
+  EXPECT_EQ(kergen::detect_format(ascii_tetra_stl()), MeshFormat::Stl);
+  EXPECT_EQ(kergen::detect_format(kergen::write_stl_binary(cube)), MeshFormat::Stl);
+  // A binary STL whose header says something else is still told by its size.
+  std::string binary = kergen::write_stl_binary(cube);
+  std::memcpy(&binary[0], "OFF\nv 0 0 0\n", 12);
+  EXPECT_EQ(kergen::detect_format(binary), MeshFormat::Stl);
+  for (const char* unknown : {"", "\n\n", "# only a comment\n", "hello world\n", "OFF4\n", "plywood\n",
+                              "solidified 1 2 3\n", "3 1 0\n"})
+    EXPECT_EQ(kergen::detect_format(unknown), MeshFormat::Unknown) << unknown;
+}
+
+TEST(IoTest, ReadMeshUsesFormatThenNameThenContent) {
+  const std::string off = kergen::write_off(quad_cube());
+  EXPECT_TRUE(kergen::read_mesh(off, kergen::MeshFormat::Unknown).ok());
+  EXPECT_TRUE(kergen::read_mesh(off, kergen::MeshFormat::Unknown, "cube").ok());
+  EXPECT_TRUE(kergen::read_mesh(off, kergen::MeshFormat::Off, "cube.obj").ok());
+  // The extension wins over the content: an OBJ reader finds no OBJ record in an OFF file.
+  ReadResult r = kergen::read_mesh(off, kergen::MeshFormat::Unknown, "cube.obj");
+  EXPECT_EQ(r.error, Error::EmptyInput);
+  EXPECT_EQ(r.message, "cube.obj: no vertices and no faces");
+  r = kergen::read_mesh(" \n\t\n", kergen::MeshFormat::Unknown, "blank");
+  EXPECT_EQ(r.error, Error::EmptyInput);
+  EXPECT_EQ(r.message, "blank: empty file");
+  r = kergen::read_mesh("3 1 0\n", kergen::MeshFormat::Unknown);
+  EXPECT_EQ(r.error, Error::ParseError);
+  EXPECT_EQ(r.message, "<memory>: unknown mesh format: the name does not end in .off, .obj or .stl and the "
+                       "content is none of them");
 }
 
 // The outcome judged right for every shared fixture: Ok with the face count, or the error and a

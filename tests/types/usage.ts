@@ -7,7 +7,13 @@ import {
   findKernelPoint,
   isStarShaped,
   memoryStats,
+  readMesh,
+  readMeshSync,
+  writeMesh,
   KergenError,
+  type KernelPhase,
+  type KernelProgress,
+  type MeshData,
   type KernelResult,
   type StepEvent,
   type Vec3,
@@ -49,6 +55,26 @@ async function main(): Promise<void> {
   const total: number = result.stats.msTotal + result.volume + result.volumeRatio;
   const kinds: string[] = result.warnings.map((w) => `${w.kind} x${w.count}: ${w.message}`);
   void [status, tri, verts, firstFace, p, total, kinds];
+
+  const phases: KernelPhase[] = [];
+  await computeKernel(positions, indices, {
+    onProgress(progress: KernelProgress) {
+      phases.push(progress.phase);
+      const count: number = progress.count;
+      void count;
+    },
+  });
+
+  // Files: bytes of any ArrayBufferView or an ArrayBuffer in, plain typed arrays out.
+  const read: MeshData = await readMesh(new Uint8Array([0x4f, 0x46, 0x46]), { format: 'off', name: 'cube.off' });
+  const fromBuffer = readMeshSync(new ArrayBuffer(8), { name: 'shape.ply' });
+  const fromView = readMeshSync(new DataView(new ArrayBuffer(8)));
+  const sizes: Uint32Array | null = fromBuffer.faceSizes;
+  const again: KernelResult = await computeKernel(read.positions, read.indices, { faceSizes: read.faceSizes });
+  const obj: Uint8Array = writeMesh(again, 'obj');
+  const stl: Uint8Array = writeMesh({ positions: fromView.positions, indices: fromView.indices, faceSizes: fromView.faceSizes }, 'stl');
+  const off: Uint8Array = writeMesh({ positions: [0, 0, 0, 1, 0, 0, 0, 1, 0], indices: [0, 1, 2] }, 'off');
+  void [sizes, obj, stl, off];
 
   const sync = computeKernelSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2], { allowOpen: true, faceSizes: [3] });
   const complete: boolean = sync.complete;
@@ -94,6 +120,13 @@ async function main(): Promise<void> {
 void computeKernel(['a'], [0]);
 // @ts-expect-error: from is a 3-tuple
 void computeKernel(positions, indices, { from: [1, 2] });
+// @ts-expect-error: readMesh reads no other format
+void readMesh(new Uint8Array(0), { format: 'gltf' });
+// @ts-expect-error: writeMesh writes OBJ, OFF and STL only
+void writeMesh({ positions: [], indices: [] }, 'ply');
+// @ts-expect-error: phases are a closed set
+const badPhase: KernelPhase = 'loading';
+void badPhase;
 // @ts-expect-error: statuses are a closed set
 const bad: KernelResult['status'] = 'CONCAVE';
 void bad;

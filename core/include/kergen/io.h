@@ -1,5 +1,6 @@
-// kergen/io.h — mesh files in and out (native side; the browser demo has JavaScript readers that
-// follow these, web/loaders.js).
+// kergen/io.h — mesh files in and out. The one file grammar of the project: the CLI reads files
+// with these readers and the npm package's readMesh runs the same code compiled to WebAssembly,
+// so a file means the same mesh (or the same error) everywhere.
 //
 // Readers: OFF, OBJ (polygons, negative/relative indices, `v/vt/vn` forms, comments, groups,
 // materials and other records ignored), STL ascii and binary (told apart by content, not by the
@@ -26,9 +27,17 @@ struct ReadResult {
 enum class MeshFormat { Unknown, Off, Obj, Stl };
 MeshFormat format_from_path(const std::string& path);  // by extension, case-insensitive
 
-// Reads a file; the format comes from the extension.
+// The format a file's content shows, Unknown when none: binary STL by its size (84 + 50 × the
+// header's triangle count), ascii STL by a first word "solid", OFF by its header keyword, OBJ by
+// a first record that is an OBJ keyword (v, f, vn, g, o, mtllib, ...); blank lines and '#'
+// comments before it are skipped.
+MeshFormat detect_format(std::string_view bytes);
+
+// Reads a file, as read_mesh(bytes, MeshFormat::Unknown, path) (extension first, then content).
 ReadResult read_mesh_file(const std::string& path, size_t max_bytes = SIZE_MAX);  // 0 = no limit
-// Parses bytes already in memory; `name` is used in messages.
+// Parses bytes already in memory; `name` is used in messages. With MeshFormat::Unknown the format
+// comes from `name`'s extension, else from the content (detect_format); content that is none of
+// the formats is a ParseError ("unknown mesh format"), blank content EmptyInput.
 ReadResult read_mesh(std::string_view bytes, MeshFormat format, const std::string& name = "<memory>");
 ReadResult read_off(std::string_view text, const std::string& name = "<memory>");
 ReadResult read_obj(std::string_view text, const std::string& name = "<memory>");
@@ -37,6 +46,8 @@ ReadResult read_stl(std::string_view bytes, const std::string& name = "<memory>"
 // Writes positions + polygon faces (face_sizes empty = triangles). Returns Ok or IoError with
 // `message` set.
 Error write_mesh_file(const std::string& path, const Mesh& mesh, std::string* message = nullptr);
+// The file as bytes; `format` is Off, Obj or Stl (anything else throws std::invalid_argument).
+std::string write_mesh(const Mesh& mesh, MeshFormat format);
 std::string write_obj(const Mesh& mesh);
 std::string write_off(const Mesh& mesh);
 std::string write_stl_binary(const Mesh& mesh);
