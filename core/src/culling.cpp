@@ -142,6 +142,19 @@ bool any_above(size_t n, const double* __restrict x, const double* __restrict y,
   return above;
 }
 
+// The vertex of `tr` (traced over the sorted planes `S`) whose tight set is `tight` (over a
+// superset of S) restricted to S; 0 when none is (never expected: the start vertex is a vertex
+// of every kernel traced from it).
+uint32_t vertex_with_tight_set(const TraceResult& tr, const std::vector<uint32_t>& tight, const std::vector<uint32_t>& S) {
+  std::vector<uint32_t> in_s;
+  for (uint32_t l : tight)
+    if (std::binary_search(S.begin(), S.end(), l)) in_s.push_back(l);
+  std::sort(in_s.begin(), in_s.end());
+  for (uint32_t v = 0; v < tr.vertices.size(); ++v)
+    if (std::equal(in_s.begin(), in_s.end(), tr.vertices[v].tight.begin(), tr.vertices[v].tight.end())) return v;
+  return 0;
+}
+
 }  // namespace
 
 SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool batched) {
@@ -378,23 +391,20 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     if (!in_s[l]) { in_s[l] = 1; S.push_back(l); }
   };
   for (uint32_t l : always) add(l);
+  std::vector<uint32_t> start_tight;  // over `all`
   {
-    std::vector<uint32_t> tight;
     std::vector<char> none;
-    if (certify_vertex(ps, all, start, none, tight) != kNoPlane) {
+    if (certify_vertex(ps, all, start, none, start_tight) != kNoPlane) {
       out.trace.internal_error = true;
       return out;
     }
-    for (uint32_t l : tight) add(l);
+    for (uint32_t l : start_tight) add(l);
   }
   uint64_t rng = seed;
   size_t sample = std::min(planes.size(), std::max<size_t>(64, size_t(4 * std::sqrt(double(planes.size())))));
   for (size_t i = 0; i < sample; ++i) add(planes[mix(rng) % planes.size()]);
 
-  TraceOptions quiet = options;
-  quiet.on_step = nullptr;
-  quiet.max_steps = 0;
-  quiet.steps = nullptr;
+  const TraceOptions& quiet = options;
   std::vector<uint32_t> added_list, added_hint, on_kernel;
   std::sort(S.begin(), S.end());
   TraceResult tr = trace_kernel_edges(ps, S, start, quiet);
@@ -433,10 +443,8 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
       tr = update_kernel_trace(ps, S, tr, added_list, quiet);
   }
   out.active = S;
-  if (!tr.internal_error && ((options.on_step && *options.on_step) || options.max_steps))
-    out.trace = trace_kernel_edges(ps, S, start, options);  // the final trace, with events
-  else
-    out.trace = std::move(tr);
+  out.trace = std::move(tr);
+  out.start_vertex = vertex_with_tight_set(out.trace, start_tight, S);
   return out;
 }
 

@@ -56,6 +56,7 @@ class SupportTest {
 struct CulledTrace {
   TraceResult trace;            // the kernel, traced against `active` only
   std::vector<uint32_t> active; // the planes kept (a superset of those touching the kernel)
+  uint32_t start_vertex = 0;    // the vertex of `trace` at `start`
   size_t rounds = 0;
 };
 
@@ -66,7 +67,7 @@ struct CulledTrace {
 // plane holds K_S, hence the result, strictly. Violation is found per plane by hill climbing on
 // K_S's vertex graph in the plane's normal direction, in double with a margin far above
 // rounding, so a violated plane is never missed (near-touching planes are merely kept).
-// Events are emitted only by the final trace.
+// `options` must not ask for events (step_replay.h replays them from the result).
 CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<uint32_t>& always,
                                const VertexGeom& start, const TraceOptions& options, uint64_t seed);
 

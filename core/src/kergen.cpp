@@ -13,6 +13,7 @@
 #include "plane_classes.h"
 #include "planes.h"
 #include "polytope.h"
+#include "step_replay.h"
 #include "tracer.h"
 
 namespace kergen {
@@ -335,15 +336,18 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
 
     auto t = Clock::now();
     report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
+    // The kernel is traced without events whatever the caller asked for; the stream is then
+    // replayed from the result (step_replay.h), so steps never change the algorithm.
     uint64_t steps = 0;
     TraceOptions topt;
-    topt.on_step = &options.on_step;
-    topt.max_steps = options.max_steps;
-    topt.steps = &steps;
-    topt.unscale_exp = unscale_exp;
+    ReplayOptions ropt;
+    ropt.on_step = &options.on_step;
+    ropt.max_steps = options.max_steps;
+    ropt.steps = &steps;
+    ropt.unscale_exp = unscale_exp;
     if (options.has_from) {
-      topt.has_from = true;
-      for (int k = 0; k < 3; ++k) topt.from[k] = s.mesh.to_scaled(options.from[k]);
+      topt.has_from = ropt.has_from = true;
+      for (int k = 0; k < 3; ++k) topt.from[k] = ropt.from[k] = s.mesh.to_scaled(options.from[k]);
     }
     std::vector<uint32_t> mesh_planes;
     mesh_planes.reserve(s.planes->size());
@@ -351,6 +355,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       if (!s.is_box[i]) mesh_planes.push_back(i);
     CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
     TraceResult& tr = ct.trace;
+    if (!tr.internal_error && (options.on_step || options.max_steps)) replay_steps(*s.planes, ct.start_vertex, tr, ropt);
     out.stats.active_planes = 0;
     for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];
     out.stats.ms_trace = ms_since(t);

@@ -273,7 +273,7 @@ class Tracer {
       res_.internal_error = true;
       return std::move(res_);
     }
-    if (!add_vertex(start, tight)) return finish();
+    add_vertex(start, tight);
     return trace_queued();
   }
 
@@ -330,7 +330,7 @@ class Tracer {
  private:
   TraceResult finish() { return std::move(res_); }
 
-  // Traces the queued rays (skipping lines already traced) until none is left or a step says stop.
+  // Traces the queued rays (skipping lines already traced) until none is left.
   TraceResult trace_queued() {
     while (!queue_.empty()) {
       uint32_t idx = pop();
@@ -339,15 +339,6 @@ class Tracer {
       if (!trace(ray)) break;
     }
     return finish();
-  }
-
-  bool emit(const StepEvent& e) {
-    if (opt_.steps) ++*opt_.steps;
-    bool go = true;
-    if (opt_.on_step && *opt_.on_step) go = (*opt_.on_step)(e);
-    if (opt_.max_steps && opt_.steps && *opt_.steps >= opt_.max_steps) go = false;
-    if (!go) res_.complete = false;
-    return go;
   }
 
   // The known vertex whose tight set holds planes a, b and c, or kNoPlane.
@@ -360,24 +351,13 @@ class Tracer {
     return kNoPlane;
   }
 
-  // Adds a vertex, emits it and queues its untraced rays. Returns false to stop.
-  bool add_vertex(const VertexGeom& g, const std::vector<uint32_t>& tight) {
+  // Adds a vertex and queues its untraced rays.
+  void add_vertex(const VertexGeom& g, const std::vector<uint32_t>& tight) {
     uint32_t id = uint32_t(res_.vertices.size());
     res_.vertices.push_back({g, tight});
     vertex_ids_.insert(tight, id);
     for (uint32_t l : tight) link_vertex_on(slot_[l], id);
-    StepEvent e;
-    e.kind = StepEvent::Kind::Vertex;
-    e.id = id;
-    if (opt_.on_step && *opt_.on_step) {
-      // The same rounding as the final result's coordinates (polytope assembly).
-      double hi[3], lo[3];
-      precise_coordinates(ps_, g, hi, lo);
-      for (int k = 0; k < 3; ++k) e.position[k] = std::ldexp(hi[k], opt_.unscale_exp);
-    }
-    bool go = emit(e);
     queue_rays(id);
-    return go;
   }
 
   // Appends v to the known vertices on the active plane in `slot` (insertion order kept).
@@ -595,23 +575,17 @@ class Tracer {
     for (uint32_t i = 0; i < ray.line_size; ++i) mark_[line[i]] = 0;
     if (res_.internal_error) return false;
 
-    bool go = true;
     uint32_t to = known != kNoPlane ? known : vertex_ids_.find(tight, res_.vertices);
     if (to == kNoPlane) {
       to = uint32_t(res_.vertices.size());
-      go = add_vertex(w, tight);
+      add_vertex(w, tight);
     }
     traced_.insert(ray.key);
     TracedEdge e;
     e.a = ray.from; e.b = to; e.p = ray.p; e.q = ray.q; e.sigma = ray.sigma;
     e.planes.assign(line_pool_.begin() + ray.line_begin, line_pool_.begin() + ray.line_begin + ray.line_size);
-    uint32_t eid = uint32_t(res_.edges.size());
     res_.edges.push_back(std::move(e));
-    if (!go) return false;
-    StepEvent ev;
-    ev.kind = StepEvent::Kind::Edge;
-    ev.id = eid; ev.a = ray.from; ev.b = to;
-    return emit(ev);
+    return true;
   }
 
   const PlaneSet& ps_;

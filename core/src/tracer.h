@@ -31,18 +31,15 @@ struct TracedEdge {
 struct TraceResult {
   std::vector<TracedVertex> vertices;
   std::vector<TracedEdge> edges;
-  bool complete = true;        // false when the step callback or max_steps stopped the run
+  bool complete = true;        // false for a partial kernel (a stopped step replay)
   bool internal_error = false; // a certification failed (never expected; reported, not hidden)
   size_t traced_lines = 0;
 };
 
+// (The tracer emits no step events: step_replay.h replays them from a finished trace.)
 struct TraceOptions {
-  const StepCallback* on_step = nullptr;
-  uint64_t max_steps = 0;
-  uint64_t* steps = nullptr;   // events emitted so far (shared with the face events after)
   bool has_from = false;       // expand the vertex nearest to `from` first
   double from[3] = {0, 0, 0};  // in the scaled units of the plane set
-  int unscale_exp = 0;         // event coordinates are scaled ones times 2^unscale_exp
 };
 
 // `active` lists the planes that may touch the kernel (all of them, or the survivors of culling);
@@ -52,7 +49,7 @@ TraceResult trace_kernel_edges(const PlaneSet& ps, const std::vector<uint32_t>& 
 
 // K_S' from a complete trace `prev` of K_S, where S' = `active` holds the planes `added` and
 // every plane of S that some vertex of K_S lies on (other planes of S may be dropped). Only the
-// part of K_S the added planes cut is traced again. Emits no events for the kept part.
+// part of K_S the added planes cut is traced again.
 TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceResult& prev,
                                 const std::vector<uint32_t>& added, const TraceOptions& options);
 

@@ -557,6 +557,88 @@ TEST(Kernel, StreamingPrefixesAndEarlyStop) {
   }
 }
 
+// Streaming on meshes whose kernel comes from the culled path (sample kernel, incremental cuts):
+// the events are replayed from that result, so the result is the same kernel with or without a
+// callback, and the stream keeps its contract: it starts at the LP vertex (kernel_point), each
+// edge joins vertices reported before it, ids index the final arrays, and a stopped run holds
+// exactly what was reported.
+TEST(Kernel, StreamingOnTheCulledPathKeepsTheKernelAndTheContract) {
+  const Mesh meshes[] = {geodesic_sphere(12).mesh, bumpy_sphere(60, 40, 0.05), bumpy_sphere(90, 60, 0.01)};
+  for (const Mesh& m : meshes) {
+    Options quiet;
+    Kernel plain = compute_kernel(m.view(), quiet);
+    ASSERT_TRUE(plain.ok()) << plain.message;
+    ASSERT_GT(plain.stats.distinct_planes, 1024u) << "large enough for the culled path";
+    std::vector<StepEvent> events;
+    std::vector<std::vector<uint32_t>> loops;
+    Options o;
+    o.on_step = [&](const StepEvent& e) {
+      events.push_back(e);
+      if (e.kind == StepEvent::Kind::Face) loops.emplace_back(e.loop, e.loop + e.loop_size);
+      return true;
+    };
+    Kernel k = compute_kernel(m.view(), o);
+    ASSERT_TRUE(k.ok()) << k.message;
+    EXPECT_TRUE(k.complete);
+    // (The double checks of convexity need well-shaped faces: the geodesic sphere's.)
+    if (&m == &meshes[0]) expect_valid_polyhedron(m, k);
+    EXPECT_EQ(int64_t(k.num_vertices()) - int64_t(k.num_edges()) + int64_t(k.num_faces()), 2);
+    // The same kernel, numbered in event order: the volume is summed in another order.
+    EXPECT_NEAR(k.volume, plain.volume, 1e-12 * plain.volume);
+    EXPECT_EQ(k.num_vertices(), plain.num_vertices());
+    EXPECT_EQ(k.num_edges(), plain.num_edges());
+    EXPECT_EQ(k.num_faces(), plain.num_faces());
+    std::multiset<std::array<double, 3>> with, without;
+    for (size_t v = 0; v < k.num_vertices(); ++v) {
+      with.insert({k.vertices[3 * v], k.vertices[3 * v + 1], k.vertices[3 * v + 2]});
+      without.insert({plain.vertices[3 * v], plain.vertices[3 * v + 1], plain.vertices[3 * v + 2]});
+    }
+    EXPECT_TRUE(with == without) << "the same vertices with and without a callback";
+
+    ASSERT_FALSE(events.empty());
+    ASSERT_EQ(events[0].kind, StepEvent::Kind::Vertex);
+    EXPECT_EQ(events[0].position, k.kernel_point) << "the stream starts at the LP vertex";
+    uint32_t next[3] = {0, 0, 0};
+    size_t face = 0;
+    for (const StepEvent& e : events) {
+      ASSERT_EQ(e.id, next[int(e.kind)]++) << "ids in order";
+      if (e.kind == StepEvent::Kind::Vertex) {
+        EXPECT_EQ(e.position[0], k.vertices[3 * e.id]);
+        EXPECT_EQ(e.position[1], k.vertices[3 * e.id + 1]);
+        EXPECT_EQ(e.position[2], k.vertices[3 * e.id + 2]);
+      } else if (e.kind == StepEvent::Kind::Edge) {
+        EXPECT_LT(e.a, next[0]);
+        EXPECT_LT(e.b, next[0]);
+        EXPECT_EQ(k.edges[2 * e.id], e.a);
+        EXPECT_EQ(k.edges[2 * e.id + 1], e.b);
+      } else {
+        ASSERT_LT(face, k.num_faces());
+        EXPECT_EQ(loops[face].size(), k.face_sizes[face]);
+        ++face;
+      }
+    }
+    EXPECT_EQ(next[0], k.num_vertices());
+    EXPECT_EQ(next[1], k.num_edges());
+    EXPECT_EQ(next[2], k.num_faces());
+
+    // Stopped after n events: exactly the reported vertices and edges, each a part of the kernel.
+    for (uint64_t n : {uint64_t(1), uint64_t(2), uint64_t(57), uint64_t(events.size() / 3)}) {
+      Options stop;
+      stop.max_steps = n;
+      Kernel part = compute_kernel(m.view(), stop);
+      ASSERT_TRUE(part.ok());
+      EXPECT_FALSE(part.complete);
+      size_t nv = 0, ne = 0;
+      for (uint64_t i = 0; i < n; ++i) (events[i].kind == StepEvent::Kind::Vertex ? nv : ne)++;
+      ASSERT_EQ(part.num_vertices(), nv) << n;
+      ASSERT_EQ(part.num_edges(), ne) << n;
+      EXPECT_TRUE(std::equal(part.vertices.begin(), part.vertices.end(), k.vertices.begin())) << n;
+      EXPECT_TRUE(std::equal(part.edges.begin(), part.edges.end(), k.edges.begin())) << n;
+      EXPECT_EQ(part.volume, 0);
+    }
+  }
+}
+
 TEST(Kernel, ProgressReportsEachPhaseOnceInOrder) {
   auto phases_of = [](const Mesh& m) {
     std::vector<std::pair<Progress::Phase, size_t>> seen;

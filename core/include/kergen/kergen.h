@@ -85,8 +85,24 @@ struct Mesh {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Streaming. Events arrive in discovery order; every prefix describes a subset of the kernel's
-// boundary (each reported vertex is an exact kernel vertex, each edge a whole kernel edge).
+// Streaming. Events arrive in the order KerGen's additive tracing discovers the kernel: the start
+// vertex (the LP vertex, Kernel::kernel_point) first, then breadth-first (with Options::from, the
+// vertex nearest to `from` first): a Vertex event when a vertex is found, an Edge event when an
+// edge to it is traced, then one Face event per facet. Every prefix describes a subset of the
+// kernel's boundary (each reported vertex is an exact kernel vertex, each edge a whole kernel
+// edge, between vertices reported before it), and ids index the result's arrays.
+//
+// Cost: asking for steps never changes the algorithm. The kernel is computed by the same fast path
+// (culling, incremental cuts) as without a callback, and the events are then replayed from its
+// vertex graph in tracing order: O(V + E) more, plus the callbacks. The result's arrays are
+// numbered in event order (without steps, the same kernel may come numbered otherwise).
+//
+// Stopping (the callback returns false, or Options::max_steps events were emitted):
+// complete = false. Stopped at a Vertex or Edge event, the result holds exactly the vertices
+// and edges reported so far, under their event ids, and the facets whose edges close among them
+// (not announced), with volume 0. Stopped at a Face event, the kernel is whole (every facet is
+// in the result, the later ones not announced). A stopped run costs what the whole run costs:
+// the kernel was complete before the first event.
 struct StepEvent {
   enum class Kind : uint8_t { Vertex, Edge, Face };
   Kind kind = Kind::Vertex;
@@ -96,7 +112,7 @@ struct StepEvent {
   const uint32_t* loop = nullptr;  // Face: vertex ids, CCW from outside (valid during the call)
   uint32_t loop_size = 0;
 };
-// Return false to stop; the result then holds the partial kernel found so far (complete = false).
+// Return false to stop; the result then holds the partial kernel reported so far (see above).
 using StepCallback = std::function<bool(const StepEvent&)>;
 
 // Progress of a long run, for a UI: called once as each phase of compute_kernel begins, in this
