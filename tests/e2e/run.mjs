@@ -601,7 +601,7 @@ async function main() {
       ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'PARSE_ERROR', /bad-index\.off:16: vertex index 99 out of range \(the file has 8 vertices\)/],
       ['open cube (one face missing)', 'open-cube.off', (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)), 'OPEN_MESH', /open/i],
       ['two cubes sharing an edge', 'edge-cubes.off', writeEdgeSharingCubes, 'NON_MANIFOLD_EDGE', /manifold/i],
-      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n8 6 0\n0 0 zero\n'), 'PARSE_ERROR', /garbage\.off:3: invalid number "zero"/],
+      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n'), 'PARSE_ERROR', /garbage\.off:4: invalid number 'zero'/],
       ['OBJ face with a bad index', 'bad-face.obj', (f) => fs.writeFileSync(f, 'v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 x\n'), 'PARSE_ERROR', /bad-face\.obj:5: /],
       ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /short\.stl: .*STL/],
       ['unsupported file type', 'mesh.xyz', (f) => fs.writeFileSync(f, 'hello\n'), 'PARSE_ERROR', /unsupported/i],

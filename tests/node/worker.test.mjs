@@ -148,8 +148,8 @@ test('computeFile parses in the worker: mesh and kernel, bytes transferred, onMe
 test('computeFile: parse errors reject with PARSE_ERROR naming the file and line', async (t) => {
   if (!fileLayer()) return t.skip('this package build has no readMeshSync / writeMesh');
   const kw = newWorker();
-  const text = new TextEncoder().encode('OFF\n8 6 0\n0 0 zero\n');
-  await assert.rejects(kw.computeFile(text, { name: 'garbage.off' }), (err) => err.code === 'PARSE_ERROR' && /garbage\.off:3:/.test(err.message));
+  const text = new TextEncoder().encode('OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n');
+  await assert.rejects(kw.computeFile(text, { name: 'garbage.off' }), (err) => err.code === 'PARSE_ERROR' && /^garbage\.off:4: invalid number 'zero'/.test(err.message));
   const r = await kw.computeFile(lPrismOff(), { format: 'off' });
   assert.equal(r.result.volume, 1, 'the worker keeps working after a parse error');
 });
