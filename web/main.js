@@ -320,10 +320,10 @@ function addMissingEvents(result, V, E, F) {
 
 function showStats(result, wall, V, E, F) {
   const s = result.stats ?? {};
-  setStat('stat-input-faces', `${s.inputFaces ?? '—'}${s.droppedFaces ? ` (${s.droppedFaces} zero-area dropped)` : ''}`, s.inputFaces);
+  setStat('stat-input-faces', `${s.inputFaces != null ? fmtCount(s.inputFaces) : '—'}${s.droppedFaces ? ` (${s.droppedFaces} zero-area dropped)` : ''}`, s.inputFaces);
   const planesNote = [s.activePlanes != null ? `${s.activePlanes} active` : null, s.culledFaces ? `${s.culledFaces} faces culled first` : null]
     .filter(Boolean).join(', ');
-  setStat('stat-planes', `${s.distinctPlanes ?? '—'}${planesNote ? ` (${planesNote})` : ''}`, s.distinctPlanes);
+  setStat('stat-planes', `${s.distinctPlanes != null ? fmtCount(s.distinctPlanes) : '—'}${planesNote ? ` (${planesNote})` : ''}`, s.distinctPlanes);
   setStat('stat-status', result.status + (result.complete === false ? ' (partial)' : ''), result.status);
   setStat('stat-vertices', String(V), V);
   setStat('stat-edges', String(E), E);
