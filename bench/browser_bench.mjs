@@ -8,7 +8,8 @@
 //
 // Needs dist/ (npm run build:wasm) and web/dist (built here when missing). Meshes: princeton
 // 325.off and refinements/vase6.off from ../shared/meshes (skipped when absent), and two generated
-// here into a temporary folder (never committed): a 199,200-triangle convex sphere (OFF) and a
+// here into a temporary folder (never committed): a 199,200-triangle UV sphere (OFF; nearly
+// convex: its quads' diagonals leave slight dents, so its kernel is a little smaller) and a
 // 1,000,000-triangle bumpy sphere as binary STL (50 MB; scripts/gen-big-mesh.mjs).
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -39,7 +40,7 @@ function meshList(tmp) {
   const list = [
     { name: 'princeton/325.off', file: path.join(shared, 'princeton/325.off') },
     { name: 'refinements/vase6.off', file: path.join(shared, 'refinements/vase6.off') },
-    { name: 'convex sphere 199k (OFF)', file: path.join(tmp, 'sphere-199k.off'), make: (f) => writeOFF(f, radialSphere(250, 400, () => 1)) },
+    { name: 'UV sphere 199k (OFF)', file: path.join(tmp, 'sphere-199k.off'), make: (f) => writeOFF(f, radialSphere(250, 400, () => 1)) },
     { name: 'bumpy sphere 1M (binary STL)', file: path.join(tmp, 'bumpy-1m.stl'), make: (f) => writeBinarySTL(f, bumpySphere(1000, 501)) },
   ];
   return list.filter((m) => !only || m.name.includes(only));
@@ -50,10 +51,13 @@ const median = (xs) => {
   return s.length ? s[Math.floor((s.length - 1) / 2)] : NaN;
 };
 
-// One drop on a fresh page (so earlier meshes leave no replay or memory behind).
+// One drop on a fresh page (so earlier meshes leave no replay or memory behind) that has computed
+// a small sample first: the worker and its wasm module are loaded, as on a page in use.
 async function dropOnce(page, base, url, name, stream) {
-  await page.goto(`${base}?sample=none${stream ? '' : '&stream=0'}`, { waitUntil: 'load' });
-  await page.waitForTimeout(500);
+  await page.goto(`${base}?sample=l-prism${stream ? '' : '&stream=0'}`, { waitUntil: 'load' });
+  await page.waitForFunction(() => document.getElementById('status').dataset.state === 'done', null, { timeout: 60000 });
+  await page.click('#jump-end');
+  await page.waitForTimeout(300);
   return dropAndMeasure(page, url, name, { timeout: timeoutMs });
 }
 

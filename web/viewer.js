@@ -16,7 +16,9 @@ function cssColor(name, fallback) {
   return v || fallback;
 }
 
-// A growable Float32 attribute (xyz) whose draw range is set separately.
+// A growable Float32 attribute (xyz) whose draw range is set separately. Only the items added
+// since the last frame are uploaded (upload()): re-sending a kernel of a million elements every
+// frame would cost more than drawing it.
 class GrowableBuffer {
   constructor(geometry, name = 'position', itemSize = 3) {
     this.geometry = geometry;
@@ -31,6 +33,7 @@ class GrowableBuffer {
     this.attr = new THREE.BufferAttribute(array, this.itemSize);
     this.attr.setUsage(THREE.DynamicDrawUsage);
     this.geometry.setAttribute(this.name, this.attr);
+    this.uploaded = this.count; // a new attribute is uploaded whole on its first draw
   }
   push(x, y, z) {
     if (this.count * this.itemSize >= this.attr.array.length) this.alloc(this.count * 2);
@@ -39,7 +42,15 @@ class GrowableBuffer {
     this.attr.array[o + 1] = y;
     this.attr.array[o + 2] = z;
     this.count++;
+  }
+  // Marks the items pushed since the last call for upload.
+  upload() {
+    if (this.count === this.uploaded) return;
+    // Ranges add up until the next draw uploads them (three.js clears them then): a frame can be
+    // skipped between two calls.
+    this.attr.addUpdateRange(this.uploaded * this.itemSize, (this.count - this.uploaded) * this.itemSize);
     this.attr.needsUpdate = true;
+    this.uploaded = this.count;
   }
   reset() {
     this.count = 0;
@@ -65,6 +76,8 @@ class GrowableArray {
 }
 
 const KIND = { vertex: 1, edge: 2, face: 3 };
+const BIG_KERNEL_VERTICES = 20000;
+const BIG_KERNEL_EDGES = 30000;
 
 // The kernel as a timeline of step events. `push(event)` records an event; `show(k)` draws the
 // state after the first k events (vertices as points, edges as lines, faces filled). Everything
@@ -168,8 +181,13 @@ export class KernelView {
   // Draws the state after the first k events; returns the partial counts.
   show(k) {
     k = Math.max(0, Math.min(this.length, Math.floor(k)));
+    for (const b of [this.pointBuf, this.lineBuf, this.faceBuf]) b.upload();
     if (k !== this.shown) {
       const p = this.prefix.array;
+      // Big kernels: vertex dots and edge lines only while there are few enough to read (and
+      // to draw: software WebGL pays for every primitive); the faces show the shape.
+      this.points.visible = p[4 * k] <= BIG_KERNEL_VERTICES;
+      this.lines.visible = p[4 * k + 1] / 2 <= BIG_KERNEL_EDGES;
       this.pointsGeo.setDrawRange(0, p[4 * k]);
       this.linesGeo.setDrawRange(0, p[4 * k + 1]);
       this.facesGeo.setDrawRange(0, p[4 * k + 2]);
