@@ -638,5 +638,8 @@ for (const s of SAMPLES) {
   ui.samples.append(b);
 }
 
+// Start the drawing worker now, not when the first big file arrives.
+drawRequest({ type: 'noop' });
+
 const initial = new URLSearchParams(location.search).get('sample') ?? 'star-prism';
 if (initial !== 'none') loadSample(initial);
