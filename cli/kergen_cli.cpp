@@ -30,8 +30,8 @@ const char* const kUsage =
     "                      [--deepest] [--max-steps N]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
-    "  MESH            a .off, .obj or .stl file (any other name: the format is told by the\n"
-    "                  content), or a folder (its .off, .obj and .stl files, sorted)\n"
+    "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
+    "                  the content), or a folder (its .off, .obj, .stl and .ply files, sorted)\n"
     "  -o OUT          write the kernel as OBJ, OFF or binary STL (one mesh only)\n"
     "  --json          one JSON object per mesh on stdout\n"
     "  --from x,y,z    grow the kernel from the vertex nearest to this direction\n"
@@ -77,7 +77,8 @@ Arguments parse_arguments(int argc, char** argv) {
       std::exit(0);
     } else if (arg == "-o" || arg == "--output") {
       args.output = value();
-      if (kergen::format_from_path(args.output) == kergen::MeshFormat::Unknown)
+      const kergen::MeshFormat format = kergen::format_from_path(args.output);
+      if (format != kergen::MeshFormat::Obj && format != kergen::MeshFormat::Off && format != kergen::MeshFormat::Stl)
         usage_error("output '" + args.output + "' must end in .obj, .off or .stl");
     } else if (arg == "--json") {
       args.json = true;
@@ -132,7 +133,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
       if (it->is_regular_file(type_ec) && is_mesh_file_name(it->path())) found.push_back(it->path().string());
     }
     if (ec) problems.push_back(input + ": cannot list folder: " + ec.message());
-    else if (found.empty()) problems.push_back(input + ": folder has no .off, .obj or .stl file");
+    else if (found.empty()) problems.push_back(input + ": folder has no .off, .obj, .stl or .ply file");
     std::sort(found.begin(), found.end());
     files.insert(files.end(), found.begin(), found.end());
   }

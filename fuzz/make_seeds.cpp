@@ -1,12 +1,16 @@
 // Seed corpus writer for the fuzz targets (run by scripts/fuzz.sh; the corpus is not committed).
 //   make_seeds OUT_DIR MESH...
-// Writes every readable MESH (up to 64 KB) as OFF, OBJ, ascii STL and binary STL into
-// OUT_DIR/{fuzz_off,fuzz_obj,fuzz_stl_ascii,fuzz_stl_binary}/, copies the original file into
+// Writes every readable MESH (up to 64 KB) as OFF, OBJ, ascii STL, binary STL and PLY (ascii,
+// binary little- and big-endian) into OUT_DIR/{fuzz_off,fuzz_obj,fuzz_stl_ascii,fuzz_stl_binary,
+// fuzz_ply}/, copies the original file into
 // the directory of its own format as it is (so format quirks are kept), and writes one seed per
 // generated base mesh for fuzz_kernel.
 #include <sys/stat.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -38,6 +42,52 @@ std::string ascii_stl(const kergen::Mesh& m) {
   return s + "endsolid seed\n";
 }
 
+// PLY seeds (the project has no PLY writer): double coordinates, uchar counts and int indices,
+// plus an ignored vertex property and an ignored element so the fuzzer starts from files that
+// exercise the skipping paths. `order`: 0 ascii, 1 little-endian, 2 big-endian.
+std::string ply_seed(const kergen::Mesh& m, int order) {
+  const char* format[] = {"ascii", "binary_little_endian", "binary_big_endian"};
+  std::string s = std::string("ply\nformat ") + format[order] + " 1.0\ncomment seed\nelement vertex " +
+                  std::to_string(m.num_vertices()) +
+                  "\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nelement edge 1\n"
+                  "property list uchar int vertex_index\nelement face " + std::to_string(m.num_faces()) +
+                  "\nproperty list uchar int vertex_indices\nend_header\n";
+  auto put_bytes = [&](const void* p, size_t n) {
+    char b[8];
+    std::memcpy(b, p, n);
+    if (order == 2) std::reverse(b, b + n);  // the seed writer runs on little-endian hosts
+    s.append(b, n);
+  };
+  auto number = [&](double v, const char* type, char after) {
+    if (order == 0) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.17g%c", v, after);
+      s += buf;
+    } else if (type[0] == 'd') {
+      put_bytes(&v, 8);
+    } else if (type[0] == 'i') {
+      const int32_t i = static_cast<int32_t>(v);
+      put_bytes(&i, 4);
+    } else {
+      const uint8_t u = static_cast<uint8_t>(v);
+      put_bytes(&u, 1);
+    }
+  };
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    for (int k = 0; k < 3; ++k) number(m.positions[3 * v + k], "double", ' ');
+    number(7, "uchar", '\n');
+  }
+  number(2, "uchar", ' '), number(0, "int", ' '), number(1, "int", '\n');
+  size_t off = 0;
+  for (size_t f = 0; f < m.num_faces(); ++f) {
+    const size_t n = m.face_sizes.empty() ? 3 : m.face_sizes[f];
+    number(double(n), "uchar", ' ');
+    for (size_t i = 0; i < n; ++i) number(m.indices[off + i], "int", i + 1 < n ? ' ' : '\n');
+    off += n;
+  }
+  return s;
+}
+
 std::string base(const std::string& path) {
   size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? path : path.substr(slash + 1);
@@ -51,7 +101,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out = argv[1];
-  const char* dirs[] = {"fuzz_off", "fuzz_obj", "fuzz_stl_ascii", "fuzz_stl_binary", "fuzz_kernel"};
+  const char* dirs[] = {"fuzz_off", "fuzz_obj", "fuzz_stl_ascii", "fuzz_stl_binary", "fuzz_ply", "fuzz_kernel"};
   mkdir(out.c_str(), 0755);
   for (const char* d : dirs) mkdir((out + "/" + d).c_str(), 0755);
   int written = 0;
@@ -65,6 +115,7 @@ int main(int argc, char** argv) {
     const kergen::MeshFormat fmt = kergen::format_from_path(path);
     if (fmt == kergen::MeshFormat::Off) put(out + "/fuzz_off/orig-" + name, bytes);
     if (fmt == kergen::MeshFormat::Obj) put(out + "/fuzz_obj/orig-" + name, bytes);
+    if (fmt == kergen::MeshFormat::Ply) put(out + "/fuzz_ply/orig-" + name, bytes);
     if (fmt == kergen::MeshFormat::Stl) {
       put(out + "/fuzz_stl_ascii/orig-" + name, bytes);
       put(out + "/fuzz_stl_binary/orig-" + name, std::string(1, '\0') + bytes);
@@ -73,6 +124,8 @@ int main(int argc, char** argv) {
     if (!r.ok()) continue;
     put(out + "/fuzz_off/" + name + ".off", kergen::write_off(r.mesh));
     put(out + "/fuzz_obj/" + name + ".obj", kergen::write_obj(r.mesh));
+    for (int order = 0; order < 3; ++order)
+      put(out + "/fuzz_ply/" + name + "." + std::to_string(order) + ".ply", ply_seed(r.mesh, order));
     if (r.mesh.num_faces() <= 400) {
       put(out + "/fuzz_stl_ascii/" + name + ".stl", ascii_stl(r.mesh));
       put(out + "/fuzz_stl_binary/" + name + ".stl", std::string(1, '\1') + kergen::write_stl_binary(r.mesh));

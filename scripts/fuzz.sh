@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_off fuzz_obj fuzz_stl_ascii fuzz_stl_binary fuzz_kernel)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_off fuzz_obj fuzz_stl_ascii fuzz_stl_binary fuzz_ply fuzz_kernel)
 BUILD=${KERGEN_FUZZ_BUILD:-build-fuzz}
 SHARED=${KERGEN_SHARED_MESHES:-../shared/meshes}
 JOBS=${KERGEN_FUZZ_JOBS:-1}
@@ -37,7 +37,7 @@ if command -v node >/dev/null; then
 fi
 if [ -d "$SHARED/fixtures" ]; then
   shopt -s nullglob
-  "$BUILD/fuzz/fuzz_make_seeds" fuzz/corpus "$SHARED"/fixtures/*.{off,obj,stl} "$SHARED"/fixtures/formats/* "$SHARED"/fixtures/bad/*.stl "${GENERATED[@]}"
+  "$BUILD/fuzz/fuzz_make_seeds" fuzz/corpus "$SHARED"/fixtures/*.{off,obj,stl,ply} "$SHARED"/fixtures/formats/* "$SHARED"/fixtures/bad/*.stl "${GENERATED[@]}"
   shopt -u nullglob
 else
   echo "fuzz: $SHARED/fixtures not found: fuzzing without the shared seed meshes" >&2

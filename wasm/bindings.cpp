@@ -104,7 +104,8 @@ static_assert(static_cast<int>(kergen::StepEvent::Kind::Vertex) == 0 &&
 
 // Codes index.js sends: readMesh/writeMesh formats (its FORMATS list) and kernel types (STATUSES).
 static_assert(static_cast<int>(kergen::MeshFormat::Unknown) == 0 && static_cast<int>(kergen::MeshFormat::Off) == 1 &&
-                  static_cast<int>(kergen::MeshFormat::Obj) == 2 && static_cast<int>(kergen::MeshFormat::Stl) == 3,
+                  static_cast<int>(kergen::MeshFormat::Obj) == 2 && static_cast<int>(kergen::MeshFormat::Stl) == 3 &&
+                  static_cast<int>(kergen::MeshFormat::Ply) == 4,
               "format codes of index.js");
 static_assert(static_cast<int>(kergen::KernelType::Empty) == 0 && static_cast<int>(kergen::KernelType::Point) == 1 &&
                   static_cast<int>(kergen::KernelType::Segment) == 2 &&

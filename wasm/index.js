@@ -530,7 +530,7 @@ export function memoryStats() {
 
 // readMesh / writeMesh format names at their kergen::MeshFormat codes ('' = Unknown: from the name's
 // extension, else from the content); bindings.cpp checks the codes.
-const FORMATS = ['', 'off', 'obj', 'stl'];
+const FORMATS = ['', 'off', 'obj', 'stl', 'ply'];
 const WRITE_FORMATS = ['obj', 'off', 'stl'];
 const textEncoder = new TextEncoder();
 

@@ -226,6 +226,40 @@ TEST_F(CliTest, FolderGivesOneJsonLinePerMeshAndASummary) {
   EXPECT_TRUE(has(r.err, "3 meshes")) << r.err;
 }
 
+TEST_F(CliTest, PlyFilesAndFilesOfOtherNames) {
+  // A PLY box 1 x 2 x 4 (binary, little-endian) is read from a folder like the other formats.
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 8; ++i)
+    for (float v : {(i & 1) ? 1.0f : 0.0f, (i & 2) ? 2.0f : 0.0f, (i & 4) ? 4.0f : 0.0f})
+      ply.append(reinterpret_cast<const char*>(&v), 4);  // the test host is little-endian
+  const int32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& quad : quads) {
+    ply += char(4);
+    ply.append(reinterpret_cast<const char*>(quad), sizeof quad);
+  }
+  std::ofstream(dir_ / "p.ply", std::ios::binary) << ply;
+  write_box("b.off", 1, 1, 1);
+  std::ofstream(dir_ / "notes.txt") << "not a mesh\n";
+  CliRun r = run("--json " + shell_quote(dir_.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 2u) << r.out;
+  EXPECT_TRUE(has(json_raw(lines[1], "file"), "p.ply"));
+  EXPECT_EQ(json_raw(lines[1], "status"), "POLYHEDRON") << lines[1];
+  EXPECT_NEAR(json_number(lines[1], "volume"), 8.0, 8e-12);
+
+  // Another name: the content says the format, or the file is refused as unknown.
+  fs::rename(dir_ / "p.ply", dir_ / "box-without-extension");
+  r = run("--json " + shell_quote((dir_ / "box-without-extension").string()));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(json_number(r.out, "volume"), 8.0, 8e-12) << r.out;
+  r = run(shell_quote((dir_ / "notes.txt").string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_TRUE(has(r.err, "notes.txt: unknown mesh format")) << r.err;
+}
+
 TEST_F(CliTest, BatchWithOneBadMeshExitsWithOne) {
   const std::string good = write_box("good.off", 1, 1, 1);
   const std::string empty = (dir_ / "empty.stl").string();

@@ -257,7 +257,7 @@ TEST(OraclePolyhedra, DISABLED_All) {
   run_set("polyhedra (all)", files, SIZE_MAX);
 }
 
-// Every row of labels.tsv with a yes/no verdict, whatever the format (OFF/OBJ/STL; other formats
+// Every row of labels.tsv with a yes/no verdict, whatever the format (OFF/OBJ/STL/PLY; other formats
 // are listed as not readable here): the oracle's LP verdict and our find_kernel_point must both
 // agree with the label. Rows marked skip must be rejected by our validation.
 namespace {
