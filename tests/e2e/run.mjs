@@ -462,7 +462,8 @@ async function main() {
       });
     }
 
-    // PLY, when the package reads it (ascii PLY written here: vertex x y z, face vertex_indices).
+    // PLY (ascii, written here: vertex x y z, face vertex_indices); skipped with a package build
+    // that does not read PLY.
     const plyFile = path.join(tmp, 'gear.ply');
     writePLY(plyFile, sampleById('gear').build());
     const plyProblem = await packageReadsFile(plyFile);
