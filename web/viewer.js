@@ -235,9 +235,10 @@ export class Viewer {
     // MSAA there, and fewer frames while a computation runs (see render()).
     this.softwareGL = isSoftwareGL();
     this.renderer = new THREE.WebGLRenderer({ antialias: !this.softwareGL });
-    // With a software compositor the page's thread waits for every frame to be rasterized:
-    // three quarters of the resolution (~56 % of the pixels) keeps a frame well under 100 ms.
-    this.renderer.setPixelRatio(this.softwareGL ? 0.75 : Math.min(window.devicePixelRatio, 2));
+    // With a software compositor the page's thread waits for every frame to be rasterized: half
+    // the resolution (a quarter of the pixels) keeps a frame under 100 ms while the kernel worker
+    // takes a core (3/4 gave frames of 85-150 ms on a loaded 2-core machine).
+    this.renderer.setPixelRatio(this.softwareGL ? 0.5 : Math.min(window.devicePixelRatio, 2));
     this.renderMs = 0; // moving average of the time one frame takes to submit
     this.lastRender = 0;
     container.appendChild(this.renderer.domElement);
