@@ -295,27 +295,40 @@ async function runKernel(token, start) {
     for (const ev of state.pending.splice(0)) pushEvent(ev);
   }
   endRun();
-  finish(result);
+  await finish(result, token);
 }
 
-function finish(result) {
+async function finish(result, token) {
   state.result = result;
   const wall = performance.now() - state.t0;
   // Events and result use the same ids; add anything the stream did not deliver (in id order).
   const V = result.vertices.length / 3, E = result.edges.length / 2, F = result.faces.length;
-  if (state.seen.vertex.size !== V || state.seen.edge.size !== E || state.seen.face.size !== F) addMissingEvents(result, V, E, F);
+  if (state.seen.vertex.size !== V || state.seen.edge.size !== E || state.seen.face.size !== F) {
+    if (!(await addMissingEvents(result, V, E, F, token))) return;
+  }
   showStats(result, wall, V, E, F);
   showOutcome(result, V, E, F);
 }
 
-function addMissingEvents(result, V, E, F) {
-  for (let i = 0; i < V; i++) {
-    if (!state.seen.vertex.has(i)) {
-      pushEvent({ type: 'vertex', id: i, position: [result.vertices[3 * i], result.vertices[3 * i + 1], result.vertices[3 * i + 2]] });
+// Without a stream (?stream=0) a kernel's million events are added here: in slices, one task
+// each, so the page keeps drawing frames. False when a newer run took over meanwhile.
+async function addMissingEvents(result, V, E, F, token) {
+  const SLICE = 20000;
+  const kinds = [
+    [V, 'vertex', (i) => ({ type: 'vertex', id: i, position: [result.vertices[3 * i], result.vertices[3 * i + 1], result.vertices[3 * i + 2]] })],
+    [E, 'edge', (i) => ({ type: 'edge', id: i, a: result.edges[2 * i], b: result.edges[2 * i + 1] })],
+    [F, 'face', (i) => ({ type: 'face', id: i, loop: Array.from(result.faces[i]) })],
+  ];
+  for (const [n, kind, event] of kinds) {
+    for (let i = 0; i < n; i++) {
+      if (!state.seen[kind].has(i)) pushEvent(event(i));
+      if (i % SLICE === SLICE - 1) {
+        await new Promise((resolve) => setTimeout(resolve, 0));
+        if (token !== state.token) return false;
+      }
     }
   }
-  for (let i = 0; i < E; i++) if (!state.seen.edge.has(i)) pushEvent({ type: 'edge', id: i, a: result.edges[2 * i], b: result.edges[2 * i + 1] });
-  for (let i = 0; i < F; i++) if (!state.seen.face.has(i)) pushEvent({ type: 'face', id: i, loop: Array.from(result.faces[i]) });
+  return true;
 }
 
 function showStats(result, wall, V, E, F) {
