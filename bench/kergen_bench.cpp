@@ -1,20 +1,28 @@
 // kergen_bench: end-to-end kernel timings of kergen::compute_kernel against CGAL's
-// halfspace_intersection_3 (Epick and Epeck), one table row (or JSON object) per mesh.
+// halfspace_intersection_3 (Epick and Epeck) and Qhull's halfspace intersection, one table row
+// (or JSON object) per mesh; with --streaming, the cost of an on_step callback instead.
 // See bench/README.md for the columns.
 //
 //   kergen_bench [options] [mesh files...]
 //     --runs N                timed runs per measurement, the median is reported (default 5)
 //     --json                  one JSON object per row instead of the table
 //     --quick                 small default list, 1 run (smoke test)
-//     --no-epeck / --no-epick skip a baseline
+//     --no-epeck / --no-epick / --no-qhull   skip a baseline
 //     --epeck-max-faces N     skip the Epeck baseline above N input faces (default: no limit)
 //     --epick-max-faces N     skip the Epick baseline above N input faces (default: no limit)
+//     --qhull-max-faces N     skip the Qhull baseline above N input faces (default: no limit)
 //     --baseline-budget-ms T  stop repeating a baseline once one run took longer than T (default 2000)
 //     --meshes DIR            shared mesh folder for the default list (default: the build's KERGEN_SHARED_MESHES)
 //     --family DIR            also run every mesh file of DIR and print one summary row for them
 //                             (ratio geomean, minimum, how many are slower than each baseline)
 //     --families              --family for each polyhedra set of the mesh folder (tet10, tet20,
 //                             tet30, voro: 1000 small meshes each)
+//     --streaming             only the streaming rows: compute_kernel without and with an on_step
+//                             callback (two generated spheres, vase6, spiral6, princeton/325)
+//     --streaming-budget-ms T stop repeating a streaming measurement once one run took longer than T
+//                             (default 20000)
+//     --streaming-cap-ms T    the callback stops a run with on_step after T (default 120000): the
+//                             row then gives a lower bound
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -25,7 +33,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,8 +46,10 @@
 #include <thread>
 #include <vector>
 
+#include "bench_util.h"
 #include "kergen/io.h"
 #include "kergen/kergen.h"
+#include "streaming_rows.h"
 
 namespace fs = std::filesystem;
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -52,27 +61,22 @@ using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
 
 namespace {
 
+using kergen_bench::Baseline;
+using kergen_bench::median;
+using kergen_bench::now_ms;
+
 struct Args {
   int runs = 5;
-  bool json = false, quick = false, epeck = true, epick = true;
+  bool json = false, quick = false, epeck = true, epick = true, qhull = true, streaming = false;
   size_t epeck_max_faces = std::numeric_limits<size_t>::max();
   size_t epick_max_faces = std::numeric_limits<size_t>::max();
+  size_t qhull_max_faces = std::numeric_limits<size_t>::max();
   double baseline_budget_ms = 2000;
+  double streaming_budget_ms = 20000, streaming_cap_ms = 120000;
   std::string meshes = KERGEN_SHARED_MESHES;
   std::vector<std::string> files;
   std::vector<std::string> families;  // folders summarized, not listed row by row
 };
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 std::string compiler_string() {
 #if defined(__clang__)
@@ -104,14 +108,6 @@ std::string loadavg_string() {
   return (in >> a) ? a : std::string("?");
 }
 
-struct Baseline {
-  bool ran = false;
-  std::string skipped;   // reason when not run
-  double ms = 0;         // median
-  int runs = 0;
-  size_t raw_vertices = 0;  // output vertices as CGAL returns them (degree-k vertices repeated)
-};
-
 struct Row {
   std::string mesh;
   size_t faces = 0, planes = 0, culled = 0;
@@ -121,7 +117,7 @@ struct Row {
   double volume = 0;
   double ours_ms = 0;
   kergen::Stats stats;
-  Baseline epick, epeck;
+  Baseline epick, epeck, qhull;
   bool star = false;
   std::string reference;   // non-star: the star mesh our time is compared with
   double reference_ms = 0;
@@ -237,10 +233,10 @@ Row bench_mesh(const std::string& path, const std::string& label, const Args& ar
   row.star = k.type != kergen::KernelType::Empty;
   if (k.type != kergen::KernelType::Polyhedron) {
     const char* why = k.type == kergen::KernelType::Empty ? "n/a (empty kernel)" : "n/a (not full-dimensional)";
-    row.epick.skipped = row.epeck.skipped = why;
+    row.epick.skipped = row.epeck.skipped = row.qhull.skipped = why;
     return row;
   }
-  // Interior point for CGAL: centroid of our kernel's vertices (not timed).
+  // Interior point for CGAL and Qhull: centroid of our kernel's vertices (not timed).
   std::array<double, 3> c{0, 0, 0};
   for (size_t v = 0; v < k.num_vertices(); ++v)
     for (int a = 0; a < 3; ++a) c[a] += k.vertices[3 * v + a];
@@ -254,6 +250,9 @@ Row bench_mesh(const std::string& path, const std::string& label, const Args& ar
   if (!args.epeck) row.epeck.skipped = "skipped (--no-epeck)";
   else if (row.faces > args.epeck_max_faces) row.epeck.skipped = "skipped (> --epeck-max-faces)";
   else row.epeck = run_baseline<Epeck>(rr.mesh, flip, c, args);
+  if (!args.qhull) row.qhull.skipped = "skipped (--no-qhull)";
+  else if (row.faces > args.qhull_max_faces) row.qhull.skipped = "skipped (> --qhull-max-faces)";
+  else row.qhull = kergen_bench::run_qhull(rr.mesh, flip, c, k.volume, args.runs, args.baseline_budget_ms);
   return row;
 }
 
@@ -290,7 +289,8 @@ std::string baseline_cell(const Baseline& b) {
 std::string ratio_cell(const Baseline& b, double ours) {
   if (!b.ran || ours <= 0) return "-";
   const double r = b.ms / ours;
-  return fmt(r, r < 1 ? 2 : 1) + "x";
+  // Rows where a baseline is faster than us are bold, to be seen at a glance.
+  return r < 1 ? "**" + fmt(r, 2) + "x**" : fmt(r, 1) + "x";
 }
 
 std::string json_escape(const std::string& s) {
@@ -308,7 +308,10 @@ std::string json_baseline(const Baseline& b, double ours) {
   os << "{\"ran\":" << (b.ran ? "true" : "false");
   if (b.ran) os << ",\"ms\":" << b.ms << ",\"runs\":" << b.runs << ",\"ratio\":" << (ours > 0 ? b.ms / ours : 0)
                 << ",\"raw_vertices\":" << b.raw_vertices;
-  else os << ",\"skipped\":\"" << json_escape(b.skipped) << "\"";
+  if (b.ran && b.has_volume)
+    os << ",\"volume\":" << b.volume << ",\"volume_rel_diff\":" << b.volume_rel_diff
+       << ",\"volume_ok\":" << (b.volume_ok() ? "true" : "false");
+  if (!b.ran) os << ",\"skipped\":\"" << json_escape(b.skipped) << "\"";
   os << "}";
   return os.str();
 }
@@ -336,22 +339,39 @@ struct RatioStats {
   }
   double geomean() const { return count ? std::exp(log_sum / double(count)) : 0; }
 };
+// The baselines, in column order.
+struct BaselineInfo {
+  const char* name;      // table header
+  const char* json_key;  // JSON field
+  Baseline Row::*member;
+};
+const std::array<BaselineInfo, 3> kBaselines{{{"Epick", "cgal_epick", &Row::epick},
+                                             {"Epeck", "cgal_epeck", &Row::epeck},
+                                             {"Qhull", "qhull", &Row::qhull}}};
+constexpr size_t kQhullIndex = 2;  // kBaselines[kQhullIndex] is Qhull
+using PerBaseline = std::array<bool, kBaselines.size()>;
+
 struct FamilySummary {
   std::string dir;
   size_t meshes = 0, errors = 0;
   std::vector<std::pair<std::string, size_t>> types;
   std::vector<double> ours;
-  RatioStats epick, epeck;
-  // Counts the row; returns which baselines it was slower than (Epick, Epeck).
-  std::array<bool, 2> add(const Row& r) {
+  std::array<RatioStats, kBaselines.size()> ratios;  // in kBaselines' order
+  // Qhull's inexact kernels whose volume is off ours by more than the tolerance (mesh: difference).
+  std::vector<std::string> qhull_volume_off;
+  // Counts the row; returns which baselines it was slower than.
+  PerBaseline add(const Row& r) {
+    PerBaseline slower{};
     ++meshes;
-    if (!r.error.empty()) { ++errors; return {false, false}; }
+    if (!r.error.empty()) { ++errors; return slower; }
     auto it = std::find_if(types.begin(), types.end(), [&](const auto& t) { return t.first == r.type; });
     if (it == types.end()) types.emplace_back(r.type, 1);
     else ++it->second;
     ours.push_back(r.ours_ms);
-    const bool epick_slower = epick.add(r.epick, r.ours_ms, r.mesh);
-    return {epick_slower, epeck.add(r.epeck, r.ours_ms, r.mesh)};
+    for (size_t b = 0; b < kBaselines.size(); ++b) slower[b] = ratios[b].add(r.*kBaselines[b].member, r.ours_ms, r.mesh);
+    if (r.qhull.ran && !r.qhull.volume_ok())
+      qhull_volume_off.push_back(fs::path(r.mesh).filename().string() + ": " + fmt(r.qhull.volume_rel_diff, 9));
+    return slower;
   }
   std::string types_cell() const {
     std::string s;
@@ -361,12 +381,14 @@ struct FamilySummary {
   static std::string ratio_cells(const RatioStats& r) {
     if (!r.count) return "- | - | -";
     std::string slower = std::to_string(r.slower) + " of " + std::to_string(r.count);
-    if (r.slower) slower += " (" + std::to_string(r.confirmed) + " when measured again)";
+    if (r.slower) slower = "**" + slower + "** (" + std::to_string(r.confirmed) + " when measured again)";
     return fmt(r.geomean()) + "x | " + fmt(r.min) + "x (" + fs::path(r.min_mesh).filename().string() + ") | " + slower;
   }
   std::string table_row() const {
-    return "| " + dir + " | " + std::to_string(meshes) + " | " + std::to_string(errors) + " | " + types_cell() + " | " +
-           fmt(median(ours), 3) + " | " + ratio_cells(epick) + " | " + ratio_cells(epeck) + " |";
+    std::string s = "| " + dir + " | " + std::to_string(meshes) + " | " + std::to_string(errors) + " | " + types_cell() +
+                    " | " + fmt(median(ours), 3) + " |";
+    for (const RatioStats& r : ratios) s += " " + ratio_cells(r) + " |";
+    return s;
   }
   static std::string ratio_json(const RatioStats& r) {
     std::ostringstream os;
@@ -381,17 +403,25 @@ struct FamilySummary {
     std::ostringstream os;
     os << "{\"family\":\"" << json_escape(dir) << "\",\"compiler\":\"" << json_escape(compiler) << "\",\"loadavg_at_start\":\""
        << load << "\",\"runs\":" << runs << ",\"meshes\":" << meshes << ",\"errors\":" << errors
-       << ",\"ours_median_ms\":" << median(ours) << ",\"cgal_epick\":" << ratio_json(epick)
-       << ",\"cgal_epeck\":" << ratio_json(epeck) << "}";
+       << ",\"ours_median_ms\":" << median(ours);
+    for (size_t b = 0; b < kBaselines.size(); ++b) os << ",\"" << kBaselines[b].json_key << "\":" << ratio_json(ratios[b]);
+    os << ",\"qhull_volume_off\":[";
+    for (size_t i = 0; i < qhull_volume_off.size(); ++i) os << (i ? "," : "") << "\"" << json_escape(qhull_volume_off[i]) << "\"";
+    os << "]}";
     return os.str();
   }
 };
 
-}  // namespace
+const char* const kUsage =
+    "usage: kergen_bench [--runs N] [--json] [--quick] [--no-epeck] [--no-epick] [--no-qhull]\n"
+    "                    [--epeck-max-faces N] [--epick-max-faces N] [--qhull-max-faces N]\n"
+    "                    [--baseline-budget-ms T] [--meshes DIR] [--family DIR]... [--families]\n"
+    "                    [--streaming [--streaming-budget-ms T] [--streaming-cap-ms T]] [mesh files...]\n";
 
-int main(int argc, char** argv) {
+// Exits with 2 on a usage error. `families_default`: --families was given.
+Args parse_args(int argc, char** argv, bool& families_default) {
   Args args;
-  bool families_default = false;
+  bool runs_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -401,103 +431,70 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--runs") args.runs = std::max(1, std::atoi(next().c_str()));
+    if (a == "--runs") args.runs = std::max(1, std::atoi(next().c_str())), runs_given = true;
     else if (a == "--json") args.json = true;
     else if (a == "--quick") args.quick = true;
     else if (a == "--no-epeck") args.epeck = false;
     else if (a == "--no-epick") args.epick = false;
+    else if (a == "--no-qhull") args.qhull = false;
     else if (a == "--epeck-max-faces") args.epeck_max_faces = std::strtoull(next().c_str(), nullptr, 10);
     else if (a == "--epick-max-faces") args.epick_max_faces = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--qhull-max-faces") args.qhull_max_faces = std::strtoull(next().c_str(), nullptr, 10);
     else if (a == "--baseline-budget-ms") args.baseline_budget_ms = std::atof(next().c_str());
+    else if (a == "--streaming") args.streaming = true;
+    else if (a == "--streaming-budget-ms") args.streaming_budget_ms = std::atof(next().c_str());
+    else if (a == "--streaming-cap-ms") args.streaming_cap_ms = std::atof(next().c_str());
     else if (a == "--meshes") args.meshes = next();
     else if (a == "--family") args.families.push_back(next());
     else if (a == "--families") families_default = true;
     else if (a == "-h" || a == "--help") {
-      std::printf("usage: kergen_bench [--runs N] [--json] [--quick] [--no-epeck] [--no-epick]\n"
-                  "                    [--epeck-max-faces N] [--epick-max-faces N] [--baseline-budget-ms T]\n"
-                  "                    [--meshes DIR] [--family DIR]... [--families] [mesh files...]\n");
-      return 0;
+      std::fputs(kUsage, stdout);
+      std::exit(0);
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "unknown option %s (try --help)\n", a.c_str());
-      return 2;
+      std::exit(2);
     } else args.files.push_back(a);
   }
-  int quick_runs = args.runs;
-  if (args.quick) {
-    bool runs_given = false;
-    for (int i = 1; i < argc; ++i) runs_given |= std::strcmp(argv[i], "--runs") == 0;
-    if (!runs_given) quick_runs = 1;
-  }
-  args.runs = quick_runs;
+  if (args.quick && !runs_given) args.runs = 1;
+  // A run cut off at the cap is then always the last one of its measurement.
+  args.streaming_cap_ms = std::max(args.streaming_cap_ms, args.streaming_budget_ms);
+  return args;
+}
 
-  if (families_default)
-    for (const char* d : {"tet10", "tet20", "tet30", "voro"}) args.families.push_back((fs::path(args.meshes) / "polyhedra" / d).string());
-  std::vector<std::pair<std::string, std::string>> list;
-  if (!args.files.empty())
-    for (const auto& f : args.files) list.emplace_back(f, f);
-  else if (!args.families.empty() && !families_default) {
-    // only the families
-  } else {
-    if (!fs::is_directory(args.meshes)) {
-      std::fprintf(stderr, "mesh folder %s not found: pass --meshes DIR or mesh files\n", args.meshes.c_str());
-      return 1;
-    }
-    list = default_list(args);
+// One summary row for every mesh file of `dir`; meshes found slower than a baseline are measured
+// again (see RatioStats). Returns false when the folder has no mesh file.
+bool run_family(const std::string& dir, const Args& args, FamilySummary& fam) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string ext = entry.path().extension().string();
+    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".stl")) files.push_back(entry.path().string());
   }
+  if (ec || files.empty()) return false;
+  std::sort(files.begin(), files.end());
+  const fs::path rel = fs::path(dir).lexically_relative(args.meshes);
+  fam.dir = !rel.empty() && *rel.begin() != ".." ? rel.string() : dir;  // polyhedra/voro, not /abs/../polyhedra/voro
+  Args again = args;
+  again.runs = std::max(args.runs, kRecheckRuns);
+  for (const std::string& f : files) {
+    const Row r = bench_mesh(f, f, args);
+    const PerBaseline slower = fam.add(r);
+    if (std::none_of(slower.begin(), slower.end(), [](bool s) { return s; })) continue;
+    const Row r2 = bench_mesh(f, f, again);
+    for (size_t b = 0; b < kBaselines.size(); ++b) {
+      if (!slower[b]) continue;
+      const Baseline &first = r.*kBaselines[b].member, &second = r2.*kBaselines[b].member;
+      const double ratio = second.ran && r2.ours_ms > 0 ? second.ms / r2.ours_ms : 0;
+      fam.ratios[b].confirmed += second.ran && ratio < 1;
+      fam.ratios[b].rechecks.push_back(fs::path(f).filename().string() + ": " + fmt(first.ms / r.ours_ms) + "x -> " +
+                                       fmt(ratio) + "x");
+    }
+  }
+  return true;
+}
 
-  const std::string compiler = compiler_string();
-  const std::string load_at_start = loadavg_string();
-  if (!args.json) {
-    std::printf("# kergen_bench | %s | CGAL %s | %s, %u threads, load average %s at start | median of %d run(s) | "
-                "times in ms, end to end (parse excluded)\n",
-                compiler.c_str(), CGAL_VERSION_STR, cpu_string().c_str(), std::thread::hardware_concurrency(),
-                load_at_start.c_str(), args.runs);
-    std::fflush(stdout);
-  }
-
-  std::vector<Row> rows;
-  for (const auto& [path, label] : list) {
-    rows.push_back(bench_mesh(path, label, args));
-    if (!args.json) {
-      std::fprintf(stderr, "  done %s (%.1f ms)\n", label.c_str(), rows.back().ours_ms);
-    }
-  }
-  std::vector<FamilySummary> families;
-  for (const std::string& dir : args.families) {
-    std::vector<std::string> files;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-      const std::string ext = entry.path().extension().string();
-      if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".stl")) files.push_back(entry.path().string());
-    }
-    if (ec || files.empty()) {
-      std::fprintf(stderr, "family %s: no mesh files found\n", dir.c_str());
-      return 1;
-    }
-    std::sort(files.begin(), files.end());
-    FamilySummary fam;
-    const fs::path rel = fs::path(dir).lexically_relative(args.meshes);
-    fam.dir = !rel.empty() && *rel.begin() != ".." ? rel.string() : dir;  // polyhedra/voro, not /abs/../polyhedra/voro
-    Args again = args;
-    again.runs = std::max(args.runs, kRecheckRuns);
-    for (const std::string& f : files) {
-      const Row r = bench_mesh(f, f, args);
-      const auto [epick_slower, epeck_slower] = fam.add(r);
-      if (!epick_slower && !epeck_slower) continue;  // (else measured again: see RatioStats)
-      const Row r2 = bench_mesh(f, f, again);
-      auto note = [&](RatioStats& st, const Baseline& first, const Baseline& second) {
-        const double ratio = second.ran && r2.ours_ms > 0 ? second.ms / r2.ours_ms : 0;
-        st.confirmed += second.ran && ratio < 1;
-        st.rechecks.push_back(fs::path(f).filename().string() + ": " + fmt(first.ms / r.ours_ms) + "x -> " + fmt(ratio) + "x");
-      };
-      if (epick_slower) note(fam.epick, r.epick, r2.epick);
-      if (epeck_slower) note(fam.epeck, r.epeck, r2.epeck);
-    }
-    if (!args.json) std::fprintf(stderr, "  done family %s (%zu meshes)\n", dir.c_str(), fam.meshes);
-    families.push_back(std::move(fam));
-  }
-
-  // Non-star meshes: compare with our full run on the star mesh of closest size.
+// Non-star meshes: compare with our full run on the star mesh of closest size.
+void set_star_references(std::vector<Row>& rows) {
   for (Row& r : rows) {
     if (!r.error.empty() || r.star) continue;
     const Row* best = nullptr;
@@ -510,70 +507,168 @@ int main(int argc, char** argv) {
       r.reference_ms = best->ours_ms;
     }
   }
+}
 
-  if (args.json) {
-    for (const Row& r : rows) {
-      std::ostringstream os;
-      os << "{\"mesh\":\"" << json_escape(r.mesh) << "\",\"compiler\":\"" << json_escape(compiler)
-         << "\",\"loadavg_at_start\":\"" << load_at_start << "\",\"runs\":" << args.runs;
-      if (!r.error.empty()) {
-        os << ",\"error\":\"" << json_escape(r.error) << "\"}";
-        std::printf("%s\n", os.str().c_str());
-        continue;
-      }
-      const auto& s = r.stats;
-      os << ",\"faces\":" << r.faces << ",\"distinct_planes\":" << r.planes << ",\"culled_faces\":" << r.culled
-         << ",\"merged_planes\":" << s.distinct_planes << ",\"active_planes\":" << s.active_planes
-         << ",\"type\":\"" << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F
-         << ",\"volume\":" << r.volume << ",\"ours_ms\":" << r.ours_ms << ",\"phases_ms\":{\"validate\":" << s.ms_validate
-         << ",\"planes\":" << s.ms_planes << ",\"lp\":" << s.ms_lp << ",\"trace\":" << s.ms_trace
-         << ",\"assemble\":" << s.ms_assemble << ",\"total\":" << s.ms_total << "}"
-         << ",\"traced_lines\":" << s.traced_lines << ",\"exact_fallbacks\":" << s.exact_fallbacks
-         << ",\"cgal_epick\":" << json_baseline(r.epick, r.ours_ms) << ",\"cgal_epeck\":" << json_baseline(r.epeck, r.ours_ms);
-      if (!r.reference.empty())
-        os << ",\"star_reference\":\"" << json_escape(r.reference) << "\",\"star_reference_ms\":" << r.reference_ms
-           << ",\"ratio_to_star_reference\":" << (r.reference_ms > 0 ? r.ours_ms / r.reference_ms : 0);
-      os << "}";
+void print_json(const std::vector<Row>& rows, const std::vector<FamilySummary>& families, const std::string& compiler,
+                const std::string& load_at_start, int runs) {
+  for (const Row& r : rows) {
+    std::ostringstream os;
+    os << "{\"mesh\":\"" << json_escape(r.mesh) << "\",\"compiler\":\"" << json_escape(compiler)
+       << "\",\"loadavg_at_start\":\"" << load_at_start << "\",\"runs\":" << runs;
+    if (!r.error.empty()) {
+      os << ",\"error\":\"" << json_escape(r.error) << "\"}";
       std::printf("%s\n", os.str().c_str());
+      continue;
     }
-    for (const FamilySummary& f : families) std::printf("%s\n", f.json(compiler, load_at_start, args.runs).c_str());
-    return 0;
+    const auto& s = r.stats;
+    os << ",\"faces\":" << r.faces << ",\"distinct_planes\":" << r.planes << ",\"culled_faces\":" << r.culled
+       << ",\"merged_planes\":" << s.distinct_planes << ",\"active_planes\":" << s.active_planes
+       << ",\"type\":\"" << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F
+       << ",\"volume\":" << r.volume << ",\"ours_ms\":" << r.ours_ms << ",\"phases_ms\":{\"validate\":" << s.ms_validate
+       << ",\"planes\":" << s.ms_planes << ",\"lp\":" << s.ms_lp << ",\"trace\":" << s.ms_trace
+       << ",\"assemble\":" << s.ms_assemble << ",\"total\":" << s.ms_total << "}"
+       << ",\"traced_lines\":" << s.traced_lines << ",\"exact_fallbacks\":" << s.exact_fallbacks;
+    for (const BaselineInfo& b : kBaselines) os << ",\"" << b.json_key << "\":" << json_baseline(r.*b.member, r.ours_ms);
+    if (!r.reference.empty())
+      os << ",\"star_reference\":\"" << json_escape(r.reference) << "\",\"star_reference_ms\":" << r.reference_ms
+         << ",\"ratio_to_star_reference\":" << (r.reference_ms > 0 ? r.ours_ms / r.reference_ms : 0);
+    os << "}";
+    std::printf("%s\n", os.str().c_str());
   }
+  for (const FamilySummary& f : families) std::printf("%s\n", f.json(compiler, load_at_start, runs).c_str());
+}
 
-  if (!rows.empty()) {
-    std::printf("| mesh | faces | planes | culled | kernel | V | E | F | ours | Epick | Epeck | Epick/ours | Epeck/ours | validate | planes | lp | trace | assemble | note |\n");
-    std::printf("|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+std::string row_note(const Row& r) {
+  std::string note;
+  if (!r.reference.empty())
+    note = "non-star: " + fmt(100.0 * r.ours_ms / std::max(1e-9, r.reference_ms), 1) + "% of " + r.reference + " (" +
+           fmt(r.reference_ms) + " ms)";
+  auto add = [&](const std::string& text) { note += (note.empty() ? "" : "; ") + text; };
+  for (const BaselineInfo& info : kBaselines) {
+    const Baseline& b = r.*info.member;
+    if (b.ran && b.ms < r.ours_ms) add(std::string("**slower than ") + info.name + "**");
+    if (!b.ran && b.skipped.rfind("n/a", 0) != 0 && !b.skipped.empty()) add(std::string(info.name) + " " + b.skipped);
   }
+  if (r.qhull.ran && !r.qhull.volume_ok())
+    add("**Qhull volume differs from ours by " + fmt(100 * r.qhull.volume_rel_diff, 6) + "%**");
+  return note;
+}
+
+// The mesh table, then the geometric mean of each ratio over the rows that have it.
+void print_row_table(const std::vector<Row>& rows) {
+  std::printf("| mesh | faces | planes | culled | kernel | V | E | F | ours | Epick | Epeck | Qhull | Epick/ours | "
+              "Epeck/ours | Qhull/ours | validate | planes | lp | trace | assemble | note |\n");
+  std::printf("|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  std::array<RatioStats, kBaselines.size()> ratios;
   for (const Row& r : rows) {
     if (!r.error.empty()) {
-      std::printf("| %s | %zu | | | ERROR | | | | %s | | | | | | | | | | %s |\n", r.mesh.c_str(), r.faces,
+      std::printf("| %s | %zu | | | ERROR | | | | %s | | | | | | | | | | | | %s |\n", r.mesh.c_str(), r.faces,
                   r.ours_ms > 0 ? fmt(r.ours_ms).c_str() : "", r.error.c_str());
       continue;
     }
     const auto& s = r.stats;
-    std::string note;
-    if (!r.reference.empty())
-      note = "non-star: " + fmt(100.0 * r.ours_ms / std::max(1e-9, r.reference_ms), 1) + "% of " + r.reference + " (" +
-             fmt(r.reference_ms) + " ms)";
-    for (const Baseline* b : {&r.epick, &r.epeck})
-      if (!b->ran && b->skipped.rfind("n/a", 0) != 0 && !b->skipped.empty())
-        note += std::string(note.empty() ? "" : "; ") + (b == &r.epick ? "Epick " : "Epeck ") + b->skipped;
-    std::printf("| %s | %zu | %zu | %zu | %s | %zu | %zu | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
-                r.mesh.c_str(), r.faces, r.planes, r.culled, r.type.c_str(), r.V, r.E, r.F, fmt(r.ours_ms).c_str(),
-                baseline_cell(r.epick).c_str(), baseline_cell(r.epeck).c_str(), ratio_cell(r.epick, r.ours_ms).c_str(),
-                ratio_cell(r.epeck, r.ours_ms).c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(),
-                fmt(s.ms_lp).c_str(), fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), note.c_str());
+    std::string times, ratio_cells;
+    for (size_t b = 0; b < kBaselines.size(); ++b) {
+      const Baseline& base = r.*kBaselines[b].member;
+      times += baseline_cell(base) + " | ";
+      ratio_cells += ratio_cell(base, r.ours_ms) + " | ";
+      ratios[b].add(base, r.ours_ms, r.mesh);
+    }
+    std::printf("| %s | %zu | %zu | %zu | %s | %zu | %zu | %zu | %s | %s%s%s | %s | %s | %s | %s | %s |\n", r.mesh.c_str(),
+                r.faces, r.planes, r.culled, r.type.c_str(), r.V, r.E, r.F, fmt(r.ours_ms).c_str(), times.c_str(),
+                ratio_cells.c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(), fmt(s.ms_lp).c_str(),
+                fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), row_note(r).c_str());
   }
-  if (!families.empty()) {
-    std::printf("%s| family | meshes | errors | kernel types | ours: median ms | Epick/ours: geomean | min | slower | Epeck/ours: geomean | min | slower |\n", rows.empty() ? "" : "\n");
-    std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const FamilySummary& f : families) std::printf("%s\n", f.table_row().c_str());
-    for (const FamilySummary& f : families)
-      for (const auto* st : {&f.epick, &f.epeck})
-        for (const std::string& r : st->rechecks)
-          std::printf("\nMeasured again (%d runs), %s vs %s: %s", kRecheckRuns, f.dir.c_str(), st == &f.epick ? "Epick" : "Epeck", r.c_str());
-    if (std::any_of(families.begin(), families.end(), [](const FamilySummary& f) { return f.epick.slower + f.epeck.slower > 0; }))
-      std::printf("\n");
+  std::string summary;
+  for (size_t b = 0; b < kBaselines.size(); ++b) {
+    const RatioStats& st = ratios[b];
+    if (!st.count) continue;
+    summary += std::string(summary.empty() ? " " : "; ") + kBaselines[b].name + " geometric mean " + fmt(st.geomean()) +
+               "x, minimum " + fmt(st.min) + "x (" + st.min_mesh + "), " + std::to_string(st.slower) + " of " +
+               std::to_string(st.count) + " rows slower";
   }
+  if (!summary.empty()) std::printf("\nbaseline/ours over the rows with both times:%s\n", summary.c_str());
+}
+
+void print_family_table(const std::vector<FamilySummary>& families, bool after_rows) {
+  std::printf("%s| family | meshes | errors | kernel types | ours: median ms | Epick/ours: geomean | min | slower | "
+              "Epeck/ours: geomean | min | slower | Qhull/ours: geomean | min | slower |\n", after_rows ? "\n" : "");
+  std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const FamilySummary& f : families) std::printf("%s\n", f.table_row().c_str());
+  bool any = false;
+  for (const FamilySummary& f : families)
+    for (size_t b = 0; b < kBaselines.size(); ++b)
+      for (const std::string& r : f.ratios[b].rechecks) {
+        std::printf("\nMeasured again (%d runs), %s vs %s: %s", kRecheckRuns, f.dir.c_str(), kBaselines[b].name, r.c_str());
+        any = true;
+      }
+  for (const FamilySummary& f : families) {
+    std::printf("\nQhull volume check, %s: %zu of %zu kernels off ours by more than %g relative", f.dir.c_str(),
+                f.qhull_volume_off.size(), f.ratios[kQhullIndex].count, Baseline::kVolumeTolerance);
+    for (size_t i = 0; i < f.qhull_volume_off.size() && i < 10; ++i)
+      std::printf("%s%s", i ? ", " : " (", f.qhull_volume_off[i].c_str());
+    std::printf("%s", f.qhull_volume_off.empty() ? "" : f.qhull_volume_off.size() > 10 ? ", ...)" : ")");
+    any = true;
+  }
+  if (any) std::printf("\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool families_default = false;
+  Args args = parse_args(argc, argv, families_default);
+  if (families_default)
+    for (const char* d : {"tet10", "tet20", "tet30", "voro"}) args.families.push_back((fs::path(args.meshes) / "polyhedra" / d).string());
+  std::vector<std::pair<std::string, std::string>> list;
+  if (!args.files.empty())
+    for (const auto& f : args.files) list.emplace_back(f, f);
+  else if (!args.families.empty() && !families_default) {
+    // only the families
+  } else {
+    if (!fs::is_directory(args.meshes)) {
+      std::fprintf(stderr, "mesh folder %s not found: pass --meshes DIR or mesh files\n", args.meshes.c_str());
+      return 1;
+    }
+    if (!args.streaming) list = default_list(args);
+  }
+
+  const std::string compiler = compiler_string();
+  const std::string load_at_start = loadavg_string();
+  if (!args.json) {
+    std::printf("# kergen_bench | %s | CGAL %s | %s | %s, %u threads, load average %s at start | median of %d run(s) | "
+                "times in ms, end to end (parse excluded)\n",
+                compiler.c_str(), CGAL_VERSION_STR, kergen_bench::qhull_version().c_str(), cpu_string().c_str(),
+                std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs);
+    std::fflush(stdout);
+  }
+  if (args.streaming) {
+    const std::string context = "\"compiler\":\"" + json_escape(compiler) + "\",\"loadavg_at_start\":\"" + load_at_start + "\"";
+    return kergen_bench::run_streaming_rows(args.meshes, args.files, args.runs, args.streaming_budget_ms,
+                                           args.streaming_cap_ms, args.json, context);
+  }
+
+  std::vector<Row> rows;
+  for (const auto& [path, label] : list) {
+    rows.push_back(bench_mesh(path, label, args));
+    if (!args.json) std::fprintf(stderr, "  done %s (%.1f ms)\n", label.c_str(), rows.back().ours_ms);
+  }
+  std::vector<FamilySummary> families;
+  for (const std::string& dir : args.families) {
+    FamilySummary fam;
+    if (!run_family(dir, args, fam)) {
+      std::fprintf(stderr, "family %s: no mesh files found\n", dir.c_str());
+      return 1;
+    }
+    if (!args.json) std::fprintf(stderr, "  done family %s (%zu meshes)\n", dir.c_str(), fam.meshes);
+    families.push_back(std::move(fam));
+  }
+  set_star_references(rows);
+  if (args.json) {
+    print_json(rows, families, compiler, load_at_start, args.runs);
+    return 0;
+  }
+  if (!rows.empty()) print_row_table(rows);
+  if (!families.empty()) print_family_table(families, !rows.empty());
   return 0;
 }

@@ -1,21 +1,27 @@
 // kergen — command-line front end: computes the kernel of one or many mesh files.
 //
 //   kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open] [--deepest]
-//                  [--max-steps N]
+//                  [--max-steps N] [--jobs N]
 //
 // Exit code: 0 when every mesh was processed (an empty kernel is a result, not an error), 1 when
 // some mesh could not be read or was rejected by validation, 2 for a usage error.
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "kergen/io.h"
@@ -27,7 +33,7 @@ namespace fs = std::filesystem;
 
 const char* const kUsage =
     "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
-    "                      [--deepest] [--max-steps N]\n"
+    "                      [--deepest] [--max-steps N] [--jobs N]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -38,12 +44,15 @@ const char* const kUsage =
     "  --allow-open    accept meshes with holes (the kernel may be unbounded, then clipped)\n"
     "  --deepest       also compute the centre and radius of the largest inscribed ball\n"
     "  --max-steps N   stop after N trace events (the result is then partial)\n"
+    "  --jobs N        compute N meshes at a time (default: the machine's threads); the\n"
+    "                  output is the same as with --jobs 1, in input order\n"
     "Exit code: 0 all meshes processed, 1 some mesh had an input error, 2 usage error.\n";
 
 struct Arguments {
   std::vector<std::string> inputs;
   std::string output;
   bool json = false;
+  unsigned jobs = 0;  // 0: std::thread::hardware_concurrency()
   kergen::Options options;
 };
 
@@ -105,6 +114,14 @@ Arguments parse_arguments(int argc, char** argv) {
       if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE)
         usage_error("--max-steps needs a non-negative integer, got '" + text + "'");
       args.options.max_steps = steps;
+    } else if (arg == "--jobs") {
+      const std::string text = value();
+      char* end = nullptr;
+      errno = 0;
+      const unsigned long n = std::strtoul(text.c_str(), &end, 10);
+      if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE || n == 0 || n > 1024)
+        usage_error("--jobs needs a whole number from 1 to 1024, got '" + text + "'");
+      args.jobs = unsigned(n);
     } else {
       usage_error("unknown option '" + arg + "'");
     }
@@ -142,16 +159,6 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
 
 // ---------------------------------------------------------------------------------------------
 // Output.
-
-const char* warning_kind_name(kergen::Warning::Kind kind) {
-  switch (kind) {
-    case kergen::Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
-    case kergen::Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
-    case kergen::Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
-    case kergen::Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
-  }
-  return "UNKNOWN";
-}
 
 std::string json_string(const std::string& text) {
   std::string out = "\"";
@@ -227,7 +234,7 @@ std::string json_line(const MeshOutcome& m) {
   for (size_t i = 0; i < k.warnings.size(); ++i) {
     const kergen::Warning& w = k.warnings[i];
     if (i) s += ",";
-    s += "{\"kind\":" + json_string(warning_kind_name(w.kind)) + ",\"count\":" + std::to_string(w.count) +
+    s += "{\"kind\":" + json_string(kergen::warning_kind_name(w.kind)) + ",\"count\":" + std::to_string(w.count) +
          ",\"message\":" + json_string(w.message) + "}";
   }
   s += "]";
@@ -250,25 +257,43 @@ std::string json_line(const MeshOutcome& m) {
   return s;
 }
 
-void print_human(const MeshOutcome& m) {
+// printf into a string: each mesh's output is collected first, so that meshes computed in
+// parallel are printed in input order.
+void appendf(std::string& out, const char* format, ...) __attribute__((format(printf, 2, 3)));
+void appendf(std::string& out, const char* format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  va_end(args);
+  if (n > 0) {
+    const size_t at = out.size();
+    out.resize(at + size_t(n) + 1);
+    std::vsnprintf(&out[at], size_t(n) + 1, format, again);
+    out.resize(at + size_t(n));
+  }
+  va_end(again);
+}
+
+void append_human(std::string& out, const MeshOutcome& m) {
   const kergen::Kernel& k = m.kernel;
-  std::printf("%s\n", m.file.c_str());
-  std::printf("  status      %s%s\n", kergen::kernel_type_name(k.type), k.complete ? "" : " (partial: stopped early)");
-  std::printf("  kernel      V %zu  E %zu  F %zu\n", k.num_vertices(), k.num_edges(), k.num_faces());
-  std::printf("  volume      %.10g  (shape %.10g, ratio %.6g)\n", k.volume, k.shape_volume, k.volume_ratio);
-  std::printf("  area        %.10g\n", k.area);
+  appendf(out, "%s\n", m.file.c_str());
+  appendf(out, "  status      %s%s\n", kergen::kernel_type_name(k.type), k.complete ? "" : " (partial: stopped early)");
+  appendf(out, "  kernel      V %zu  E %zu  F %zu\n", k.num_vertices(), k.num_edges(), k.num_faces());
+  appendf(out, "  volume      %.10g  (shape %.10g, ratio %.6g)\n", k.volume, k.shape_volume, k.volume_ratio);
+  appendf(out, "  area        %.10g\n", k.area);
   if (k.has_kernel_point)
-    std::printf("  point       %.10g %.10g %.10g\n", k.kernel_point[0], k.kernel_point[1], k.kernel_point[2]);
+    appendf(out, "  point       %.10g %.10g %.10g\n", k.kernel_point[0], k.kernel_point[1], k.kernel_point[2]);
   if (k.has_deepest_point)
-    std::printf("  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],
-                k.deepest_point[2], k.inscribed_radius);
+    appendf(out, "  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],
+            k.deepest_point[2], k.inscribed_radius);
   for (const kergen::Warning& w : k.warnings)
-    std::printf("  warning     %s (%zu): %s\n", warning_kind_name(w.kind), w.count, w.message.c_str());
+    appendf(out, "  warning     %s (%zu): %s\n", kergen::warning_kind_name(w.kind), w.count, w.message.c_str());
   const kergen::Stats& st = k.stats;
-  std::printf("  planes      %zu faces (%zu culled), %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
-              st.input_faces, st.culled_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);
-  std::printf("  time        %.3f ms (parse %.3f, validate %.3f, planes %.3f, lp %.3f, trace %.3f, assemble %.3f)\n",
-              m.ms_total, m.ms_parse, st.ms_validate, st.ms_planes, st.ms_lp, st.ms_trace, st.ms_assemble);
+  appendf(out, "  planes      %zu faces (%zu culled), %zu distinct planes, %zu active, %zu traced lines, %zu exact fallbacks\n",
+          st.input_faces, st.culled_faces, st.distinct_planes, st.active_planes, st.traced_lines, st.exact_fallbacks);
+  appendf(out, "  time        %.3f ms (parse %.3f, validate %.3f, planes %.3f, lp %.3f, trace %.3f, assemble %.3f)\n",
+          m.ms_total, m.ms_parse, st.ms_validate, st.ms_planes, st.ms_lp, st.ms_trace, st.ms_assemble);
 }
 
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
@@ -302,6 +327,90 @@ MeshOutcome process(const std::string& file, const Arguments& args) {
   return m;
 }
 
+// What one mesh contributes to the output, computed by any thread and printed by the main one.
+struct MeshReport {
+  std::string out, err;  // its stdout and stderr text
+  bool ok = false;
+  std::string count_as;  // kernel type when ok, else error name (for the batch summary)
+};
+
+MeshReport report(const std::string& file, const Arguments& args) {
+  const MeshOutcome m = process(file, args);
+  MeshReport r;
+  r.ok = m.ok();
+  r.count_as = r.ok ? kergen::kernel_type_name(m.kernel.type) : kergen::error_name(m.error);
+  if (args.json) {
+    r.out = json_line(m) + "\n";
+  } else if (m.ok()) {
+    append_human(r.out, m);
+  } else {
+    // Reader messages already start with the file name; kernel messages do not.
+    const bool named = m.message.compare(0, m.file.size(), m.file) == 0;
+    r.err = "kergen: " + (named ? "" : m.file + ": ") + m.message + "\n";
+  }
+  return r;
+}
+
+// Computes the reports of `files` on `threads` threads, each taking the next file not yet taken,
+// and hands them to `emit` in input order as soon as each one and all before it are done;
+// `wait(i)` is called before mesh i is awaited (one thread: before it is computed). An exception
+// thrown for a mesh (out of memory) is rethrown in order, as one thread would throw it.
+// compute_kernel is reentrant: the core has no mutable state outside each call.
+template <class Wait, class Emit>
+void run_in_order(const std::vector<std::string>& files, const Arguments& args, unsigned threads, Wait wait, Emit emit) {
+  if (threads <= 1) {
+    for (size_t i = 0; i < files.size(); ++i) {
+      wait(i);
+      emit(i, report(files[i], args));
+    }
+    return;
+  }
+  std::vector<MeshReport> reports(files.size());
+  std::vector<std::exception_ptr> failures(files.size());
+  std::vector<char> done(files.size(), 0);
+  std::atomic<size_t> next{0};
+  std::mutex mutex;
+  std::condition_variable finished;
+  auto work = [&] {
+    for (size_t i; (i = next.fetch_add(1)) < files.size();) {
+      MeshReport r;
+      std::exception_ptr failure;
+      try {
+        r = report(files[i], args);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      reports[i] = std::move(r);
+      failures[i] = failure;
+      done[i] = 1;
+      finished.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
+  struct Join {  // the workers finish even when emit or a rethrow leaves this function
+    std::vector<std::thread>& pool;
+    std::atomic<size_t>& next;
+    size_t n;
+    ~Join() {
+      next.store(n);
+      for (std::thread& t : pool) t.join();
+    }
+  } join{pool, next, files.size()};
+  for (size_t i = 0; i < files.size(); ++i) {
+    wait(i);
+    MeshReport r;
+    {
+      std::unique_lock<std::mutex> lock(mutex);
+      finished.wait(lock, [&] { return done[i] != 0; });
+      if (failures[i]) std::rethrow_exception(failures[i]);
+      r = std::move(reports[i]);
+    }
+    emit(i, std::move(r));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -316,29 +425,23 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   std::map<std::string, size_t> statuses, errors;
   size_t failed = 0;
-  for (size_t i = 0; i < files.size(); ++i) {
-    if (batch) {
-      std::fprintf(stderr, "[%zu/%zu] %s ...\n", i + 1, files.size(), files[i].c_str());
-      std::fflush(stderr);
-    }
-    const MeshOutcome m = process(files[i], args);
-    if (m.ok()) {
-      ++statuses[kergen::kernel_type_name(m.kernel.type)];
-    } else {
-      ++failed;
-      ++errors[kergen::error_name(m.error)];
-    }
-    if (args.json) {
-      std::printf("%s\n", json_line(m).c_str());
-    } else if (m.ok()) {
-      print_human(m);
-    } else {
-      // Reader messages already start with the file name; kernel messages do not.
-      const bool named = m.message.compare(0, m.file.size(), m.file) == 0;
-      std::fprintf(stderr, "kergen: %s%s%s\n", named ? "" : m.file.c_str(), named ? "" : ": ", m.message.c_str());
-    }
+  const unsigned jobs = args.jobs ? args.jobs : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = unsigned(std::min<size_t>(jobs, files.size()));
+  // A mesh's progress line is printed when its turn comes in input order (with --jobs N it may be
+  // done already), so that stderr reads the same with any --jobs.
+  auto progress = [&](size_t i) {
+    if (!batch) return;
+    std::fprintf(stderr, "[%zu/%zu] %s ...\n", i + 1, files.size(), files[i].c_str());
+    std::fflush(stderr);
+  };
+  run_in_order(files, args, threads, progress, [&](size_t, MeshReport r) {
+    ++(r.ok ? statuses : errors)[r.count_as];
+    failed += !r.ok;
+    std::fputs(r.err.c_str(), stderr);
+    std::fflush(stderr);
+    std::fputs(r.out.c_str(), stdout);
     std::fflush(stdout);
-  }
+  });
 
   if (batch) {
     std::string summary = "kergen: " + std::to_string(files.size()) + " meshes in ";

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 need=()
-for p in build-essential cmake clang libgtest-dev libbenchmark-dev libcgal-dev libgmp-dev libmpfr-dev \
+for p in build-essential cmake clang libgtest-dev libbenchmark-dev libcgal-dev libgmp-dev libmpfr-dev libqhull-dev \
          emscripten chromium valgrind; do
   dpkg -s "$p" >/dev/null 2>&1 || need+=("$p")
 done

@@ -19,7 +19,7 @@
 //     wrapper guarantees it never throws into C++). The progress callback gets the address of the
 //     core's phase name (a static NUL-terminated string, so the names exist once, in the core)
 //     and the count, as two numbers.
-// index.js (writeRequest, readStep, readResult) reads and writes the same layouts: keep them in sync.
+// index.js (writeRequest, readStep, readResult) reads and writes these layouts through wireFormat().
 #include <emscripten/bind.h>
 #include <emscripten/heap.h>
 #include <emscripten/val.h>
@@ -34,6 +34,8 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "kergen/io.h"
@@ -43,52 +45,46 @@ using emscripten::val;
 
 namespace {
 
-// Request block options, f64 slots.
+// The wire format is declared once, here: each list below gives the enum used in this file and
+// the layout object wireFormat() returns, which index.js reads at init() (it names fields, never
+// offsets, and refuses a module whose layout lacks a field it uses).
+
+// Request block options, f64 slots (NaN = not given: the core's default applies).
+#define KERGEN_OPTION_SLOTS(X) \
+  X(fromX) X(fromY) X(fromZ) X(maxSteps) X(allowOpen) X(deepestPoint) X(maxFaces) X(maxVertices) X(cullFaces) X(seed)
 enum Option : uint32_t {
-  kOptFromX,
-  kOptFromY,
-  kOptFromZ,
-  kOptMaxSteps,
-  kOptAllowOpen,
-  kOptDeepestPoint,
-  kOptMaxFaces,
-  kOptMaxVertices,
+#define KERGEN_ENUM(name) kOpt_##name,
+  KERGEN_OPTION_SLOTS(KERGEN_ENUM)
+#undef KERGEN_ENUM
   kOptionSlots
 };
 
-// Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[kNumWarnings]],
-// f64 vertices, u32 edges, face indices, face sizes, triangles, u8 bytes, then the text: NUL-terminated
-// UTF-8 strings: name (kernel status, "" for findPoint, or the error code), message ("" unless
-// error), then kind and message of each warning.
+// Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[numWarnings]],
+// f64 vertices, u32 edges, face indices, face sizes, triangles, u8 bytes (writeMesh's file), then
+// the text: NUL-terminated UTF-8 strings: name (kernel status, "" for findPoint, or the error
+// code), message ("" unless error), then kind and message of each warning.
+#define KERGEN_HEAD_WORDS(X)                                                                              \
+  X(ok) X(complete) X(hasKernelPoint) X(hasDeepestPoint) X(starShaped) X(numWarnings) X(textBytes)      \
+  X(numVertexValues) X(numEdgeValues) X(numFaceIndices) X(numFaces) X(numTriangleValues) X(numBytes) \
+  X(padding)
 enum Head : uint32_t {
-  kOk,
-  kComplete,
-  kHasKernelPoint,
-  kHasDeepestPoint,
-  kStarShaped,
-  kNumWarnings,
-  kTextBytes,
-  kNumVertexValues,
-  kNumEdgeValues,
-  kNumFaceIndices,
-  kNumFaces,
-  kNumTriangleValues,
-  kNumBytes,  // raw bytes after the arrays (writeMesh's file)
-  kPadding,
+#define KERGEN_ENUM(name) kHead_##name,
+  KERGEN_HEAD_WORDS(KERGEN_ENUM)
+#undef KERGEN_ENUM
   kHeadWords
 };
 static_assert(kHeadWords % 2 == 0, "the f64 section after the head must stay 8-byte aligned");
-// kStats: the 14 Stats fields in declaration order (index.js names them).
+
+// f64 scalars after the head: (name, number of values); stats holds kergen::stats_fields in order.
+constexpr uint32_t kNumStats = std::tuple_size<decltype(kergen::stats_fields(kergen::Stats{}))>::value;
+#define KERGEN_SCALARS(X)                                                                                   \
+  X(volume, 1) X(area, 1) X(shapeVolume, 1) X(volumeRatio, 1) X(kernelPoint, 3) X(deepestPoint, 3) \
+  X(inscribedRadius, 1) X(stats, kNumStats)
 enum Scalar : uint32_t {
-  kVolume,
-  kArea,
-  kShapeVolume,
-  kVolumeRatio,
-  kKernelPoint,
-  kDeepestPoint = kKernelPoint + 3,
-  kInscribedRadius = kDeepestPoint + 3,
-  kStats,
-  kScalars = kStats + 14
+#define KERGEN_ENUM(name, width) kScalar_##name, kScalarLast_##name = kScalar_##name + (width) - 1,
+  KERGEN_SCALARS(KERGEN_ENUM)
+#undef KERGEN_ENUM
+  kScalars
 };
 
 // One step event as index.js reads it; kind 0 vertex, 1 edge, 2 face.
@@ -113,16 +109,6 @@ static_assert(static_cast<int>(kergen::KernelType::Empty) == 0 && static_cast<in
                   static_cast<int>(kergen::KernelType::Polyhedron) == 4 &&
                   static_cast<int>(kergen::KernelType::Unbounded) == 5,
               "kernel type codes of index.js (its STATUSES)");
-
-const char* warning_kind_name(kergen::Warning::Kind k) {
-  switch (k) {
-    case kergen::Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
-    case kergen::Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
-    case kergen::Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
-    case kergen::Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
-  }
-  return "UNKNOWN";
-}
 
 // What goes into a result block; arrays stay owned by the caller until pack() has copied them
 // (null = none). readMesh sends a mesh as vertices (positions), face indices and face sizes.
@@ -174,20 +160,20 @@ uintptr_t pack(Out& o) {
   text += '\0';
   std::vector<double> counts(ws.size());
   for (size_t i = 0; i < ws.size(); ++i) {
-    text += warning_kind_name(ws[i].kind);
+    text += kergen::warning_kind_name(ws[i].kind);
     text += '\0';
     text += ws[i].message;
     text += '\0';
     counts[i] = static_cast<double>(ws[i].count);
   }
-  o.head[kNumWarnings] = static_cast<uint32_t>(ws.size());
-  o.head[kTextBytes] = static_cast<uint32_t>(text.size());
-  o.head[kNumVertexValues] = static_cast<uint32_t>(vertices.size());
-  o.head[kNumEdgeValues] = static_cast<uint32_t>(edges.size());
-  o.head[kNumFaceIndices] = static_cast<uint32_t>(face_indices.size());
-  o.head[kNumFaces] = static_cast<uint32_t>(face_sizes.size());
-  o.head[kNumTriangleValues] = static_cast<uint32_t>(triangles.size());
-  o.head[kNumBytes] = static_cast<uint32_t>(bytes_out.size());
+  o.head[kHead_numWarnings] = static_cast<uint32_t>(ws.size());
+  o.head[kHead_textBytes] = static_cast<uint32_t>(text.size());
+  o.head[kHead_numVertexValues] = static_cast<uint32_t>(vertices.size());
+  o.head[kHead_numEdgeValues] = static_cast<uint32_t>(edges.size());
+  o.head[kHead_numFaceIndices] = static_cast<uint32_t>(face_indices.size());
+  o.head[kHead_numFaces] = static_cast<uint32_t>(face_sizes.size());
+  o.head[kHead_numTriangleValues] = static_cast<uint32_t>(triangles.size());
+  o.head[kHead_numBytes] = static_cast<uint32_t>(bytes_out.size());
 
   const size_t bytes = sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
                        4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size()) +
@@ -233,34 +219,22 @@ kergen::MeshView mesh_view(uintptr_t request, uint32_t num_values, uint32_t num_
 kergen::Options read_options(uintptr_t request) {
   const double* slot = reinterpret_cast<const double*>(request);
   kergen::Options o;
-  if (!std::isnan(slot[kOptFromX])) {
+  if (!std::isnan(slot[kOpt_fromX])) {
     o.has_from = true;
-    o.from = {slot[kOptFromX], slot[kOptFromY], slot[kOptFromZ]};
+    o.from = {slot[kOpt_fromX], slot[kOpt_fromY], slot[kOpt_fromZ]};
   }
-  if (!std::isnan(slot[kOptMaxSteps])) o.max_steps = static_cast<uint64_t>(slot[kOptMaxSteps]);
-  if (!std::isnan(slot[kOptAllowOpen])) o.allow_open = slot[kOptAllowOpen] != 0;
-  if (!std::isnan(slot[kOptDeepestPoint])) o.deepest_point = slot[kOptDeepestPoint] != 0;
-  if (!std::isnan(slot[kOptMaxFaces])) o.max_faces = static_cast<size_t>(slot[kOptMaxFaces]);
-  if (!std::isnan(slot[kOptMaxVertices])) o.max_vertices = static_cast<size_t>(slot[kOptMaxVertices]);
+  if (!std::isnan(slot[kOpt_maxSteps])) o.max_steps = static_cast<uint64_t>(slot[kOpt_maxSteps]);
+  if (!std::isnan(slot[kOpt_allowOpen])) o.allow_open = slot[kOpt_allowOpen] != 0;
+  if (!std::isnan(slot[kOpt_deepestPoint])) o.deepest_point = slot[kOpt_deepestPoint] != 0;
+  if (!std::isnan(slot[kOpt_maxFaces])) o.max_faces = static_cast<size_t>(slot[kOpt_maxFaces]);
+  if (!std::isnan(slot[kOpt_maxVertices])) o.max_vertices = static_cast<size_t>(slot[kOpt_maxVertices]);
+  if (!std::isnan(slot[kOpt_cullFaces])) o.cull_faces = slot[kOpt_cullFaces] != 0;
+  if (!std::isnan(slot[kOpt_seed])) o.seed = static_cast<uint64_t>(slot[kOpt_seed]);
   return o;
 }
 
 void put_stats(const kergen::Stats& s, double* out) {
-  const double v[14] = {static_cast<double>(s.input_vertices),
-                        static_cast<double>(s.input_faces),
-                        static_cast<double>(s.dropped_faces),
-                        static_cast<double>(s.culled_faces),
-                        static_cast<double>(s.distinct_planes),
-                        static_cast<double>(s.active_planes),
-                        static_cast<double>(s.traced_lines),
-                        static_cast<double>(s.exact_fallbacks),
-                        s.ms_validate,
-                        s.ms_planes,
-                        s.ms_lp,
-                        s.ms_trace,
-                        s.ms_assemble,
-                        s.ms_total};
-  std::memcpy(out, v, sizeof v);
+  for (const kergen::StatsField& f : kergen::stats_fields(s)) *out++ = f.value;
 }
 
 void put_xyz(const std::array<double, 3>& p, double* out) {
@@ -297,18 +271,18 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
     if (k.error != kergen::Error::Ok) return error_block(kergen::error_name(k.error), k.message);
 
     Out o;
-    o.head[kOk] = 1;
-    o.head[kComplete] = k.complete;
-    o.head[kHasKernelPoint] = k.has_kernel_point;
-    o.head[kHasDeepestPoint] = k.has_deepest_point;
-    o.scalars[kVolume] = k.volume;
-    o.scalars[kArea] = k.area;
-    o.scalars[kShapeVolume] = k.shape_volume;
-    o.scalars[kVolumeRatio] = k.volume_ratio;
-    put_xyz(k.kernel_point, o.scalars + kKernelPoint);
-    put_xyz(k.deepest_point, o.scalars + kDeepestPoint);
-    o.scalars[kInscribedRadius] = k.inscribed_radius;
-    put_stats(k.stats, o.scalars + kStats);
+    o.head[kHead_ok] = 1;
+    o.head[kHead_complete] = k.complete;
+    o.head[kHead_hasKernelPoint] = k.has_kernel_point;
+    o.head[kHead_hasDeepestPoint] = k.has_deepest_point;
+    o.scalars[kScalar_volume] = k.volume;
+    o.scalars[kScalar_area] = k.area;
+    o.scalars[kScalar_shapeVolume] = k.shape_volume;
+    o.scalars[kScalar_volumeRatio] = k.volume_ratio;
+    put_xyz(k.kernel_point, o.scalars + kScalar_kernelPoint);
+    put_xyz(k.deepest_point, o.scalars + kScalar_deepestPoint);
+    o.scalars[kScalar_inscribedRadius] = k.inscribed_radius;
+    put_stats(k.stats, o.scalars + kScalar_stats);
     o.name = kergen::kernel_type_name(k.type);
     o.warnings = &k.warnings;
     o.set_kernel(k);
@@ -321,17 +295,17 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
 }
 
 // findPoint(request, numPositionValues, numIndices, numFaceSizes) → result block address
-// (kStarShaped, the point in the kernel point slots, warnings).
+// (starShaped, the point in the kernel point slots, warnings).
 uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   try {
     const kergen::KernelPoint p =
         kergen::find_kernel_point(mesh_view(request, num_values, num_indices, num_face_sizes), read_options(request));
     if (p.error != kergen::Error::Ok) return error_block(kergen::error_name(p.error), p.message);
     Out o;
-    o.head[kOk] = 1;
-    o.head[kStarShaped] = p.star_shaped;
-    o.head[kHasKernelPoint] = p.star_shaped;
-    put_xyz(p.point, o.scalars + kKernelPoint);
+    o.head[kHead_ok] = 1;
+    o.head[kHead_starShaped] = p.star_shaped;
+    o.head[kHead_hasKernelPoint] = p.star_shaped;
+    put_xyz(p.point, o.scalars + kScalar_kernelPoint);
     o.warnings = &p.warnings;
     return pack(o);
   } catch (const std::bad_alloc&) {
@@ -351,7 +325,7 @@ uintptr_t read_mesh(uintptr_t request, uint32_t num_bytes, uint32_t num_name_byt
                                                    std::string(bytes + num_bytes, num_name_bytes));
     if (!r.ok()) return error_block(kergen::error_name(r.error), r.message);
     Out o;
-    o.head[kOk] = 1;
+    o.head[kHead_ok] = 1;
     o.vertices = &r.mesh.positions;
     o.face_indices = &r.mesh.indices;
     o.face_sizes = &r.mesh.face_sizes;
@@ -386,7 +360,7 @@ uintptr_t write_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indice
       mesh.face_sizes = std::move(face_sizes);
     }
     Out o;
-    o.head[kOk] = 1;
+    o.head[kHead_ok] = 1;
     const std::string file = kergen::write_mesh(mesh, static_cast<kergen::MeshFormat>(format));
     o.bytes = &file;
     return pack(o);
@@ -407,6 +381,46 @@ val memory_stats() {
   return r;
 }
 
+// The layout object index.js reads at init(): every list above by name, the step event's byte
+// offsets, and the names the codes in the blocks stand for.
+val wire_format() {
+  auto fields = [](std::initializer_list<std::pair<const char*, uint32_t>> list, const char* count_name, uint32_t count) {
+    val o = val::object();
+    for (const auto& [name, value] : list) o.set(name, value);
+    o.set(count_name, count);
+    return o;
+  };
+  val w = val::object();
+#define KERGEN_PAIR(name) {#name, kOpt_##name},
+  w.set("option", fields({KERGEN_OPTION_SLOTS(KERGEN_PAIR)}, "slots", kOptionSlots));
+#undef KERGEN_PAIR
+#define KERGEN_PAIR(name) {#name, kHead_##name},
+  w.set("head", fields({KERGEN_HEAD_WORDS(KERGEN_PAIR)}, "words", kHeadWords));
+#undef KERGEN_PAIR
+#define KERGEN_PAIR(name, width) {#name, kScalar_##name},
+  w.set("scalar", fields({KERGEN_SCALARS(KERGEN_PAIR)}, "count", kScalars));
+#undef KERGEN_PAIR
+  w.set("step", fields({{"kind", offsetof(StepOut, kind)},
+                        {"id", offsetof(StepOut, id)},
+                        {"a", offsetof(StepOut, a)},
+                        {"b", offsetof(StepOut, b)},
+                        {"loop", offsetof(StepOut, loop)},
+                        {"loopSize", offsetof(StepOut, loop_size)},
+                        {"position", offsetof(StepOut, position)}},
+                       "bytes", sizeof(StepOut)));
+  val stats = val::array();
+  for (const kergen::StatsField& f : kergen::stats_fields(kergen::Stats{})) stats.call<void>("push", std::string(f.name));
+  w.set("stats", stats);
+  val kinds = val::array();  // StepOut.kind values 0, 1, 2 (static_assert above)
+  for (const char* k : {"vertex", "edge", "face"}) kinds.call<void>("push", std::string(k));
+  w.set("stepKinds", kinds);
+  val statuses = val::array();
+  for (int t = 0; t <= static_cast<int>(kergen::KernelType::Unbounded); ++t)
+    statuses.call<void>("push", std::string(kergen::kernel_type_name(static_cast<kergen::KernelType>(t))));
+  w.set("statuses", statuses);
+  return w;
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(kergen) {
@@ -415,4 +429,5 @@ EMSCRIPTEN_BINDINGS(kergen) {
   emscripten::function("readMesh", &read_mesh);
   emscripten::function("writeMesh", &write_mesh);
   emscripten::function("memoryStats", &memory_stats);
+  emscripten::function("wireFormat", &wire_format);
 }

@@ -104,6 +104,12 @@ export interface KernelOptions {
   maxFaces?: number;
   /** Refuse inputs with more vertices with `TOO_LARGE` (default 20 000 000). */
   maxVertices?: number;
+  /** Drop, before planes are merged, the faces whose planes cannot touch the kernel (large
+   * closed meshes; default true). The kernel is the same either way; false keeps every face
+   * (`stats.distinctPlanes` then counts the planes of all faces). */
+  cullFaces?: boolean;
+  /** Order of the LP's constraints (a non-negative safe integer; results do not depend on it). */
+  seed?: number;
   /** Vertices per face, for polygon input (absent or null: every face is a triangle, as readMesh gives it). */
   faceSizes?: Uint32Array | number[] | null;
 }

@@ -10,7 +10,6 @@ import { KergenError } from './errors.js';
 
 export { KergenError };
 
-const STATUSES = ['EMPTY', 'POINT', 'SEGMENT', 'POLYGON', 'POLYHEDRON', 'UNBOUNDED'];
 
 // Kept in variables (not literals) so that bundlers neither resolve nor emit them for the web.
 const NODE_FS = 'node:fs/promises';
@@ -82,8 +81,9 @@ export function init(options = {}) {
     }
     loading = load(options).then(
       (m) => {
-        wasm = m;
         loading = null;
+        W = checkWireFormat(m.wireFormat());
+        wasm = m;
       },
       (err) => {
         loading = null;
@@ -105,6 +105,34 @@ function requireModule(fn) {
     throw new KergenError('NOT_INITIALIZED', `${fn}: the WebAssembly module is not loaded; await init() first (or use the async function)`);
   }
   return wasm;
+}
+
+// The layout names this file uses (see W); a module without one of them is from another build.
+const WIRE_NAMES = {
+  option: ['fromX', 'fromY', 'fromZ', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'slots'],
+  head: ['ok', 'complete', 'hasKernelPoint', 'hasDeepestPoint', 'starShaped', 'numWarnings', 'textBytes', 'numVertexValues',
+    'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numBytes', 'words'],
+  scalar: ['volume', 'area', 'shapeVolume', 'volumeRatio', 'kernelPoint', 'deepestPoint', 'inscribedRadius', 'stats', 'count'],
+  step: ['kind', 'id', 'a', 'b', 'loop', 'loopSize', 'position'],
+};
+const camelCase = (name) => name.replace(/_([a-z])/g, (_, c) => c.toUpperCase());
+
+/**
+ * Checks the module's wire format (bindings.cpp wireFormat()) against the names this wrapper
+ * uses and returns it with the Stats keys in camelCase. Throws WASM_LOAD_FAILED naming what is
+ * missing: the wrapper and the .wasm come from different builds. (Internal; exported for tests.)
+ */
+export function checkWireFormat(w) {
+  const missing = [];
+  for (const [group, names] of Object.entries(WIRE_NAMES)) {
+    for (const n of names) if (typeof w?.[group]?.[n] !== 'number') missing.push(`${group}.${n}`);
+  }
+  for (const list of ['stats', 'statuses', 'stepKinds']) if (!Array.isArray(w?.[list])) missing.push(list);
+  if (missing.length === 0 && !['vertex', 'edge', 'face'].every((k) => w.stepKinds.includes(k))) missing.push('stepKinds');
+  if (missing.length) {
+    throw new KergenError('WASM_LOAD_FAILED', `kergen.wasm does not match this index.js (rebuild both): its wire format lacks ${missing.join(', ')}`);
+  }
+  return { ...w, statsKeys: w.stats.map(camelCase) };
 }
 
 // ---- argument checks (the C++ side receives only well-formed arrays) -----------------------
@@ -187,14 +215,14 @@ function checkOptions(fn, options) {
     if (typeof m !== 'number' || !Number.isInteger(m) || m < 0) throw invalid(fn, 'options.maxSteps must be a non-negative integer');
     out.maxSteps = m;
   }
-  for (const key of ['maxFaces', 'maxVertices']) {
+  for (const key of ['maxFaces', 'maxVertices', 'seed']) {
     if (options[key] != null) {
       const m = options[key];
-      if (typeof m !== 'number' || !Number.isInteger(m) || m < 0) throw invalid(fn, `options.${key} must be a non-negative integer`);
+      if (typeof m !== 'number' || !Number.isSafeInteger(m) || m < 0) throw invalid(fn, `options.${key} must be a non-negative integer`);
       out[key] = m;
     }
   }
-  for (const key of ['allowOpen', 'deepestPoint']) {
+  for (const key of ['allowOpen', 'deepestPoint', 'cullFaces']) {
     if (options[key] != null) {
       if (typeof options[key] !== 'boolean') throw invalid(fn, `options.${key} must be a boolean`);
       out[key] = options[key];
@@ -228,20 +256,11 @@ function callWasm(fn, body) {
 // Data crosses as one request block and one result block instead of embind values: each embind
 // value costs JS<->wasm round trips, which on small meshes cost as much as the computation.
 
-const OPTION_SLOTS = 8; // f64: from x, y, z, maxSteps, allowOpen, deepestPoint, maxFaces, maxVertices
-// Result block head (u32), as `enum Head` in bindings.cpp.
-const H_OK = 0;
-const H_COMPLETE = 1;
-const H_HAS_KERNEL_POINT = 2;
-const H_HAS_DEEPEST_POINT = 3;
-const H_STAR_SHAPED = 4;
-const H_NUM_WARNINGS = 5;
-const H_TEXT_BYTES = 6;
-const H_NUM_VERTEX_VALUES = 7; // then edge values, face indices, faces, triangle values
-const H_NUM_BYTES = 12; // writeMesh's file
-const HEAD_WORDS = 14;
-const SCALARS = 25; // f64 after the head, as `enum Scalar`
-const S_STATS = 11; // first of the 14 Stats fields, in their declaration order
+// The layout (wasm/bindings.cpp's wireFormat(), read once per instance at init()): field names
+// to slot, word and byte offsets, the Stats field names and the kernel status names. Nothing here
+// repeats a number of the C++ side; checkWireFormat refuses a module whose layout lacks a name
+// this file uses (a wrapper and a .wasm from different builds).
+let W = null;
 const OUT_OF_MEMORY = 'out of memory (the wasm heap is limited to 4 GB)';
 const textDecoder = new TextDecoder();
 
@@ -252,25 +271,29 @@ const slot = (v) => (v === undefined ? NaN : Number(v));
 // caller frees it).
 function writeRequest(m, positions, indices, faceSizes, opts) {
   const numFaceSizes = faceSizes ? faceSizes.length : 0;
-  const bytes = 8 * (OPTION_SLOTS + positions.length) + 4 * (indices.length + numFaceSizes);
+  const slots = W.option.slots;
+  const bytes = 8 * (slots + positions.length) + 4 * (indices.length + numFaceSizes);
   // malloc takes a 32-bit size; anything larger cannot fit into the heap anyway.
   const ptr = bytes < 2 ** 32 ? m._malloc(bytes) : 0;
   if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
   // Views are read after malloc: growing the heap replaces them.
   const f64 = m.HEAPF64;
   const at = ptr / 8;
+  const o = W.option;
   const from = opts.from;
-  f64[at] = from ? from[0] : NaN;
-  f64[at + 1] = from ? from[1] : NaN;
-  f64[at + 2] = from ? from[2] : NaN;
-  f64[at + 3] = slot(opts.maxSteps);
-  f64[at + 4] = slot(opts.allowOpen);
-  f64[at + 5] = slot(opts.deepestPoint);
-  f64[at + 6] = slot(opts.maxFaces);
-  f64[at + 7] = slot(opts.maxVertices);
-  f64.set(positions, at + OPTION_SLOTS);
+  f64[at + o.fromX] = from ? from[0] : NaN;
+  f64[at + o.fromY] = from ? from[1] : NaN;
+  f64[at + o.fromZ] = from ? from[2] : NaN;
+  f64[at + o.maxSteps] = slot(opts.maxSteps);
+  f64[at + o.allowOpen] = slot(opts.allowOpen);
+  f64[at + o.deepestPoint] = slot(opts.deepestPoint);
+  f64[at + o.maxFaces] = slot(opts.maxFaces);
+  f64[at + o.maxVertices] = slot(opts.maxVertices);
+  f64[at + o.cullFaces] = slot(opts.cullFaces);
+  f64[at + o.seed] = slot(opts.seed);
+  f64.set(positions, at + slots);
   const u32 = m.HEAPU32;
-  const indexAt = (at + OPTION_SLOTS + positions.length) * 2;
+  const indexAt = (at + slots + positions.length) * 2;
   u32.set(indices, indexAt);
   if (numFaceSizes) u32.set(faceSizes, indexAt + indices.length);
   return ptr;
@@ -279,18 +302,18 @@ function writeRequest(m, positions, indices, faceSizes, opts) {
 // A step event from the StepOut at `address` (valid during the callback).
 function readStep(m, address) {
   const u32 = m.HEAPU32;
-  const w = address / 4;
-  const kind = u32[w];
-  const id = u32[w + 1];
-  if (kind === 0) {
+  const st = W.step;
+  const kind = W.stepKinds[u32[(address + st.kind) / 4]];
+  const id = u32[(address + st.id) / 4];
+  if (kind === 'vertex') {
     const f64 = m.HEAPF64;
-    const d = (address + 24) / 8;
+    const d = (address + st.position) / 8;
     return { type: 'vertex', id, position: [f64[d], f64[d + 1], f64[d + 2]] };
   }
-  if (kind === 1) return { type: 'edge', id, a: u32[w + 2], b: u32[w + 3] };
-  const first = u32[w + 4] / 4;
+  if (kind === 'edge') return { type: 'edge', id, a: u32[(address + st.a) / 4], b: u32[(address + st.b) / 4] };
+  const first = u32[(address + st.loop) / 4] / 4;
   const loop = [];
-  for (let i = 0, n = u32[w + 5]; i < n; i++) loop.push(u32[first + i]);
+  for (let i = 0, n = u32[(address + st.loopSize) / 4]; i < n; i++) loop.push(u32[first + i]);
   return { type: 'face', id, loop };
 }
 
@@ -313,17 +336,17 @@ function readStrings(u8, start, end) {
   return out;
 }
 
-// The result block's stats: kergen::Stats fields in declaration order (bindings.cpp writes them),
-// as one object literal of a fixed shape (V8 builds it without the temporary arrays of
-// Object.fromEntries, a measurable part of a call on a small mesh).
+// The result block's stats: kergen::stats_fields in order, named as the layout names them (in
+// camelCase). The object gets its keys in the same order every call, so V8 gives every result
+// the same shape.
 function readStats(f64, st) {
-  return {
-    inputVertices: f64[st], inputFaces: f64[st + 1], droppedFaces: f64[st + 2], culledFaces: f64[st + 3],
-    distinctPlanes: f64[st + 4], activePlanes: f64[st + 5], tracedLines: f64[st + 6], exactFallbacks: f64[st + 7],
-    msValidate: f64[st + 8], msPlanes: f64[st + 9], msLp: f64[st + 10], msTrace: f64[st + 11], msAssemble: f64[st + 12],
-    msTotal: f64[st + 13],
-  };
+  const out = {};
+  const names = W.statsKeys;
+  for (let i = 0; i < names.length; i++) out[names[i]] = f64[st + i];
+  return out;
 }
+
+const xyz = (f64, at) => [f64[at], f64[at + 1], f64[at + 2]];
 
 // Copies a result block out of the heap into plain JS values and frees it. Returns
 // { error, message } or the fields of a result (findPoint's point is in kernelPoint).
@@ -333,18 +356,20 @@ function readResult(m, ptr) {
     const u32 = m.HEAPU32;
     const f64 = m.HEAPF64;
     const h = ptr / 4;
-    const numWarnings = u32[h + H_NUM_WARNINGS];
-    const s = (ptr + 4 * HEAD_WORDS) / 8; // scalars
-    const counts = s + SCALARS; // warning counts
+    const H = W.head;
+    const S = W.scalar;
+    const numWarnings = u32[h + H.numWarnings];
+    const s = (ptr + 4 * H.words) / 8; // scalars
+    const counts = s + S.count; // warning counts
     const v = counts + numWarnings;
     // The five arrays lie back to back in the block (the vertices' f64 values, then the u32
     // arrays): one copy into one fresh buffer, then views of it. (Each fresh typed array of more
     // than a few values costs about a microsecond in V8, most of a tiny mesh's overhead here.)
-    const numVertexValues = u32[h + H_NUM_VERTEX_VALUES];
-    const numEdgeValues = u32[h + H_NUM_VERTEX_VALUES + 1];
-    const numFaceIndices = u32[h + H_NUM_VERTEX_VALUES + 2];
-    const numFaces = u32[h + H_NUM_VERTEX_VALUES + 3];
-    const numTriangleValues = u32[h + H_NUM_VERTEX_VALUES + 4];
+    const numVertexValues = u32[h + H.numVertexValues];
+    const numEdgeValues = u32[h + H.numEdgeValues];
+    const numFaceIndices = u32[h + H.numFaceIndices];
+    const numFaces = u32[h + H.numFaces];
+    const numTriangleValues = u32[h + H.numTriangleValues];
     const arraysStart = v * 8;
     const u32Values = numEdgeValues + numFaceIndices + numFaces + numTriangleValues;
     const arrays = m.HEAPU8.slice(arraysStart, arraysStart + 8 * numVertexValues + 4 * u32Values).buffer;
@@ -355,32 +380,32 @@ function readResult(m, ptr) {
     const faceSizes = new Uint32Array(arrays, (at += 4 * numFaceIndices), numFaces);
     const triangles = new Uint32Array(arrays, (at += 4 * numFaces), numTriangleValues);
     const bytesStart = (v * 2 + 2 * numVertexValues + u32Values) * 4;
-    const numBytes = u32[h + H_NUM_BYTES];
+    const numBytes = u32[h + H.numBytes];
     const textStart = bytesStart + numBytes;
-    const text = readStrings(m.HEAPU8, textStart, textStart + u32[h + H_TEXT_BYTES]);
-    if (u32[h + H_OK] === 0) return { error: text[0], message: text[1] };
+    const text = readStrings(m.HEAPU8, textStart, textStart + u32[h + H.textBytes]);
+    if (u32[h + H.ok] === 0) return { error: text[0], message: text[1] };
     const warnings = new Array(numWarnings);
     for (let i = 0; i < numWarnings; i++) {
       warnings[i] = { kind: text[2 + 2 * i], count: f64[counts + i], message: text[3 + 2 * i] };
     }
-    const st = s + S_STATS;
+    const st = s + S.stats;
     return {
       status: text[0],
-      complete: u32[h + H_COMPLETE] !== 0,
-      starShaped: u32[h + H_STAR_SHAPED] !== 0,
+      complete: u32[h + H.complete] !== 0,
+      starShaped: u32[h + H.starShaped] !== 0,
       vertices,
       edges,
       faceIndices,
       faceSizes,
       triangles,
       bytes: numBytes ? m.HEAPU8.slice(bytesStart, textStart) : null,
-      volume: f64[s],
-      area: f64[s + 1],
-      shapeVolume: f64[s + 2],
-      volumeRatio: f64[s + 3],
-      kernelPoint: u32[h + H_HAS_KERNEL_POINT] ? [f64[s + 4], f64[s + 5], f64[s + 6]] : null,
-      deepestPoint: u32[h + H_HAS_DEEPEST_POINT] ? [f64[s + 7], f64[s + 8], f64[s + 9]] : null,
-      inscribedRadius: f64[s + 10],
+      volume: f64[s + S.volume],
+      area: f64[s + S.area],
+      shapeVolume: f64[s + S.shapeVolume],
+      volumeRatio: f64[s + S.volumeRatio],
+      kernelPoint: u32[h + H.hasKernelPoint] ? xyz(f64, s + S.kernelPoint) : null,
+      deepestPoint: u32[h + H.hasDeepestPoint] ? xyz(f64, s + S.deepestPoint) : null,
+      inscribedRadius: f64[s + S.inscribedRadius],
       warnings,
       stats: readStats(f64, st),
     };
@@ -397,7 +422,7 @@ function shapeResult(raw) {
     faces[f] = faceIndices.subarray(at, at + faceSizes[f]);
     at += faceSizes[f];
   }
-  if (!STATUSES.includes(raw.status)) throw new KergenError('INTERNAL_ERROR', `unknown kernel status ${raw.status}`);
+  if (!W.statuses.includes(raw.status)) throw new KergenError('INTERNAL_ERROR', `unknown kernel status ${raw.status}`);
   return {
     status: raw.status,
     complete: raw.complete,
@@ -606,7 +631,7 @@ function writableMesh(fn, meshOrKernel) {
     throw invalid(fn, 'the first argument must be a kernel result or a mesh { positions, indices, faceSizes? }');
   }
   if (meshOrKernel.status !== undefined) {
-    const kernelType = STATUSES.indexOf(meshOrKernel.status);
+    const kernelType = W.statuses.indexOf(meshOrKernel.status);
     if (kernelType < 0) throw invalid(fn, `unknown kernel status ${String(meshOrKernel.status)}`);
     const { vertices, faceIndices, faceSizes } = meshOrKernel;
     if (!(faceSizes instanceof Uint32Array)) throw invalid(fn, 'a kernel result needs its faceSizes (a Uint32Array)');

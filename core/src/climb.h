@@ -7,23 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "exact.h"
+#include "exact/error_bounds.h"
+#include "exact/expansion.h"
 
 namespace kergen {
-
-// How far a computed f(v) = a x + b y + c z + d at a vertex of a traced polytope can be from the
-// exact plane's value at the exact vertex: the rounding of the evaluation (below 8 eps of the sum
-// of the terms' magnitudes), the vertices' coordinate errors (at most coord_error; coordinates at
-// most max_abs in magnitude) and the plane's coefficient errors (ea, eb, ec, ed). It scales with
-// the coordinates' magnitudes, not with 1: a polytope far smaller than its distance from the
-// origin (a tiny shape placed far out) keeps margins below its own size, so the climbs and
-// searches built on it stay local. climb_to_max needs a tie of at least twice it.
-inline double value_error_bound(double a, double b, double c, double d, double ea, double eb, double ec, double ed,
-                                double max_abs, double coord_error) {
-  const double n1 = std::fabs(a) + std::fabs(b) + std::fabs(c), reach = max_abs + coord_error;
-  return 8 * exact::kEps * (n1 * reach + std::fabs(d)) + n1 * coord_error + (ea + eb + ec) * reach + ed +
-         exact::kUnderflowFloor;
-}
 
 // Cube map of directions: cell = face * k^2 + i * k + j, face = 2 * axis + (component < 0), with
 // k cells per face side. Climb starts are kept per cell: the extreme vertex in direction n is

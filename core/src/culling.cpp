@@ -12,18 +12,11 @@
 
 #include "climb.h"
 #include "cutting.h"
+#include "random.h"
 
 namespace kergen {
 
 namespace {
-
-uint64_t mix(uint64_t& s) {
-  s += 0x9e3779b97f4a7c15ull;
-  uint64_t z = s;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
 
 // Direction of the point (i + fi, j + fj) / k of cell (face, i, j); fi = fj = 0.5 is the centre,
 // 0 or 1 the corners.
@@ -40,12 +33,11 @@ constexpr size_t kDirectTraceLimit = 1024;  // below this many planes culling co
 // may_reach's margin and box test (see there), shared by the scalar and the batched test: the
 // same operations in the same order (no FMA contraction in this library) give the same bits,
 // hence the same decisions.
-// The margin is 16 delta, delta = value_error_bound (climb.h): how far a computed value of the
-// plane at a vertex of K_S can be off. The climbs' tie is margin / 4 = 4 delta: above the
-// 2 delta their plateau search needs to reach every higher vertex.
+// The margin is kReachMargin delta, delta = value_error_bound (exact/error_bounds.h): how far a
+// computed value of the plane at a vertex of K_S can be off. The climbs' tie is kClimbTie delta.
 inline double reach_margin(double a, double b, double c, double d, double ea, double eb, double ec, double ed,
                            double max_abs, double coord_error) {
-  return 16 * value_error_bound(a, b, c, d, ea, eb, ec, ed, max_abs, coord_error);
+  return kReachMargin * value_error_bound(a, b, c, d, ea, eb, ec, ed, max_abs, coord_error);
 }
 inline bool box_clears(double a, double b, double c, double d, double margin, const double centre[3],
                        const double half[3]) {
@@ -238,7 +230,7 @@ SupportTest::SupportTest(const TraceResult& tr, size_t expected_queries, bool ba
       auto g = [&](uint32_t v) { return dir[0] * xyz_[3 * v] + dir[1] * xyz_[3 * v + 1] + dir[2] * xyz_[3 * v + 2]; };
       double h = g(at);
       // (tie: twice the most a computed g can be off, and twice again)
-      const double tie = 4 * value_error_bound(dir[0], dir[1], dir[2], 0, 0, 0, 0, 0, max_abs_, coord_error_);
+      const double tie = kClimbTie * value_error_bound(dir[0], dir[1], dir[2], 0, 0, 0, 0, 0, max_abs_, coord_error_);
       climb_to_max(at, h, g, neighbors, tie, V, climb);
       corner_support_[c] = h;
     }
@@ -354,7 +346,7 @@ void SupportTest::may_reach_all(const PlaneArrays& p, size_t n, Scratch& scratch
 
 bool SupportTest::climb_reaches(double a, double b, double c, double d, double margin, int32_t cell, int32_t corner,
                                 Scratch& scratch, uint32_t& hint) const {
-  const double tie = margin / 4;  // (see reach_margin)
+  const double tie = margin * (kClimbTie / kReachMargin);  // kClimbTie delta (see reach_margin)
   const double* xyz = xyz_.data();
   auto f = [&](uint32_t v) { return a * xyz[3 * v] + b * xyz[3 * v + 1] + c * xyz[3 * v + 2] + d; };
   uint32_t cur = cell < 0 ? 0 : start_of_cell_[cell];
@@ -400,9 +392,9 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     }
     for (uint32_t l : start_tight) add(l);
   }
-  uint64_t rng = seed;
+  SplitMix64 rng{seed};
   size_t sample = std::min(planes.size(), std::max<size_t>(64, size_t(4 * std::sqrt(double(planes.size())))));
-  for (size_t i = 0; i < sample; ++i) add(planes[mix(rng) % planes.size()]);
+  for (size_t i = 0; i < sample; ++i) add(planes[rng.next() % planes.size()]);
 
   const TraceOptions& quiet = options;
   std::vector<uint32_t> added_list, added_hint, on_kernel;
@@ -437,7 +429,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
     // The cuts keep K_S's structure and touch only what each added plane removes; retracing is
     // the fallback for what they do not handle (a flat result).
     TraceResult cut;
-    if (cut_kernel_trace(ps, tr, added_list, added_hint, mix(rng), cut))
+    if (cut_kernel_trace(ps, tr, added_list, added_hint, rng.next(), cut))
       tr = std::move(cut);
     else
       tr = update_kernel_trace(ps, S, tr, added_list, quiet);

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "climb.h"
-#include "hints.h"
-#include "planes.h"
+#include "compiler_hints.h"
+#include "exact/predicates.h"
 #include "tracer.h"
 
 namespace kergen {

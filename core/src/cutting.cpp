@@ -66,7 +66,7 @@ class Cutter {
     // The bounds of culling's support test: the climb's tie is 4 delta, the margin 16 delta.
     const double delta = value_error_bound(a, b, c, d, plane.n[0].e, plane.n[1].e, plane.n[2].e, plane.d.e, max_abs_,
                                            coord_error_);
-    const double tie = 4 * delta, margin = 16 * delta;
+    const double tie = kClimbTie * delta, margin = kReachMargin * delta;
     auto f = [&](uint32_t v) { return a * xyz_[3 * v] + b * xyz_[3 * v + 1] + c * xyz_[3 * v + 2] + d; };
     uint32_t cur = kNoPlane;
     double val = 0;

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "planes.h"
+#include "exact/predicates.h"
 #include "tracer.h"
 
 namespace kergen {

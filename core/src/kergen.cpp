@@ -8,10 +8,12 @@
 #include <memory>
 
 #include "culling.h"
+#include "deepest_point.h"
+#include "face_culling.h"
 #include "lp.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
-#include "planes.h"
+#include "exact/predicates.h"
 #include "polytope.h"
 #include "step_replay.h"
 #include "tracer.h"
@@ -35,6 +37,7 @@ const char* error_name(Error e) {
     case Error::IoError: return "IO_ERROR";
     case Error::InvalidArgument: return "INVALID_ARGUMENT";
     case Error::CoordinateRange: return "COORDINATE_RANGE";
+    case Error::Internal: return "INTERNAL_ERROR";
   }
   return "UNKNOWN";
 }
@@ -49,6 +52,33 @@ const char* kernel_type_name(KernelType t) {
     case KernelType::Unbounded: return "UNBOUNDED";
   }
   return "UNKNOWN";
+}
+
+const char* warning_kind_name(Warning::Kind k) {
+  switch (k) {
+    case Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
+    case Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
+    case Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
+    case Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
+  }
+  return "UNKNOWN";
+}
+
+std::array<StatsField, 14> stats_fields(const Stats& s) {
+  return {{{"input_vertices", double(s.input_vertices)},
+           {"input_faces", double(s.input_faces)},
+           {"dropped_faces", double(s.dropped_faces)},
+           {"culled_faces", double(s.culled_faces)},
+           {"distinct_planes", double(s.distinct_planes)},
+           {"active_planes", double(s.active_planes)},
+           {"traced_lines", double(s.traced_lines)},
+           {"exact_fallbacks", double(s.exact_fallbacks)},
+           {"ms_validate", s.ms_validate},
+           {"ms_planes", s.ms_planes},
+           {"ms_lp", s.ms_lp},
+           {"ms_trace", s.ms_trace},
+           {"ms_assemble", s.ms_assemble},
+           {"ms_total", s.ms_total}}};
 }
 
 const char* progress_phase_name(Progress::Phase p) {
@@ -83,98 +113,6 @@ struct Setup {
   double center[3] = {0, 0, 0};
 };
 
-// Generic objective for the LP (ties are broken lexicographically anyway).
-constexpr double kDefaultDirection[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
-// Below this many faces the sample kernel would cost about as much as the plane classes it saves.
-constexpr size_t kFaceCullingMinFaces = 700;
-constexpr double kLpBound = 8;  // scaled coordinates are below 1; the open-mesh box is within 4
-
-// A box twice the size of the data (scaled coordinates are below 1): it bounds what an open
-// surface leaves unbounded, and the subset kernels of culling. A closed mesh's kernel never
-// reaches it.
-void add_box(PlaneSet& ps, std::vector<uint32_t>& box) {
-  for (int k = 0; k < 3; ++k)
-    for (int sgn = -1; sgn <= 1; sgn += 2) {
-      double n[3] = {0, 0, 0};
-      n[k] = sgn;
-      box.push_back(ps.add_explicit(n[0], n[1], n[2], -2.0));
-    }
-}
-
-// The planes of the representative triangles of faces first, ..., first + n - 1 (n <= kFaceBlock),
-// as structure of arrays: the points are gathered first, then approx_plane runs over the block
-// in one vectorized loop (the same operations per lane, so the same bounds as one at a time).
-constexpr size_t kFaceBlock = 64;
-struct FacePlanes {
-  double nx[kFaceBlock], ny[kFaceBlock], nz[kFaceBlock], d[kFaceBlock];
-  double enx[kFaceBlock], eny[kFaceBlock], enz[kFaceBlock], ed[kFaceBlock];
-  PlaneArrays arrays() const { return {nx, ny, nz, d, enx, eny, enz, ed}; }
-};
-
-KERGEN_MULTIVERSION
-void face_planes(const PreparedMesh& mesh, uint32_t first, size_t n, FacePlanes& out) {
-  double xyz[9][kFaceBlock];
-  for (size_t j = 0; j < n; ++j) {
-    const auto& r = mesh.rep[first + j];
-    for (int t = 0; t < 3; ++t) {
-      const double* q = mesh.point(r[t]);
-      for (int k = 0; k < 3; ++k) xyz[3 * t + k][j] = q[k];
-    }
-  }
-  for (size_t j = 0; j < n; ++j) {
-    const double a[3] = {xyz[0][j], xyz[1][j], xyz[2][j]}, b[3] = {xyz[3][j], xyz[4][j], xyz[5][j]},
-                 c[3] = {xyz[6][j], xyz[7][j], xyz[8][j]};
-    const PlaneCoef<Approx> p = approx_plane(a, b, c);
-    out.nx[j] = p.n[0].v; out.enx[j] = p.n[0].e;
-    out.ny[j] = p.n[1].v; out.eny[j] = p.n[1].e;
-    out.nz[j] = p.n[2].v; out.enz[j] = p.n[2].e;
-    out.d[j] = p.d.v; out.ed[j] = p.d.e;
-  }
-}
-
-// The faces whose planes may reach above K_R (traced in `sample_kernel`), with the sample's
-// own faces, in increasing order; false when more than half the faces may (a convex shape: all of
-// them; a finely tessellated flat part of the kernel's boundary): the classes of all faces then
-// cost less than those of a renumbered subset. Evenly spread probes tell before the full scan.
-// (Out of line, called once: profiles show the scan as one entry.)
-[[gnu::noinline]] bool faces_reaching(const PreparedMesh& mesh, const TraceResult& sample_kernel,
-                                      const std::vector<uint32_t>& sample, std::vector<uint32_t>& kept) {
-  const size_t nf = mesh.num_faces();
-  const SupportTest support(sample_kernel, nf, true);
-  SupportTest::Scratch scratch;
-  auto reaches = [&](uint32_t f) {
-    const auto& r = mesh.rep[f];
-    uint32_t hint = 0;
-    return support.may_reach(approx_plane(mesh.point(r[0]), mesh.point(r[1]), mesh.point(r[2])), scratch, hint);
-  };
-  constexpr size_t kProbes = 256;
-  size_t probes_reaching = 0;
-  for (size_t i = 0; i < kProbes; ++i) probes_reaching += reaches(uint32_t(((2 * i + 1) * nf) / (2 * kProbes)));
-  if (2 * probes_reaching > kProbes) return false;
-  kept.reserve(2 * sample.size());
-  size_t next_sample = 0;
-  FacePlanes block;
-  char reaching[kFaceBlock];
-  for (size_t first = 0; first < nf; first += kFaceBlock) {
-    const size_t n = std::min(kFaceBlock, nf - first);
-    face_planes(mesh, uint32_t(first), n, block);
-    support.may_reach_all(block.arrays(), n, scratch, reaching);
-    // Runs of faces up to the next sample face (kept whatever the test says) or the block's end.
-    for (size_t j = 0;; ++j) {
-      const size_t run_end =
-          next_sample < sample.size() && sample[next_sample] < first + n ? sample[next_sample] - first : n;
-      for (; j < run_end; ++j)
-        if (reaching[j]) {
-          kept.push_back(uint32_t(first + j));
-          if (kept.size() > nf / 2) return false;  // the probes were wrong: not worth it either
-        }
-      if (j == n) break;
-      kept.push_back(uint32_t(first + j));
-      ++next_sample;
-    }
-  }
-  return true;
-}
 
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
@@ -186,61 +124,31 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_validate = ms_since(t);
   if (s.mesh.error != Error::Ok) return;
 
-  // Faces before planes: on a large closed mesh, the kernel K_R of the planes of an evenly
-  // spread sample R of faces bounds the kernel K (K is inside K_R). K is empty when K_R is (one
-  // small exact LP, before any plane classes of the whole mesh are built); otherwise only the
-  // faces whose planes reach above K_R can touch K, and the exact plane classes are built for
-  // them and R alone. (K_R from a feasible sample proves nothing about K's emptiness: the LP
-  // over the kept planes decides it.)
-  std::vector<uint32_t> kept_faces;
-  bool culled = false;
   const size_t nf = s.mesh.num_faces();
   report(options, Progress::Phase::Planes, nf);
-  if (s.mesh.boundary_edges == 0 && nf > kFaceCullingMinFaces) {
-    t = Clock::now();
-    std::vector<uint32_t> sample;
-    const size_t k = std::min(nf, size_t(3 * std::sqrt(double(nf))) + 32);
-    for (size_t i = 0; i < k; ++i) sample.push_back(uint32_t((i * nf) / k));  // increasing
-    PlaneSet sp(&s.mesh.points, s.mesh.exact_shift);
-    sp.set_extent(s.mesh.extent());
-    std::vector<uint32_t> sample_plane;
-    build_planes(s.mesh, sample, sp, sample_plane);
-    std::vector<uint32_t> sample_planes(sp.size()), sample_box;
-    for (uint32_t i = 0; i < sp.size(); ++i) sample_planes[i] = i;
-    add_box(sp, sample_box);
-    std::vector<uint32_t> lp_planes = sample_planes;
-    lp_planes.insert(lp_planes.end(), sample_box.begin(), sample_box.end());
-    const auto t_lp = Clock::now();
-    LpResult quick = solve_lp(sp, lp_planes, kDefaultDirection, kLpBound, options.seed);
-    stats.ms_lp = ms_since(t_lp);
-    if (quick.outcome == LpResult::Outcome::Infeasible) {
-      s.lp = quick;
-      s.rejected_early = true;
-      stats.ms_planes = ms_since(t) - stats.ms_lp;
-      return;
-    }
-    if (options.cull_faces && quick.outcome == LpResult::Outcome::Optimal) {
-      TraceOptions quiet;
-      CulledTrace kr = trace_with_culling(sp, sample_planes, sample_box, quick.vertex, quiet, options.seed);
-      if (!kr.trace.internal_error && kr.trace.complete && !kr.trace.vertices.empty()) {
-        culled = faces_reaching(s.mesh, kr.trace, sample, kept_faces);
-        if (culled) stats.culled_faces = nf - kept_faces.size();
-      }
-    }
+  t = Clock::now();
+  const FaceCulling faces = cull_faces(s.mesh, options.cull_faces, options.seed);
+  stats.ms_lp = faces.ms_lp;
+  if (faces.kernel_empty) {
+    s.lp = faces.lp;
+    s.rejected_early = true;
     stats.ms_planes = ms_since(t) - stats.ms_lp;
+    return;
   }
+  if (faces.culled) stats.culled_faces = nf - faces.kept_faces.size();
+  stats.ms_planes = ms_since(t) - stats.ms_lp;
 
   t = Clock::now();
   s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
   s.planes->set_extent(s.mesh.extent());
   std::vector<uint32_t> face_plane;
-  if (culled) build_planes(s.mesh, kept_faces, *s.planes, face_plane);
+  if (faces.culled) build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane);
   else build_planes(s.mesh, *s.planes, face_plane);
   stats.distinct_planes = s.planes->size();
   s.active.reserve(s.planes->size() + 6);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
   for (int k = 0; k < 3; ++k) s.center[k] = 0.5 * (s.mesh.bbox_min[k] + s.mesh.bbox_max[k]);
-  add_box(*s.planes, s.box);
+  add_bounding_box(*s.planes, s.box);
   if (s.mesh.boundary_edges > 0) s.active.insert(s.active.end(), s.box.begin(), s.box.end());
   s.is_box.assign(s.planes->size(), 0);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.is_box[i] = s.planes->explicit_plane(i);
@@ -260,43 +168,6 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   }
   s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
   stats.ms_lp += ms_since(t);
-}
-
-// Centre of the largest ball inside the kernel: bisection on the inward offset r of the facet
-// planes (unit normals, double coefficients taken as exact), each step one exact LP that says
-// whether the offset polytope is non-empty. The last feasible LP vertex is within the bisection
-// tolerance of a centre (any point of the final offset polytope is one when it is not unique).
-bool deepest_point(const PlaneSet& ps, const std::vector<uint32_t>& facets, const double bbox_min[3],
-                   const double bbox_max[3], double point[3], double& radius) {
-  if (facets.size() < 4) return false;
-  std::vector<double> no_points;
-  std::vector<std::array<double, 4>> unit;
-  for (uint32_t h : facets) {
-    double n[3] = {ps.nx()[h], ps.ny()[h], ps.nz()[h]};
-    double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(len > 0)) return false;
-    unit.push_back({n[0] / len, n[1] / len, n[2] / len, ps.d()[h] / len});
-  }
-  double hi = 0;
-  for (int k = 0; k < 3; ++k) hi = std::max(hi, 0.5 * (bbox_max[k] - bbox_min[k]));
-  double lo = 0;
-  bool found = false;
-  for (int it = 0; it < 60 && hi - lo > 1e-15 * std::max(hi, 1e-300); ++it) {
-    double r = 0.5 * (lo + hi);
-    PlaneSet shrunk(&no_points);
-    std::vector<uint32_t> ids;
-    for (const auto& u : unit) ids.push_back(shrunk.add_explicit(u[0], u[1], u[2], u[3] + r));
-    LpResult lp = solve_lp(shrunk, ids, kDefaultDirection, kLpBound, 7);
-    if (lp.outcome == LpResult::Outcome::Optimal) {
-      lo = r;
-      for (int k = 0; k < 3; ++k) point[k] = lp.vertex.x[k].v;
-      found = true;
-    } else {
-      hi = r;
-    }
-  }
-  radius = lo;
-  return found;
 }
 
 }  // namespace
@@ -362,7 +233,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     out.stats.traced_lines = tr.traced_lines;
     out.complete = tr.complete;
     if (tr.internal_error) {
-      out.error = Error::InvalidArgument;
+      out.error = Error::Internal;
       out.message = "internal error: kernel tracing could not certify a vertex (please report this mesh)";
       return out;
     }
@@ -380,7 +251,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     };
     double scaled_volume = 0;
     if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
-      out.error = Error::InvalidArgument;
+      out.error = Error::Internal;
       out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
       return out;
     }

@@ -7,6 +7,8 @@
 // bounded; their corner is the optimum of the empty constraint set.
 #include "lp.h"
 
+#include "random.h"
+
 #include "lp_hint.h"
 #include "vertex_filter.h"
 
@@ -20,15 +22,8 @@ namespace {
 
 // Deterministic on every platform (std::shuffle's algorithm is not).
 void shuffle(std::vector<uint32_t>& v, uint64_t seed) {
-  uint64_t s = seed ^ 0x9e3779b97f4a7c15ull;
-  auto next = [&]() {
-    s += 0x9e3779b97f4a7c15ull;
-    uint64_t z = s;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  };
-  for (size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[next() % i]);
+  SplitMix64 rng{seed ^ 0x9e3779b97f4a7c15ull};
+  for (size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[rng.next() % i]);
 }
 
 class SeidelLp {

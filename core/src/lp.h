@@ -6,9 +6,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "planes.h"
+#include "exact/predicates.h"
 
 namespace kergen {
+
+// Generic objective for the LP (ties are broken lexicographically anyway).
+constexpr double kDefaultDirection[3] = {0.5773502691896258, 0.5773502691896257, 0.5773502691896256};
+// The LP's bounding planes: scaled coordinates are below 1, the bounding box (add_bounding_box)
+// is within 4.
+constexpr double kLpBound = 8;
 
 struct LpResult {
   enum class Outcome { Optimal, Infeasible, Unbounded };

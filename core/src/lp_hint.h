@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "planes.h"
+#include "exact/predicates.h"
 
 namespace kergen {
 

@@ -12,8 +12,8 @@
 #include <sstream>
 #include <utility>
 
-#include "hints.h"
-#include "planes.h"
+#include "compiler_hints.h"
+#include "exact/predicates.h"
 #include "union_find.h"
 
 namespace kergen {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "flat_set.h"
+#include "raw_vector.h"
 #include "kergen/kergen.h"
 
 namespace kergen {

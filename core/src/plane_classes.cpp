@@ -12,8 +12,9 @@
 // cell, so rounding never hides a match.
 #include "plane_classes.h"
 
-#include "flat_set.h"
-#include "hints.h"
+#include "u64_set.h"
+#include "raw_vector.h"
+#include "compiler_hints.h"
 #include "union_find.h"
 
 #include <algorithm>

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "mesh_prep.h"
-#include "planes.h"
+#include "exact/predicates.h"
 
 namespace kergen {
 

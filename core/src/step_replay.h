@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "planes.h"
+#include "exact/predicates.h"
 #include "tracer.h"
 
 namespace kergen {

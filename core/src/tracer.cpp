@@ -9,8 +9,8 @@
 //    set or a plane that cuts the segment earlier, which becomes the next candidate.
 #include "tracer.h"
 
-#include "flat_set.h"
-#include "hints.h"
+#include "u64_set.h"
+#include "compiler_hints.h"
 #include "vertex_filter.h"
 
 #include <algorithm>
@@ -73,7 +73,8 @@ size_t nearest_hit(const double* ax, const double* ay, const double* az, const d
 }
 
 // Indices of the planes whose value at p is not certainly negative: f_i(p) >= -b_i with the
-// rigorous bound b_i = ben_i c1 + bn1_i c2 + be0_i (see PlaneArrays::near).
+// rigorous bound b_i = ben_i c1 + bn1_i c2 + be0_i (exact/error_bounds.h, vertex_filter_bound,
+// in the same order of operations).
 KERGEN_MULTIVERSION
 void near_planes(const double* ax, const double* ay, const double* az, const double* ad, const double* bn1,
                  const double* ben, const double* be0, size_t n, const double p[3], double c1, double c2,
@@ -180,10 +181,11 @@ struct PlaneArrays {
     for (size_t i = 0; i < n; ++i) {
       uint32_t l = list[i];
       ax[i] = ps.nx()[l]; ay[i] = ps.ny()[l]; az[i] = ps.nz()[l]; ad[i] = ps.d()[l];
-      auto c = ps.approx(l);
-      bn1[i] = std::fabs(ax[i]) + std::fabs(ay[i]) + std::fabs(az[i]);
-      ben[i] = c.n[0].e + c.n[1].e + c.n[2].e;
-      be0[i] = c.d.e + 4 * exact::kEps * std::fabs(ad[i]) + exact::kUnderflowFloor;
+      const auto c = ps.approx(l);
+      const PlaneFilterTerms t = plane_filter_terms(ax[i], ay[i], az[i], ad[i], c.n[0].e, c.n[1].e, c.n[2].e, c.d.e);
+      bn1[i] = t.n1;
+      ben[i] = t.en;
+      be0[i] = t.e0;
     }
   }
 
@@ -192,12 +194,10 @@ struct PlaneArrays {
   // coordinate errors and the rounding of the evaluation.
   void near(const VertexGeom& w, std::vector<uint32_t>& out) const {
     out.clear();
-    double xm = 0, dx = 0;
-    for (int k = 0; k < 3; ++k) { xm = std::max(xm, std::fabs(w.x[k].v)); dx = std::max(dx, w.x[k].e); }
-    const double c1 = (xm + 2 * dx) * exact::kBoundScale, c2 = (dx + 4 * exact::kEps * xm) * exact::kBoundScale;
+    const VertexFilterTerms t = vertex_filter_terms(w.x);
     const double p[3] = {w.x[0].v, w.x[1].v, w.x[2].v};
-    near_planes(ax.data(), ay.data(), az.data(), ad.data(), bn1.data(), ben.data(), be0.data(), ax.size(), p, c1, c2,
-                out);
+    near_planes(ax.data(), ay.data(), az.data(), ad.data(), bn1.data(), ben.data(), be0.data(), ax.size(), p, t.c1,
+                t.c2, out);
   }
 };
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "kergen/kergen.h"
-#include "planes.h"
+#include "exact/predicates.h"
 #include "small_vector.h"
 
 namespace kergen {

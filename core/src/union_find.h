@@ -5,7 +5,7 @@
 #include <numeric>
 #include <vector>
 
-#include "flat_set.h"
+#include "raw_vector.h"
 
 namespace kergen {
 

@@ -9,9 +9,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <vector>
 
+#include "fixtures.h"
 #include "kergen/io.h"
 
 namespace {
@@ -272,6 +274,52 @@ TEST_F(CliTest, BatchWithOneBadMeshExitsWithOne) {
   EXPECT_EQ(json_raw(lines[1], "ok"), "false");
   EXPECT_EQ(json_raw(lines[1], "error"), "EMPTY_INPUT");
   EXPECT_TRUE(has(r.err, "EMPTY_INPUT 1")) << r.err;
+}
+
+// Timings differ from run to run: every "ms_...": number becomes "ms_...":T, the batch summary's
+// seconds become S.
+std::string without_timings(const std::string& text) {
+  static const std::regex ms("(\"ms_[a-z]+\":)[-+0-9.eE]+"), seconds("meshes in [0-9.]+ s");
+  return std::regex_replace(std::regex_replace(text, ms, "$1T"), seconds, "meshes in S s");
+}
+
+TEST_F(CliTest, JobsGiveTheSameOutputInInputOrder) {
+  // Meshes of very different sizes (a large one first, so that the small ones after it finish
+  // first on the other threads), an empty kernel and two input errors between them.
+  for (int i = 0; i < 6; ++i) write_box("box" + std::to_string(i) + ".off", 1 + i, 2, 3);
+  std::string message;
+  ASSERT_EQ(kergen::write_mesh_file((dir_ / "a_sphere.off").string(), kergen_test::bumpy_sphere(120, 61), &message),
+            kergen::Error::Ok) << message;
+  ASSERT_EQ(kergen::write_mesh_file((dir_ / "box2_sphere.obj").string(), kergen_test::bumpy_sphere(40, 21), &message),
+            kergen::Error::Ok) << message;
+  { std::ofstream(dir_ / "box3_empty.stl"); }
+  { std::ofstream(dir_ / "box4_bad.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"; }
+  const std::string folder = shell_quote(dir_.string());
+  const CliRun one = run("--json --jobs 1 " + folder);
+  ASSERT_EQ(one.exit_code, 1) << one.err;
+  ASSERT_EQ(lines_of(one.out).size(), 10u) << one.out;
+  EXPECT_TRUE(has(json_raw(lines_of(one.out)[0], "file"), "a_sphere.off"));
+  for (const std::string& jobs : {"2", "3", "16"}) {
+    const CliRun many = run("--json --jobs " + jobs + " " + folder);
+    EXPECT_EQ(many.exit_code, one.exit_code) << "--jobs " << jobs;
+    EXPECT_EQ(without_timings(many.out), without_timings(one.out)) << "--jobs " << jobs;
+    EXPECT_EQ(without_timings(many.err), without_timings(one.err)) << "--jobs " << jobs;
+  }
+  // The readable output and the default (the machine's threads) too.
+  const CliRun human_one = run("--jobs 1 " + folder), human_default = run(folder);
+  static const std::regex time_line("  time  [^\n]*");
+  EXPECT_EQ(std::regex_replace(without_timings(human_default.out), time_line, "T"),
+            std::regex_replace(without_timings(human_one.out), time_line, "T"));
+  EXPECT_EQ(without_timings(human_default.err), without_timings(human_one.err));
+  EXPECT_TRUE(has(human_one.err, "box4_bad.obj:4: vertex index 7 out of range")) << human_one.err;
+}
+
+TEST_F(CliTest, JobsNeedsAPositiveCount) {
+  for (const std::string& value : {"0", "-1", "two", "", "1025"}) {
+    CliRun r = run("x.off --jobs " + shell_quote(value));
+    EXPECT_EQ(r.exit_code, 2) << "--jobs " << value;
+    EXPECT_TRUE(has(r.err, "--jobs needs")) << r.err;
+  }
 }
 
 TEST_F(CliTest, EmptyKernelIsNotAnError) {

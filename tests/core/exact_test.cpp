@@ -3,8 +3,8 @@
 
 #include <random>
 
-#include "exact.h"
-#include "planes.h"
+#include "exact/expansion.h"
+#include "exact/predicates.h"
 
 namespace {
 

@@ -659,6 +659,7 @@ TEST(Kernel, ProgressReportsEachPhaseOnceInOrder) {
   EXPECT_EQ(seen[3], std::make_pair(P::Tracing, k.stats.distinct_planes));
   EXPECT_EQ(seen[4], std::make_pair(P::Assembling, k.num_vertices()));
   EXPECT_STREQ(progress_phase_name(P::Tracing), "tracing");
+  EXPECT_STREQ(error_name(Error::Internal), "INTERNAL_ERROR");  // the JS package's code too
   // Bad input stops after validation; a non-star mesh after the LP.
   auto [bad, bad_seen] = phases_of(open_cube());
   EXPECT_EQ(bad.error, Error::OpenMesh);

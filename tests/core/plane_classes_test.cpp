@@ -11,7 +11,7 @@
 #include "fixtures.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
-#include "planes.h"
+#include "exact/predicates.h"
 
 namespace {
 

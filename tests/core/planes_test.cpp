@@ -13,7 +13,7 @@
 #include "kergen/io.h"
 #include "mesh_prep.h"
 #include "plane_classes.h"
-#include "planes.h"
+#include "exact/predicates.h"
 
 namespace {
 

@@ -47,6 +47,8 @@ enum class Error : int {
   InvalidArgument,          // a programmer-supplied argument is malformed (sizes disagree, etc.)
   CoordinateRange,          // coordinates span too many binary orders of magnitude for exact
                             // evaluation in double-based arithmetic (e.g. 1 next to 1e-60)
+  Internal,                 // a failure inside the library (a bug, not a verdict on the input):
+                            // please report the mesh; the message says what failed
 };
 
 // Shape of the kernel (meaningful when error == Error::Ok).
@@ -163,6 +165,10 @@ struct Warning {
   std::string message;
 };
 
+// Its name in SCREAMING_SNAKE_CASE ("ORIENTATION_FLIPPED", ...), as the CLI's JSON and the JS
+// package's `warnings[].kind` give it.
+const char* warning_kind_name(Warning::Kind k);
+
 struct Stats {
   size_t input_vertices = 0;
   size_t input_faces = 0;
@@ -174,6 +180,14 @@ struct Stats {
   size_t exact_fallbacks = 0;      // predicate evaluations the floating-point filter could not decide
   double ms_validate = 0, ms_planes = 0, ms_lp = 0, ms_trace = 0, ms_assemble = 0, ms_total = 0;
 };
+
+// The fields of Stats by name (snake_case, as declared) and value, in declaration order: what
+// serializers (the JS package's `stats`) list instead of naming each field again.
+struct StatsField {
+  const char* name;
+  double value;
+};
+std::array<StatsField, 14> stats_fields(const Stats& s);
 
 struct Kernel {
   Error error = Error::Ok;

@@ -12,10 +12,19 @@
 
 // Function multi-versioning for the vectorized scans: GCC and clang compile an AVX2 clone and a
 // baseline one, and the loader picks by CPU (an ifunc: ELF on Linux only; plain code elsewhere,
-// in the wasm build and under AddressSanitizer). The clones compute the same bits: the library
-// is built with -ffp-contract=off, and "avx2" does not enable FMA.
+// in the wasm build and under AddressSanitizer or ThreadSanitizer, whose runtimes are not ready
+// when the loader runs the selector). The clones compute the same bits: the library is built with
+// -ffp-contract=off, and "avx2" does not enable FMA.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define KERGEN_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define KERGEN_SANITIZED 1
+#endif
 #if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__EMSCRIPTEN__) && \
-    !defined(__SANITIZE_ADDRESS__)
+    !defined(KERGEN_SANITIZED)
 #define KERGEN_MULTIVERSION __attribute__((target_clones("avx2", "default")))
 #else
 #define KERGEN_MULTIVERSION

@@ -1,7 +1,7 @@
 // Expansion arithmetic after Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast
 // Robust Geometric Predicates", Discrete & Computational Geometry 18 (1997): two_sum /
 // two_product error-free transformations, zero-eliminating expansion sum and scaling, compression.
-#include "exact.h"
+#include "exact/expansion.h"
 
 #include <algorithm>
 #include <cassert>
@@ -72,7 +72,7 @@ size_t scale_expansion(const double* e, size_t elen, double b, double* h) {
 
 }  // namespace
 
-// Double-double division (the other operations are inline in exact.h).
+// Double-double division (the other operations are inline in expansion.h).
 ApproxDD operator/(const ApproxDD& a, const ApproxDD& b) {
   // q1 = a / b in double, then one correction step: q = q1 + (a - q1 b) / b.
   double q1 = a.hi / b.hi;

@@ -1,0 +1,200 @@
+// Exact predicates (see predicates.h): signs of normal determinants, side of a plane at a vertex
+// (a cascade of filters, anchor shortcuts and exact expansions), orient3d, collinearity and the
+// orientation of an edge in a facet.
+#include "exact/predicates.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include "exact/formulas.h"
+
+namespace kergen {
+
+using namespace formula;
+
+int sign_det3_normals(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c) {
+  int s = det3_normals(ps.approx(a), ps.approx(b), ps.approx(c)).sign();
+  if (s != 2) return s;
+  s = det3_normals(ps.dd(a), ps.dd(b), ps.dd(c)).sign();
+  if (s != 2) return s;
+  // Two of the planes through one input edge (nearly coplanar triangles of a fine tessellation
+  // or of a split polygon): the signs of the line's formula. det3 is cyclic, so the pair goes
+  // first.
+  const uint32_t t[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    uint32_t x, y;
+    if (shared_input_points(ps, t[(i + 1) % 3], t[(i + 2) % 3], x, y) < 2) continue;
+    s = sign_det3_on_line(ps, t[(i + 1) % 3], t[(i + 2) % 3], t[i], x, y);
+    if (s != 2) return s;
+  }
+  ++ps.exact_fallbacks;
+  return det3_normals(ps.exact(a), ps.exact(b), ps.exact(c)).sign();
+}
+
+bool normals_parallel(const PlaneSet& ps, uint32_t a, uint32_t b) {
+  auto x = cross_normals(ps.approx(a), ps.approx(b));
+  if (x[0].certain() || x[1].certain() || x[2].certain()) return false;
+  ++ps.exact_fallbacks;
+  auto e = cross_normals(ps.exact(a), ps.exact(b));
+  return e[0].sign() == 0 && e[1].sign() == 0 && e[2].sign() == 0;
+}
+
+int sign_det3_vector(const PlaneSet& ps, const double v[3], uint32_t a, uint32_t b) {
+  auto pa = ps.approx(a), pb = ps.approx(b);
+  int s = det3(Approx(v[0]), Approx(v[1]), Approx(v[2]), pa.n[0], pa.n[1], pa.n[2], pb.n[0], pb.n[1], pb.n[2]).sign();
+  if (s != 2) return s;
+  ++ps.exact_fallbacks;
+  const auto &ea = ps.exact(a), &eb = ps.exact(b);
+  return det3(Expansion(v[0]), Expansion(v[1]), Expansion(v[2]), ea.n[0], ea.n[1], ea.n[2], eb.n[0], eb.n[1], eb.n[2]).sign();
+}
+
+LineDirection::LineDirection(const PlaneSet& ps, uint32_t p, uint32_t q) : p(p), q(q) {
+  auto cp = cross_normals(ps.approx(p), ps.approx(q));
+  for (int k = 0; k < 3; ++k) u[k] = cp[k];
+}
+
+int LineDirection::rate_sign(const PlaneSet& ps, uint32_t m) const {
+  auto pm = ps.approx(m);
+  int s = (pm.n[0] * u[0] + pm.n[1] * u[1] + pm.n[2] * u[2]).sign();
+  if (s != 2) return s;
+  return sign_det3_normals(ps, m, p, q);
+}
+
+namespace {
+// Exact sign of f_plane at input point pt (orient3d of the plane's representative triangle).
+int sign_at_point(const PlaneSet& ps, uint32_t plane, uint32_t pt) {
+  if (ps.point_on_plane(pt, plane)) return 0;
+  if (ps.explicit_plane(plane)) {
+    Scaled x(ps.point(pt), ps.exact_shift());
+    return plane_value(ps.exact(plane), x.v).sign();
+  }
+  const auto& r = ps.rep(plane);
+  return orient3d(ps.point(r[0]), ps.point(r[1]), ps.point(r[2]), ps.point(pt), ps.exact_shift());
+}
+}  // namespace
+
+// Sign of f_l at a vertex whose anchor line (vertex_anchor) passes through an input point that
+// plane l holds; 2 when l holds none. f_l is affine along the line and 0 at that point, so its
+// value at the vertex factors into signs of degree 3 in the input (orient3d and normal
+// determinants) where the general formula has degree 6 and, at the nearly coincident vertices of
+// nearly coplanar planes (split polygons), needs exact expansions of every coefficient.
+//  - Line through x with direction u = n_a x n_b: v = x + t u, t = -f_c(x) / det3(n_a, n_b, n_c);
+//    if f_l(x) = 0 then f_l(v) = t det3(n_a, n_b, n_l).
+//  - Line xy: v = (a y - b x) / (a - b) with a = f_c(x), b = f_c(y); f_l(v) = (a f_l(y) - b f_l(x)) / (a - b).
+int side_through_anchor(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
+  const VertexAnchor an = vertex_anchor(ps, v);
+  if (an.kind == 0) return 2;
+  const int lx = sign_at_point(ps, l, an.x);
+  if (an.kind == 1) {
+    if (lx != 0) return 2;
+    const int cx = sign_at_point(ps, an.c, an.x);
+    if (cx == 0) return 0;  // the vertex is x
+    // det3(n_a, n_b, n_c) is a cyclic shift of the basis order: its sign is det_sign.
+    return -cx * v.det_sign * sign_det3_normals(ps, an.a, an.b, l);
+  }
+  const int ly = sign_at_point(ps, l, an.y);
+  if (lx != 0 && ly != 0) return 2;
+  // a - b = f_c(x) - f_c(y) = -n_c . (y - x), not 0: the line crosses plane c.
+  const int den = -sign_rate_between(ps, an.c, an.x, an.y);
+  if (lx == 0) return sign_at_point(ps, an.c, an.x) * ly * den;
+  return -sign_at_point(ps, an.c, an.y) * lx * den;
+}
+
+int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
+  // The defining planes hold the vertex by construction (their filtered value is a rounding
+  // residue the filter cannot decide, and deciding it exactly costs a full Cramer solve).
+  if (l == v.basis[0] || l == v.basis[1] || l == v.basis[2]) return 0;
+  // At an input point, a face plane's sign is orient3d's (filtered inside); an explicit plane
+  // (no incident points) tries the double filter below first.
+  if (v.mesh_point != kNoPoint && !ps.explicit_plane(l)) return sign_at_point(ps, l, uint32_t(v.mesh_point));
+  auto pl = ps.approx(l);
+  Approx f = pl.n[0] * v.x[0] + pl.n[1] * v.x[1] + pl.n[2] * v.x[2] + pl.d;
+  int s = f.sign();
+  if (s != 2) return s;
+  ++ps.exact_fallbacks;
+  int32_t point = v.mesh_point;
+  if (point == kNoPoint) {
+    // A vertex built without the search (an LP candidate) that the filter cannot place is
+    // usually an input point where four or more planes meet: worth a search before the exact
+    // Cramer solve.
+    if (v.late_point == kPointNotSearched) v.late_point = input_point_on(ps, v.basis[0], v.basis[1], v.basis[2]);
+    point = v.late_point;
+  }
+  if (point != kNoPoint) return sign_at_point(ps, l, uint32_t(point));  // exact input coordinates
+  // f_l(v) = (n_l . num + d_l den) / den: first in double-double, then exactly (both cached
+  // per vertex).
+  const PlaneCoef<exact::ApproxDD> pl_dd = ps.dd(l);
+  {
+    const DDHomogeneous& h = dd_homogeneous(ps, v);
+    const auto& pl = pl_dd;
+    int sf = (pl.n[0] * h.num[0] + pl.n[1] * h.num[1] + pl.n[2] * h.num[2] + pl.d * h.den).sign();
+    if (sf != 2) return sf * h.den_sign;
+  }
+  {
+    const int sa = side_through_anchor(ps, l, v);
+    if (sa != 2) return sa;
+  }
+  if (const exact::ApproxDD* x = exact_dd_point(ps, v)) {
+    // The plane at the vertex's double-double coordinates (see ExactHomogeneous::point): decides
+    // all but values within ~2^-100 of the magnitudes, at a small part of the exact dot product.
+    const auto& pl = pl_dd;
+    const int sf = (pl.n[0] * x[0] + pl.n[1] * x[1] + pl.n[2] * x[2] + pl.d).sign();
+    if (sf != 2) return sf;
+  }
+  const ExactHomogeneous& h = exact_homogeneous(ps, v);
+  const auto& e = ps.exact(l);
+  int sf = (e.n[0] * h.num[0] + e.n[1] * h.num[1] + e.n[2] * h.num[2] + e.d * h.den).sign();
+  return sf * h.den.sign();
+}
+
+int orient3d(const double* a, const double* b, const double* c, const double* p, int shift) {
+  // Shewchuk's static filter: |det - exact| <= (7 eps + 56 eps^2) * permanent, differences
+  // included (Shewchuk 1997, orient3d error bound A).
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double wx = p[0] - a[0], wy = p[1] - a[1], wz = p[2] - a[2];
+  const double m0 = vy * wz - vz * wy, m1 = vx * wz - vz * wx, m2 = vx * wy - vy * wx;
+  const double det = ux * m0 - uy * m1 + uz * m2;
+  const double perm = std::fabs(ux) * (std::fabs(vy * wz) + std::fabs(vz * wy)) +
+                      std::fabs(uy) * (std::fabs(vx * wz) + std::fabs(vz * wx)) +
+                      std::fabs(uz) * (std::fabs(vx * wy) + std::fabs(vy * wx));
+  const double bound = (7.0 * exact::kEps + 56.0 * exact::kEps * exact::kEps) * perm;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  // Undecided here: exact zeros (coplanar faces, points on planes) and nearly coplanar points
+  // (polygons non-planar by rounding). Shewchuk's adaptive stages decide the latter; the full
+  // exact formula is left for the zeros.
+  Scaled sa(a, shift), sb(b, shift), sc(c, shift), sp(p, shift);
+  int s = exact::orient3d_adaptive(sa.v, sb.v, sc.v, sp.v);
+  if (s != 2) return s;
+  return orient3d_formula<Expansion>(sa.v, sb.v, sc.v, sp.v).sign();
+}
+
+bool collinear(const double* a, const double* b, const double* c, int shift) {
+  if (certainly_not_collinear(a, b, c)) return false;
+  auto pa = plane_from_points<Approx>(a, b, c);
+  if (pa.n[0].certain() || pa.n[1].certain() || pa.n[2].certain()) return false;
+  auto pe = exact_plane(a, b, c, shift);
+  return pe.n[0].sign() == 0 && pe.n[1].sign() == 0 && pe.n[2].sign() == 0;
+}
+
+namespace {
+template <class T>
+T edge_in_facet_formula(const PlaneCoef<T>& p, const PlaneCoef<T>& q, const PlaneCoef<T>& h, const PlaneCoef<T>& s) {
+  auto dir = cross_normals(p, q);
+  auto w = cross_normals(h, s);
+  return dir[0] * w[0] + dir[1] * w[1] + dir[2] * w[2];
+}
+}  // namespace
+
+int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, uint32_t s) {
+  // (n_p x n_q) . (n_p x n_q) = |n_p x n_q|^2 > 0 for the independent normals of an edge.
+  if (h == p && s == q) return 1;
+  if (h == q && s == p) return -1;
+  int r = edge_in_facet_formula(ps.approx(p), ps.approx(q), ps.approx(h), ps.approx(s)).sign();
+  if (r != 2) return r;
+  ++ps.exact_fallbacks;
+  return edge_in_facet_formula(ps.exact(p), ps.exact(q), ps.exact(h), ps.exact(s)).sign();
+}
+
+}  // namespace kergen

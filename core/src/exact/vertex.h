@@ -1,0 +1,81 @@
+// Vertices: the point of three planes (or an input point), with coordinates as doubles with
+// error bounds, and homogeneous coordinates in double-double and exactly, computed on demand.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "exact/determinants.h"
+#include "exact/plane_store.h"
+
+namespace kergen {
+
+// Homogeneous coordinates of a plane-triple vertex, x_k = num[k] / den, in double-double with
+// error bounds and exactly: Cramer's rule in general; when two of the planes share two input
+// points x and y (the vertex is on the line xy), num = a y - b x and den = a - b with a, b the
+// third plane's values at x and y (lower degree, and well conditioned where the two planes are
+// nearly coplanar, as the triangles of a finely tessellated or a rounding-split flat face are);
+// when they share one input point x, from x and the line's direction (fewer products).
+struct DDHomogeneous {
+  exact::ApproxDD num[3], den;
+  int den_sign = 0;  // exact sign of den
+};
+struct ExactHomogeneous {
+  Expansion num[3], den;
+  // The coordinates num[k] / den as double-doubles with rigorous error bounds, in input units
+  // (dd_coordinates, on first need through exact_dd_point; point_state 1 = valid, -1 = not
+  // available, 0 = not computed yet): side() evaluates a plane there before the exact dot
+  // product, the cuts' edge rates and the output coordinates use them too. Where den is
+  // tiny (the vertex of nearly coplanar planes), the double-double homogeneous values leave no
+  // correct digit of a plane's value while these coordinates are still accurate to ~2^-100.
+  mutable exact::ApproxDD point[3];
+  mutable int point_state = 0;
+};
+
+// A point defined by three planes (Cramer's rule), or an input point (exact coordinates).
+struct VertexGeom {
+  uint32_t basis[3] = {kNoPlane, kNoPlane, kNoPlane};
+  int32_t mesh_point = kNoPoint;  // when the three planes meet at an input vertex
+  int det_sign = 0;               // sign of det3 of the basis normals
+  Approx x[3];                    // coordinates with error bounds (exact when mesh_point)
+  // Computed on the first undecided side test and shared by copies: every further exact test
+  // at this vertex is one 4-term dot product instead of a 4x4 determinant.
+  mutable std::shared_ptr<const DDHomogeneous> dd;
+  mutable std::shared_ptr<const ExactHomogeneous> exact;
+  // For a vertex built without the input-point search: the search's answer, found on the first
+  // side test the filter cannot decide (kPointNotSearched until then).
+  mutable int32_t late_point = kNoPoint;
+};
+
+// Coordinates of a vertex as unevaluated double-double sums hi + lo, accurate to ~1e-30
+// relative (exact for input points); hi is then the coordinate rounded to nearest (certified on the
+// double-double path; the rare exact path rounds the exact quotient twice).
+void precise_coordinates(const PlaneSet& ps, const VertexGeom& v, double hi[3], double lo[3]);
+// A vertex's homogeneous coordinates (see DDHomogeneous), computed on first use and cached in
+// the vertex (shared by its copies).
+const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v);
+const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v);
+
+// The coordinates of exact homogeneous ones (num / den in 2^shift units) as double-doubles in
+// input units, each within its error bound e of the exact quotient. False when den's components
+// do not bound it away from 0 or a value is not finite.
+bool dd_coordinates(const ExactHomogeneous& h, int shift, exact::ApproxDD out[3]);
+// A vertex's coordinates as double-doubles with rigorous error bounds, input units. dd_point:
+// exact for an input point, else from the exact homogeneous coordinates when they are known,
+// else the double-double quotient num / den (false when den is not certainly away from 0; the
+// bounds are loose where den is tiny). exact_dd_point: from the exact homogeneous coordinates
+// (computed if needed, cached), accurate to ~2^-100; nullptr when dd_coordinates fails.
+bool dd_point(const PlaneSet& ps, const VertexGeom& v, exact::ApproxDD out[3]);
+const exact::ApproxDD* exact_dd_point(const PlaneSet& ps, const VertexGeom& v);
+
+// The input point on planes a, b and c (three planes with independent normals meet in one
+// point), or kNoPoint. `near`, when given, holds the point's coordinates with rigorous bounds: a
+// candidate outside them is skipped before any incidence lookup or orient3d.
+int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, const Approx* near = nullptr);
+// Builds the vertex of three planes with independent normals (caller checked the sign != 0).
+// With find_input_point it also recognises an input point on the three planes (exact
+// coordinates, cheap exact side tests later): worth it for vertices that are kept, not for the
+// LP's transient candidates.
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point = true);
+
+}  // namespace kergen
