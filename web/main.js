@@ -149,6 +149,15 @@ function drawRequest(message, transfer = []) {
       draw.waiting.get(data.id)?.(data);
       draw.waiting.delete(data.id);
     };
+    // A failure (out of memory on a huge file...) answers every request with nothing to draw:
+    // the kernel is still shown, around the origin.
+    draw.worker.onerror = (e) => {
+      e.preventDefault?.();
+      for (const resolve of draw.waiting.values()) resolve({ error: e.message ?? 'the drawing worker failed' });
+      draw.waiting.clear();
+      draw.worker.terminate();
+      draw.worker = null;
+    };
   }
   const id = draw.nextId++;
   return new Promise((resolve) => {
@@ -231,7 +240,7 @@ async function showMesh(mesh, token) {
   }
   const buffers = [...new Set([mesh.positions.buffer, mesh.indices.buffer, mesh.faceSizes?.buffer].filter(Boolean))];
   const { drawing } = await drawRequest({ type: 'prepare', mesh, edges, maxTriangles: DRAW_TRIANGLES }, buffers);
-  if (token === state.token) showDrawing(drawing);
+  if (token === state.token && drawing) showDrawing(drawing);
 }
 
 const PHASE_TEXT = {
@@ -594,7 +603,7 @@ ui.showEdges.addEventListener('change', async () => {
     state.edgesReady = true;
     const token = state.token;
     const { edges } = await drawRequest({ type: 'edges' });
-    if (token === state.token) viewer.setInputEdges(edges);
+    if (token === state.token && edges) viewer.setInputEdges(edges);
   }
 });
 
