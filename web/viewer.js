@@ -283,11 +283,13 @@ export class Viewer {
   // software WebGL, generating its pipeline on first use cost a few hundred ms, which would
   // otherwise fall in the middle of a file's computation.
   warmUp() {
-    const geo = new THREE.BufferGeometry();
-    // In front of the camera (at the origin, looking down -z until the first fit()), so that
-    // fragments are drawn: software rasterizers build the pixel stage only then.
-    geo.setAttribute('position', new THREE.BufferAttribute(new Float32Array([-0.1, -0.1, -1, 0.1, -0.1, -1, 0, 0.1, -1]), 3));
-    geo.setIndex(new THREE.BufferAttribute(new Uint32Array([0, 1, 2]), 1));
+    // A 100 × 100 grid (20k triangles) filling the view in front of the camera (at the origin,
+    // looking down -z until the first fit()): software rasterizers build their pixel stage and
+    // start their threads only when fragments are drawn, and a drawing of this size is what a
+    // big input costs.
+    const geo = new THREE.PlaneGeometry(2, 2, 100, 100);
+    geo.translate(0, 0, -1);
+    geo.setIndex(new THREE.BufferAttribute(Uint32Array.from(geo.index.array), 1));
     // One dummy per material in the scene (kernel, newest edge, kernel point) and the input's.
     const dummies = [new THREE.Mesh(geo, this.inputMaterial), new THREE.LineSegments(geo, this.wireMaterial)];
     dummies[0].renderOrder = 2;
