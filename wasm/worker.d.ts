@@ -1,5 +1,5 @@
 // Type declarations for `kergen-wasm/worker`.
-import type { IndicesInput, KernelOptions, KernelResult, PositionsInput } from './index.js';
+import type { IndicesInput, KernelOptions, KernelResult, MeshData, MeshFormat, MeshInput, PositionsInput } from './index.js';
 
 export { KergenError } from './index.js';
 export type { KernelResult, StepEvent, KernelOptions, KergenErrorCode } from './index.js';
@@ -28,20 +28,13 @@ export interface ProgressEvent {
   bytes?: number;
 }
 
-/** A mesh as readMesh returns it: flat xyz positions, face loops, faceSizes (null: all triangles). */
-export interface ParsedMesh {
-  positions: Float64Array;
-  indices: Uint32Array;
-  faceSizes: Uint32Array | null;
-}
-
 export interface WorkerComputeFileOptions extends WorkerComputeOptions {
-  /** 'off' | 'obj' | 'stl' | 'ply'; default: from the name's extension, else from the content. */
-  format?: string;
+  /** Default: from the name's extension, else from the content (as readMesh). */
+  format?: MeshFormat;
   /** The file's name: picks the format by extension and names the file in parse errors. */
   name?: string;
   /** Called with the parsed mesh (its own copy) before the computation starts. */
-  onMesh?: (mesh: ParsedMesh) => void;
+  onMesh?: (mesh: MeshData) => void;
 }
 
 // The worker reports its own progress (below), not computeKernel's phases.
@@ -68,9 +61,9 @@ export class KernelWorker {
    * Reads a mesh file and computes its kernel, both in the worker; `bytes` is transferred unless
    * `copy: true`. Parse errors reject with 'PARSE_ERROR' ("name:line: reason").
    */
-  computeFile(bytes: ArrayBuffer | Uint8Array, options?: WorkerComputeFileOptions): Promise<{ mesh: ParsedMesh; result: KernelResult }>;
+  computeFile(bytes: ArrayBuffer | Uint8Array, options?: WorkerComputeFileOptions): Promise<{ mesh: MeshData; result: KernelResult }>;
   /** Writes a mesh or kernel result as file bytes in the worker (arrays are copied). */
-  writeMesh(meshOrKernel: ParsedMesh | KernelResult, format: 'obj' | 'off' | 'stl'): Promise<Uint8Array>;
+  writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Promise<Uint8Array>;
   /** Terminates the running computation and starts a fresh worker; pending promises reject with 'CANCELLED'. */
   cancel(): void;
   /** Terminates the worker for good; pending promises reject with 'CANCELLED'. */
