@@ -1,16 +1,24 @@
-// The module worker spawned by KernelWorker (worker.js). It loads the wasm module once, runs one
-// computation per 'compute' message, forwards step events in batches (every ~16 ms or 256 events,
-// so a huge kernel does not flood the main thread) and transfers the result's buffers back.
+// The module worker spawned by KernelWorker (worker.js). It loads the wasm module once and runs
+// one job per message: a computation on arrays ('compute'), a file read + computation
+// ('computeFile': the bytes are parsed here, so a big file never costs the page's thread), or a
+// mesh written to file bytes ('writeMesh'). Step events are forwarded in batches (every ~50 ms or
+// 2048 events: a kernel of a million steps is a few hundred messages, each cheap to receive), and
+// result buffers are transferred back.
 //
 // Protocol (main → worker):  { type: 'init', wasmUrl? }
 //                            { type: 'compute', id, wasmUrl?, positions, indices, faceSizes?, options, wantSteps }
+//                            { type: 'computeFile', id, wasmUrl?, bytes, format?, name?, options, wantSteps, wantMesh }
+//                            { type: 'writeMesh', id, wasmUrl?, mesh, format }
 // Protocol (worker → main):  { type: 'steps', id, events, steps }
-//                            { type: 'progress', id, phase, steps }
-//                            { type: 'result', id, result }  |  { type: 'error', id, code, message }
-import { init, computeKernelSync, KergenError } from './index.js';
+//                            { type: 'progress', id, phase, steps, count?, bytes? }
+//                            { type: 'mesh', id, mesh }                  (computeFile with wantMesh, before computing)
+//                            { type: 'result', id, result, mesh? }  |  { type: 'error', id, code, message }
+import * as kergen from './index.js';
 
-const BATCH_EVENTS = 256;
-const BATCH_MS = 16;
+const { init, computeKernelSync, KergenError } = kergen;
+
+const BATCH_EVENTS = 2048;
+const BATCH_MS = 50;
 
 let ready = null;
 function ensureInit(wasmUrl) {
@@ -23,19 +31,36 @@ function ensureInit(wasmUrl) {
   return ready;
 }
 
-const now = typeof performance !== 'undefined' ? () => performance.now() : () => Date.now();
-
-function transferables(result) {
-  const list = [result.vertices.buffer, result.edges.buffer, result.triangles.buffer, result.faceIndices.buffer, result.faceSizes.buffer];
-  return [...new Set(list)].filter((b) => b.byteLength > 0);
+// readMeshSync / writeMesh come from the package's file layer; looked up at call time so this
+// worker still loads (and computes on arrays) with a package build that lacks them.
+function packageFunction(name) {
+  const fn = kergen[name];
+  if (typeof fn !== 'function') throw new KergenError('UNSUPPORTED', `this build of kergen-wasm has no ${name}()`);
+  return fn;
 }
 
-async function handleCompute(msg) {
-  const { id } = msg;
-  self.postMessage({ type: 'progress', id, phase: 'loading', steps: 0 });
-  await ensureInit(msg.wasmUrl);
-  self.postMessage({ type: 'progress', id, phase: 'computing', steps: 0 });
+const now = typeof performance !== 'undefined' ? () => performance.now() : () => Date.now();
 
+function resultTransferables(result) {
+  const list = [result.vertices.buffer, result.edges.buffer, result.triangles.buffer, result.faceIndices.buffer, result.faceSizes.buffer];
+  return list.filter((b) => b.byteLength > 0); // may repeat a buffer: see unique()
+}
+
+// The result's arrays can share one buffer, and a transfer list must not repeat one.
+const unique = (buffers) => [...new Set(buffers)];
+
+function meshTransferables(mesh) {
+  return [mesh.positions.buffer, mesh.indices.buffer, mesh.faceSizes && mesh.faceSizes.buffer].filter((b) => b && b.byteLength > 0);
+}
+
+const copyMesh = (mesh) => ({
+  positions: mesh.positions.slice(),
+  indices: mesh.indices.slice(),
+  faceSizes: mesh.faceSizes ? mesh.faceSizes.slice() : null,
+});
+
+// Runs computeKernelSync with batched step events and phase progress posted for job `id`.
+function computeWithEvents(id, positions, indices, faceSizes, msg) {
   let steps = 0;
   let batch = [];
   let lastFlush = now();
@@ -52,28 +77,68 @@ async function handleCompute(msg) {
     if (msg.wantSteps) batch.push(event);
     if (batch.length >= BATCH_EVENTS || now() - lastFlush >= BATCH_MS) flush();
   };
-
-  const options = { ...msg.options, onStep };
-  if (msg.faceSizes != null) options.faceSizes = msg.faceSizes;
-  const result = computeKernelSync(msg.positions, msg.indices, options);
+  // The core announces each phase once as it begins, with the number of items it works on.
+  const onProgress = ({ phase, count }) => {
+    self.postMessage({ type: 'progress', id, phase, steps, count });
+  };
+  const options = { ...msg.options, onStep, onProgress };
+  if (faceSizes != null) options.faceSizes = faceSizes;
+  const result = computeKernelSync(positions, indices, options);
   if (steps > 0) flush();
   self.postMessage({ type: 'progress', id, phase: 'done', steps });
-  self.postMessage({ type: 'result', id, result }, transferables(result));
+  return result;
 }
+
+async function handleCompute(msg) {
+  const { id } = msg;
+  self.postMessage({ type: 'progress', id, phase: 'loading', steps: 0 });
+  await ensureInit(msg.wasmUrl);
+  self.postMessage({ type: 'progress', id, phase: 'computing', steps: 0 });
+  const result = computeWithEvents(id, msg.positions, msg.indices, msg.faceSizes, msg);
+  self.postMessage({ type: 'result', id, result }, unique(resultTransferables(result)));
+}
+
+async function handleComputeFile(msg) {
+  const { id } = msg;
+  self.postMessage({ type: 'progress', id, phase: 'loading', steps: 0 });
+  await ensureInit(msg.wasmUrl);
+  const bytes = msg.bytes instanceof ArrayBuffer ? new Uint8Array(msg.bytes) : msg.bytes;
+  self.postMessage({ type: 'progress', id, phase: 'reading', steps: 0, bytes: bytes.byteLength });
+  const readOptions = {};
+  if (msg.format != null) readOptions.format = msg.format;
+  if (msg.name != null) readOptions.name = msg.name;
+  const mesh = packageFunction('readMeshSync')(bytes, readOptions);
+  // The page can draw the input while the kernel is computed: send it a copy now, and the
+  // original (which the computation only reads) with the result.
+  if (msg.wantMesh) {
+    const early = copyMesh(mesh);
+    self.postMessage({ type: 'mesh', id, mesh: early }, unique(meshTransferables(early)));
+  }
+  const result = computeWithEvents(id, mesh.positions, mesh.indices, mesh.faceSizes, msg);
+  self.postMessage({ type: 'result', id, result, mesh }, unique([...resultTransferables(result), ...meshTransferables(mesh)]));
+}
+
+async function handleWriteMesh(msg) {
+  await ensureInit(msg.wasmUrl);
+  const bytes = packageFunction('writeMesh')(msg.mesh, msg.format);
+  self.postMessage({ type: 'result', id: msg.id, result: bytes }, [bytes.buffer]);
+}
+
+const HANDLERS = { compute: handleCompute, computeFile: handleComputeFile, writeMesh: handleWriteMesh };
 
 self.onmessage = (e) => {
   const msg = e.data;
   if (!msg || typeof msg !== 'object') return;
   if (msg.type === 'init') {
-    // Warm up; a failure is reported by the next 'compute'.
+    // Warm up; a failure is reported by the next job.
     ensureInit(msg.wasmUrl).catch(() => {});
     return;
   }
-  if (msg.type === 'compute') {
-    handleCompute(msg).catch((err) => {
-      const code = err instanceof KergenError ? err.code : 'INTERNAL_ERROR';
-      const message = err && err.message ? err.message : String(err);
-      self.postMessage({ type: 'error', id: msg.id, code, message });
-    });
-  }
+  const handler = HANDLERS[msg.type];
+  if (!handler) return;
+  handler(msg).catch((err) => {
+    const code = err instanceof KergenError ? err.code : 'INTERNAL_ERROR';
+    const message = err && err.message ? err.message : String(err);
+    self.postMessage({ type: 'error', id: msg.id, code, message });
+  });
 };

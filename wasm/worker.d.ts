@@ -1,5 +1,5 @@
 // Type declarations for `kergen-wasm/worker`.
-import type { IndicesInput, KernelOptions, KernelResult, PositionsInput } from './index.js';
+import type { IndicesInput, KernelOptions, KernelResult, MeshData, MeshFormat, MeshInput, PositionsInput } from './index.js';
 
 export { KergenError } from './index.js';
 export type { KernelResult, StepEvent, KernelOptions, KergenErrorCode } from './index.js';
@@ -9,23 +9,42 @@ export interface KernelWorkerOptions {
   wasmUrl?: string | URL;
 }
 
-/** Progress phases: 'loading' the module, 'computing' (validation, planes, LP), 'tracing', 'done'. */
-export type ProgressPhase = 'loading' | 'computing' | 'tracing' | 'done';
+/**
+ * Progress phases: 'loading' the module; 'reading' the file (computeFile only); 'computing'
+ * (compute only, before the core's phases); the core's phases 'validating', 'planes', 'lp',
+ * 'tracing', 'assembling', each announced once as it begins (with `count`), 'tracing' repeated
+ * while steps stream; 'done'.
+ */
+export type ProgressPhase =
+  | 'loading' | 'reading' | 'computing' | 'validating' | 'planes' | 'lp' | 'tracing' | 'assembling' | 'done';
 
 export interface ProgressEvent {
   phase: ProgressPhase;
   /** Step events so far. */
   steps: number;
+  /** The number of items the core's phase works on (faces, planes, ...), when it gives one. */
+  count?: number;
+  /** 'reading': the file's size in bytes. */
+  bytes?: number;
+}
+
+export interface WorkerComputeFileOptions extends WorkerComputeOptions {
+  /** Default: from the name's extension, else from the content (as readMesh). */
+  format?: MeshFormat;
+  /** The file's name: picks the format by extension and names the file in parse errors. */
+  name?: string;
+  /** Called with the parsed mesh (its own copy) before the computation starts. */
+  onMesh?: (mesh: MeshData) => void;
 }
 
 // The worker reports its own progress (below), not computeKernel's phases.
 export interface WorkerComputeOptions extends Omit<KernelOptions, 'onProgress'> {
   /**
-   * Called on the main thread for every step, in order (delivered in batches of up to ~16 ms or
-   * 256 events). Returning `false` cancels the computation: the promise rejects with 'CANCELLED'.
+   * Called on the main thread for every step, in order (delivered in batches of up to ~50 ms or
+   * 2048 events). Returning `false` cancels the computation: the promise rejects with 'CANCELLED'.
    */
   onStep?: KernelOptions['onStep'];
-  /** Called on the main thread at most every ~16 ms. */
+  /** Called on the main thread once per phase, and while tracing at most every ~50 ms. */
   onProgress?: (progress: ProgressEvent) => void;
   /**
    * Copy the input arrays instead of transferring them. By default typed arrays that own their
@@ -38,6 +57,13 @@ export class KernelWorker {
   constructor(options?: KernelWorkerOptions);
   /** Computes the kernel in the worker; calls queue up and run one after another. */
   compute(positions: PositionsInput, indices: IndicesInput, options?: WorkerComputeOptions): Promise<KernelResult>;
+  /**
+   * Reads a mesh file and computes its kernel, both in the worker; `bytes` is transferred unless
+   * `copy: true`. Parse errors reject with 'PARSE_ERROR' ("name:line: reason").
+   */
+  computeFile(bytes: ArrayBuffer | Uint8Array, options?: WorkerComputeFileOptions): Promise<{ mesh: MeshData; result: KernelResult }>;
+  /** Writes a mesh or kernel result as file bytes in the worker (arrays are copied). */
+  writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Promise<Uint8Array>;
   /** Terminates the running computation and starts a fresh worker; pending promises reject with 'CANCELLED'. */
   cancel(): void;
   /** Terminates the worker for good; pending promises reject with 'CANCELLED'. */

@@ -3,12 +3,14 @@
 //   import { KernelWorker } from 'kergen-wasm/worker';
 //   const kw = new KernelWorker();
 //   const result = await kw.compute(positions, indices, { onStep, onProgress });
+//   const { mesh, result } = await kw.computeFile(await file.arrayBuffer(), { name: file.name, onProgress });
+//   const stl = await kw.writeMesh(result, 'stl');   // Uint8Array: the file's bytes
 //   kw.cancel();   // stop the running computation (its promise rejects with code 'CANCELLED')
 //   kw.dispose();  // terminate for good
 //
 // The input typed arrays are *transferred* to the worker (their buffers become detached in the
-// caller) unless `{ copy: true }` is passed. Step events arrive in batches (every ~16 ms or 256
-// events) and are replayed in order through onStep on the main thread.
+// caller) unless `{ copy: true }` is passed; so are computeFile's bytes. Step events arrive in
+// batches (every ~50 ms or 2048 events) and are replayed in order through onStep on the main thread.
 import { KergenError } from './errors.js';
 
 function isDetached(buffer) {
@@ -25,7 +27,7 @@ function toTransferable(name, arr, copy, transfer) {
   if (arr == null) return arr;
   if (!ArrayBuffer.isView(arr)) return arr; // plain arrays are structured-cloned
   if (isDetached(arr.buffer)) {
-    throw new KergenError('INVALID_ARGUMENT', `compute: ${name} is detached: its buffer was transferred to the worker by an earlier compute() (pass { copy: true } to keep using an array)`);
+    throw new KergenError('INVALID_ARGUMENT', `compute: ${name} is detached: its buffer was transferred to the worker by an earlier call (pass { copy: true } to keep using an array)`);
   }
   if (arr.byteLength === 0) return arr;
   const whole = arr.byteOffset === 0 && arr.byteLength === arr.buffer.byteLength;
@@ -118,16 +120,20 @@ export class KernelWorker {
         break;
       case 'progress':
         if (job.onProgress) {
-          try {
-            job.onProgress({ phase: msg.phase, steps: msg.steps });
-          } catch (err) {
-            this._abort(job, err);
-          }
+          const progress = { phase: msg.phase, steps: msg.steps };
+          if (msg.count !== undefined) progress.count = msg.count;
+          if (msg.bytes !== undefined) progress.bytes = msg.bytes;
+          this._callBack(job, job.onProgress, progress);
         }
+        break;
+      case 'mesh':
+        if (job.onMesh) this._callBack(job, job.onMesh, msg.mesh);
         break;
       case 'result':
         this._jobs.delete(job.id);
-        job.resolve(rebuildResult(msg.result));
+        if (job.kind === 'writeMesh') job.resolve(msg.result);
+        else if (job.kind === 'computeFile') job.resolve({ mesh: msg.mesh, result: rebuildResult(msg.result) });
+        else job.resolve(rebuildResult(msg.result));
         break;
       case 'error':
         this._jobs.delete(job.id);
@@ -135,6 +141,15 @@ export class KernelWorker {
         break;
       default:
         break;
+    }
+  }
+
+  // A throwing callback stops its job, as onStep's does.
+  _callBack(job, fn, value) {
+    try {
+      fn(value);
+    } catch (err) {
+      this._abort(job, err);
     }
   }
 
@@ -153,11 +168,57 @@ export class KernelWorker {
    * onStep's return value `false` cancels the computation (the promise rejects with 'CANCELLED').
    */
   compute(positions, indices, options = {}) {
-    if (this._disposed) return Promise.reject(new KergenError('DISPOSED', 'this KernelWorker was disposed'));
+    const fn = 'compute';
     options = options || {};
-    const { onStep, onProgress, copy, faceSizes, ...rest } = options;
-    if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'compute: options.onStep must be a function'));
-    if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'compute: options.onProgress must be a function'));
+    const { copy, faceSizes } = options;
+    return this._submit(fn, 'compute', options, (transfer) => ({
+      positions: toTransferable('positions', positions, copy, transfer),
+      indices: toTransferable('indices', indices, copy, transfer),
+      faceSizes: toTransferable('faceSizes', faceSizes, copy, transfer),
+    }));
+  }
+
+  /**
+   * Reads a mesh file (OFF, OBJ, STL, PLY: the package's readMesh) and computes its kernel, both
+   * in the worker. `bytes` (ArrayBuffer or Uint8Array, e.g. from `file.arrayBuffer()`) is
+   * transferred unless `copy: true`. Options: format / name (as readMesh: the format is taken from
+   * the name's extension or the content; the name appears in parse errors), the compute options,
+   * onProgress (phases 'loading', 'reading' with `bytes`, then the core's 'validating', 'planes',
+   * 'lp', 'tracing', 'assembling' with `count`, and 'done'), onStep, and onMesh(mesh), called with
+   * the parsed mesh before the computation starts (so the input can be drawn meanwhile).
+   * Resolves to { mesh, result }: the parsed mesh and the kernel.
+   */
+  computeFile(bytes, options = {}) {
+    options = options || {};
+    const { copy, format, name, onMesh } = options;
+    if (onMesh != null && typeof onMesh !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'computeFile: options.onMesh must be a function'));
+    return this._submit('computeFile', 'computeFile', options, (transfer) => {
+      const view = bytes instanceof ArrayBuffer ? new Uint8Array(bytes) : bytes;
+      if (!(view instanceof Uint8Array)) throw new KergenError('INVALID_ARGUMENT', 'computeFile: bytes must be an ArrayBuffer or a Uint8Array');
+      const message = { bytes: toTransferable('bytes', view, copy, transfer), wantMesh: typeof onMesh === 'function' };
+      if (format != null) message.format = String(format);
+      if (name != null) message.name = String(name);
+      return message;
+    }, { onMesh });
+  }
+
+  /**
+   * Writes a mesh or a kernel result as file bytes ('obj', 'off' or 'stl': the package's
+   * writeMesh) in the worker. The arrays are copied, the caller keeps them. Resolves to a Uint8Array.
+   */
+  writeMesh(meshOrKernel, format) {
+    const m = meshOrKernel || {};
+    // Only the arrays the writer reads; `faces` (views of faceIndices) would be cloned one by one.
+    const { faces, ...plain } = m;
+    return this._submit('writeMesh', 'writeMesh', {}, () => ({ mesh: plain, format }));
+  }
+
+  // Posts one job: `build(transfer)` makes the message body and lists the buffers to transfer.
+  _submit(fn, kind, options, build, callbacks = {}) {
+    if (this._disposed) return Promise.reject(new KergenError('DISPOSED', 'this KernelWorker was disposed'));
+    const { onStep, onProgress, ...rest } = options;
+    if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onStep must be a function`));
+    if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onProgress must be a function`));
     const plain = {};
     for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices']) if (rest[key] !== undefined) plain[key] = rest[key];
     if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
@@ -165,27 +226,18 @@ export class KernelWorker {
     const transfer = [];
     let message;
     try {
-      message = {
-        type: 'compute',
-        id: this._nextId++,
-        wasmUrl: this._wasmUrl,
-        positions: toTransferable('positions', positions, copy, transfer),
-        indices: toTransferable('indices', indices, copy, transfer),
-        faceSizes: toTransferable('faceSizes', faceSizes, copy, transfer),
-        options: plain,
-        wantSteps: typeof onStep === 'function',
-      };
+      message = { type: kind, id: this._nextId++, wasmUrl: this._wasmUrl, ...build(transfer), options: plain, wantSteps: typeof onStep === 'function' };
     } catch (err) {
-      return Promise.reject(err instanceof KergenError ? err : new KergenError('INVALID_ARGUMENT', `compute: ${err.message}`));
+      return Promise.reject(err instanceof KergenError ? err : new KergenError('INVALID_ARGUMENT', `${fn}: ${err.message}`));
     }
     return new Promise((resolve, reject) => {
-      const job = { id: message.id, resolve, reject, onStep, onProgress };
+      const job = { id: message.id, kind, resolve, reject, onStep, onProgress, ...callbacks };
       this._jobs.set(job.id, job);
       try {
         this._worker.postMessage(message, [...new Set(transfer)]);
       } catch (err) {
         this._jobs.delete(job.id);
-        reject(new KergenError('INVALID_ARGUMENT', `compute: the input could not be sent to the worker: ${err.message}`));
+        reject(new KergenError('INVALID_ARGUMENT', `${fn}: the input could not be sent to the worker: ${err.message}`));
       }
     });
   }

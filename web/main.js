@@ -1,13 +1,26 @@
 // kergen-wasm demo: load a mesh (file, drop or generated sample), compute its kernel in a worker
-// (the package's KernelWorker — nothing heavy runs on this thread), and animate the kernel's growth
-// from the stream of step events.
+// (the package's KernelWorker), and animate the kernel's growth from the stream of step events.
+// Nothing heavy runs on this thread: a file's bytes go to the worker untouched (it parses them
+// with the package's reader), the input is prepared for drawing in a second worker
+// (draw-worker.js), and the replay only moves draw ranges.
 
-import * as THREE from 'three';
-import { STLExporter } from 'three/examples/jsm/exporters/STLExporter.js';
 import { KernelWorker } from 'kergen-wasm/worker';
 import { Viewer } from './viewer.js';
 import { SAMPLES, sampleById } from './samples.js';
-import { parseMeshFile } from './loaders.js';
+import { prepareDrawing } from './draw-prep.js';
+
+// Above this many faces the input is prepared in the drawing worker, and its face edges are off
+// by default (a dense wireframe hides the kernel and costs every frame).
+const INLINE_FACES = 20000;
+const EDGE_FACES = 50000;
+// Above this many triangles the view draws a simplified copy of the input (draw-prep.js simplify).
+const DRAW_TRIANGLES = 10000;
+// A full replay at speed 1× takes at most this long, whatever the kernel's size.
+const REPLAY_SECONDS = 10;
+const MIN_STEPS_PER_S = 40;
+// ?stream=0: compute without step events (the replay is then built from the result); for
+// measuring what streaming costs (bench/browser_bench.mjs).
+const STREAM = new URLSearchParams(location.search).get('stream') !== '0';
 
 const $ = (id) => document.getElementById(id);
 const ui = {
@@ -15,8 +28,9 @@ const ui = {
   busy: $('busy'), busyText: $('busy-text'), play: $('play'), jumpEnd: $('jump-end'), cancel: $('cancel'),
   scrubber: $('scrubber'), stepLabel: $('step-label'), speed: $('speed'), speedLabel: $('speed-label'),
   animV: $('anim-vertices'), animE: $('anim-edges'), animF: $('anim-faces'), status: $('status'),
-  message: $('message'), exportObj: $('export-obj'), exportStl: $('export-stl'), fit: $('fit-view'),
-  fitKernel: $('fit-kernel'),
+  message: $('message'), exportObj: $('export-obj'), exportStl: $('export-stl'), exportOff: $('export-off'),
+  fit: $('fit-view'), fitKernel: $('fit-kernel'), opacity: $('opacity'), opacityLabel: $('opacity-label'),
+  showEdges: $('show-edges'), edgesNote: $('edges-note'),
 };
 
 const viewer = new Viewer(ui.viewport);
@@ -32,14 +46,22 @@ const state = {
   cursor: 0,
   playing: true,
   stickToEnd: false,
-  speed: 40,
+  speed: 1, // multiplier of the base replay rate (replayRate())
   seen: { vertex: new Set(), edge: new Set(), face: new Set() },
+  inputShown: false, // step events wait in `pending` until the input (and its centre) is drawn
+  pending: [],
+  faces: 0,
+  edgesReady: false,
 };
 
 // ------------------------------------------------------------------------------------------
 // Formatting and UI helpers
 
 const fmt = (x, digits = 6) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : String(x));
+// Durations: "850 ms", "1.3 s".
+const fmtMs = (ms) => (ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(ms < 10000 ? 1 : 0)} s`);
+const fmtBytes = (n) => (n < 1e6 ? `${(n / 1e3).toFixed(0)} kB` : `${(n / 1e6).toFixed(1)} MB`);
+const fmtCount = (n) => Number(n).toLocaleString('en-US');
 
 function setStat(id, text, value = text) {
   const el = $(id);
@@ -118,6 +140,32 @@ function worker() {
   return state.worker;
 }
 
+// The drawing worker, and its replies by request id.
+const draw = { worker: null, nextId: 1, waiting: new Map() };
+function drawRequest(message, transfer = []) {
+  if (!draw.worker) {
+    draw.worker = new Worker(new URL('./draw-worker.js', import.meta.url), { type: 'module' });
+    draw.worker.onmessage = ({ data }) => {
+      draw.waiting.get(data.id)?.(data);
+      draw.waiting.delete(data.id);
+    };
+    // A failure (out of memory on a huge file...) answers every request with nothing to draw:
+    // the kernel is still shown, around the origin.
+    draw.worker.onerror = (e) => {
+      e.preventDefault?.();
+      for (const resolve of draw.waiting.values()) resolve({ error: e.message ?? 'the drawing worker failed' });
+      draw.waiting.clear();
+      draw.worker.terminate();
+      draw.worker = null;
+    };
+  }
+  const id = draw.nextId++;
+  return new Promise((resolve) => {
+    draw.waiting.set(id, resolve);
+    draw.worker.postMessage({ ...message, id }, transfer);
+  });
+}
+
 // Stops whatever is running and starts a new run; returns its token.
 function beginRun(name) {
   state.token++;
@@ -130,14 +178,18 @@ function beginRun(name) {
   state.playing = true;
   state.stickToEnd = false;
   state.seen = { vertex: new Set(), edge: new Set(), face: new Set() };
+  state.inputShown = false;
+  state.pending = [];
   state.timing = {};
+  state.phases = [];
+  ui.busy.dataset.phases = '';
   viewer.kernel.reset();
   viewer.setKernelPoint(null);
   hideMessage();
   clearStats();
   setStat('stat-name', name);
   ui.cancel.disabled = false;
-  ui.exportObj.disabled = ui.exportStl.disabled = true;
+  setExportEnabled(false);
   setPlayButton();
   return state.token;
 }
@@ -149,32 +201,83 @@ function endRun() {
 }
 
 function pushEvent(ev) {
+  if (!state.inputShown) {
+    state.pending.push(ev);
+    return;
+  }
   const kind = ev.type;
   if (!state.seen[kind] || state.seen[kind].has(ev.id)) return;
   if (viewer.kernel.push(ev)) state.seen[kind].add(ev.id);
 }
 
-async function computeKernel(mesh, token) {
-  const tView = performance.now();
-  viewer.setInput(mesh.positions, mesh.indices, mesh.faceSizes);
-  state.timing.view = performance.now() - tView;
+// Draws the input (prepared by prepareDrawing) and replays the events that came before it.
+function showDrawing(d) {
+  const t = performance.now();
+  state.faces = d.faces;
+  state.edgesReady = !!d.edges;
+  ui.showEdges.checked = d.faces <= EDGE_FACES;
+  ui.edgesNote.textContent = d.faces > EDGE_FACES ? `(${fmtCount(d.faces)} faces: off by default)` : '';
+  if (d.simplified) ui.edgesNote.textContent += ` The view draws a simplified copy of the shape (${fmtCount(d.triangles.length / 3)} triangles); the kernel is computed on the real one.`;
+  viewer.edgesVisible = ui.showEdges.checked;
+  viewer.setInputDrawing(d);
+  state.inputShown = true;
+  for (const ev of state.pending) pushEvent(ev);
+  state.pending = [];
+  state.timing.view = (state.timing.view ?? 0) + performance.now() - t;
+}
+
+// Prepares a parsed mesh for drawing: here when small, in the drawing worker when big.
+async function showMesh(mesh, token) {
   const faces = mesh.faceSizes ? mesh.faceSizes.length : mesh.indices.length / 3;
-  setStat('stat-input-faces', `${faces} ${mesh.faceSizes ? 'faces' : 'triangles'} (${mesh.positions.length / 3} vertices)`, faces);
+  setStat('stat-input-faces', `${fmtCount(faces)} ${mesh.faceSizes ? 'faces' : 'triangles'} (${fmtCount(mesh.positions.length / 3)} vertices)`, faces);
+  const edges = faces <= EDGE_FACES;
+  if (faces <= INLINE_FACES) {
+    const t = performance.now();
+    const d = prepareDrawing(mesh, { edges });
+    state.timing.view = performance.now() - t;
+    showDrawing(d);
+    return;
+  }
+  const buffers = [...new Set([mesh.positions.buffer, mesh.indices.buffer, mesh.faceSizes?.buffer].filter(Boolean))];
+  const { drawing } = await drawRequest({ type: 'prepare', mesh, edges, maxTriangles: DRAW_TRIANGLES }, buffers);
+  if (token === state.token && drawing) showDrawing(drawing);
+}
+
+const PHASE_TEXT = {
+  loading: () => 'Loading the kernel module…',
+  reading: (p) => `Reading ${state.name} (${fmtBytes(p.bytes ?? 0)})…`,
+  computing: () => 'Computing…',
+  validating: (p) => `Validating ${fmtCount(p.count ?? 0)} faces…`,
+  planes: (p) => `Merging planes of ${fmtCount(p.count ?? 0)} faces…`,
+  lp: (p) => `Finding a kernel point (LP over ${fmtCount(p.count ?? 0)} planes)…`,
+  tracing: (p) => `Tracing the kernel · ${fmtCount(p.steps)} steps…`,
+  assembling: (p) => `Assembling the kernel (${fmtCount(p.count ?? 0)})…`,
+  done: () => 'Drawing…',
+};
+
+function onProgress(p) {
+  if (!state.phases.includes(p.phase)) {
+    state.phases.push(p.phase);
+    ui.busy.dataset.phases = state.phases.join(',');
+  }
+  setBusy((PHASE_TEXT[p.phase] ?? (() => `${p.phase}…`))(p));
+}
+
+// Runs one computation (`start(callbacks)` calls the worker) and shows its outcome.
+async function runKernel(token, start) {
   setStatus('computing', 'Computing the kernel…', 'RUNNING');
   setBusy('Computing…');
   state.computing = true;
-  const kw = worker();
   state.timing.posted = performance.now();
   let result;
   try {
-    // The package may transfer (detach) the arrays: give it copies, the viewer keeps the originals.
-    result = await kw.compute(mesh.positions.slice(), mesh.indices.slice(), {
-      faceSizes: mesh.faceSizes?.slice(),
-      onStep: (ev) => {
-        if (token === state.token) pushEvent(ev);
-      },
-      onProgress: ({ phase, steps }) => {
-        if (token === state.token) setBusy(`${phase}${steps ? ` · ${steps} steps` : ''}…`);
+    const onStep = (ev) => {
+      if (token === state.token) pushEvent(ev);
+    };
+    result = await start({
+      ...(STREAM ? { onStep } : {}),
+      onProgress: (p) => {
+        if (token === state.token) onProgress(p);
       },
     });
   } catch (err) {
@@ -184,33 +287,65 @@ async function computeKernel(mesh, token) {
       showMessage('info', 'Cancelled.', ' The computation was stopped; the steps found so far are still shown.', 'CANCELLED');
       setStatus('cancelled', 'Cancelled.', 'CANCELLED');
     } else {
+      if (!state.inputShown) viewer.clearInput();
       showError(err);
     }
     return;
   }
   if (token !== state.token) return;
+  state.timing.worker = performance.now() - state.timing.posted;
+  // The drawn input must be there before the kernel is finished on top of it.
+  if (!state.inputShown && state.inputPromise) {
+    await state.inputPromise.catch(() => {});
+    if (token !== state.token) return;
+  }
+  if (!state.inputShown) {
+    state.inputShown = true; // no drawing came: draw the kernel around the origin
+    for (const ev of state.pending.splice(0)) pushEvent(ev);
+  }
   endRun();
-  finish(result);
+  await finish(result, token);
 }
 
-function finish(result) {
+async function finish(result, token) {
   state.result = result;
   const wall = performance.now() - state.t0;
   // Events and result use the same ids; add anything the stream did not deliver (in id order).
   const V = result.vertices.length / 3, E = result.edges.length / 2, F = result.faces.length;
-  for (let i = 0; i < V; i++) {
-    if (!state.seen.vertex.has(i)) {
-      pushEvent({ type: 'vertex', id: i, position: [result.vertices[3 * i], result.vertices[3 * i + 1], result.vertices[3 * i + 2]] });
+  if (state.seen.vertex.size !== V || state.seen.edge.size !== E || state.seen.face.size !== F) {
+    if (!(await addMissingEvents(result, V, E, F, token))) return;
+  }
+  showStats(result, wall, V, E, F);
+  showOutcome(result, V, E, F);
+}
+
+// Without a stream (?stream=0) a kernel's million events are added here: in slices, one task
+// each, so the page keeps drawing frames. False when a newer run took over meanwhile.
+async function addMissingEvents(result, V, E, F, token) {
+  const SLICE = 20000;
+  const kinds = [
+    [V, 'vertex', (i) => ({ type: 'vertex', id: i, position: [result.vertices[3 * i], result.vertices[3 * i + 1], result.vertices[3 * i + 2]] })],
+    [E, 'edge', (i) => ({ type: 'edge', id: i, a: result.edges[2 * i], b: result.edges[2 * i + 1] })],
+    [F, 'face', (i) => ({ type: 'face', id: i, loop: Array.from(result.faces[i]) })],
+  ];
+  for (const [n, kind, event] of kinds) {
+    for (let i = 0; i < n; i++) {
+      if (!state.seen[kind].has(i)) pushEvent(event(i));
+      if (i % SLICE === SLICE - 1) {
+        await new Promise((resolve) => setTimeout(resolve, 0));
+        if (token !== state.token) return false;
+      }
     }
   }
-  for (let i = 0; i < E; i++) if (!state.seen.edge.has(i)) pushEvent({ type: 'edge', id: i, a: result.edges[2 * i], b: result.edges[2 * i + 1] });
-  for (let i = 0; i < F; i++) if (!state.seen.face.has(i)) pushEvent({ type: 'face', id: i, loop: Array.from(result.faces[i]) });
+  return true;
+}
 
+function showStats(result, wall, V, E, F) {
   const s = result.stats ?? {};
-  setStat('stat-input-faces', `${s.inputFaces ?? '—'}${s.droppedFaces ? ` (${s.droppedFaces} zero-area dropped)` : ''}`, s.inputFaces);
+  setStat('stat-input-faces', `${s.inputFaces != null ? fmtCount(s.inputFaces) : '—'}${s.droppedFaces ? ` (${s.droppedFaces} zero-area dropped)` : ''}`, s.inputFaces);
   const planesNote = [s.activePlanes != null ? `${s.activePlanes} active` : null, s.culledFaces ? `${s.culledFaces} faces culled first` : null]
     .filter(Boolean).join(', ');
-  setStat('stat-planes', `${s.distinctPlanes ?? '—'}${planesNote ? ` (${planesNote})` : ''}`, s.distinctPlanes);
+  setStat('stat-planes', `${s.distinctPlanes != null ? fmtCount(s.distinctPlanes) : '—'}${planesNote ? ` (${planesNote})` : ''}`, s.distinctPlanes);
   setStat('stat-status', result.status + (result.complete === false ? ' (partial)' : ''), result.status);
   setStat('stat-vertices', String(V), V);
   setStat('stat-edges', String(E), E);
@@ -228,13 +363,16 @@ function finish(result) {
   setStat('stat-area', result.status === 'POLYHEDRON' || result.status === 'POLYGON' ? fmt(result.area, 10) : '—', result.area);
   const kp = result.kernelPoint;
   setStat('stat-kernel-point', kp ? `(${kp.map((x) => fmt(x, 7)).join(', ')})` : 'none', kp ? kp.join(',') : '');
-  setStat('stat-time', s.msTotal != null ? `${fmt(s.msTotal, 4)} ms (LP ${fmt(s.msLp ?? 0, 3)}, trace ${fmt(s.msTrace ?? 0, 3)})` : '—', s.msTotal);
+  setStat('stat-time', s.msTotal != null ? `${fmtMs(s.msTotal)} (LP ${fmtMs(s.msLp ?? 0)}, trace ${fmtMs(s.msTrace ?? 0)})` : '—', s.msTotal);
   const tm = state.timing;
-  const parts = [tm.read != null && `read ${tm.read.toFixed(0)}`, tm.parse != null && `parse ${tm.parse.toFixed(0)}`,
-    `view ${tm.view.toFixed(0)}`, `worker round trip ${(performance.now() - tm.posted).toFixed(0)}`].filter(Boolean);
-  setStat('stat-wall', `${fmt(wall, 4)} ms (${parts.join(', ')})`, wall);
+  const parts = [tm.read != null && `read ${fmtMs(tm.read)}`, `worker round trip ${fmtMs(tm.worker)}`,
+    tm.view != null && `view ${fmtMs(tm.view)}`].filter(Boolean);
+  setStat('stat-wall', `${fmtMs(wall)} (${parts.join(', ')})`, wall);
   viewer.setKernelPoint(kp);
+}
 
+function showOutcome(result, V, E, F) {
+  const kp = result.kernelPoint;
   const counts = `${V} vertices, ${E} edges, ${F} faces`;
   switch (result.status) {
     case 'POLYHEDRON':
@@ -272,33 +410,33 @@ function finish(result) {
     if (ui.message.hidden) showMessage('info', 'Note', ` ${text}`, 'WARNINGS');
     else ui.message.append(document.createTextNode(` Note: ${text}`));
   }
-  ui.exportObj.disabled = ui.exportStl.disabled = !(result.triangles?.length > 0);
+  setExportEnabled(result.triangles?.length > 0);
 }
 
+function setExportEnabled(on) {
+  ui.exportObj.disabled = ui.exportStl.disabled = ui.exportOff.disabled = !on;
+}
+
+// A file: its bytes go to the worker as they are (transferred), which parses, validates and
+// computes there and sends the parsed mesh back early to be drawn meanwhile.
 async function loadFile(file, t0 = performance.now()) {
   selectSample(null);
   const token = beginRun(file.name);
   state.t0 = t0;
   viewer.clearInput(); // nothing stale to render while the file is read
   setStatus('reading', `Reading ${file.name}…`, 'READING');
-  setBusy('Reading…');
-  let mesh;
-  try {
-    const buffer = await file.arrayBuffer();
-    if (token !== state.token) return;
-    const tParse = performance.now();
-    state.timing.read = tParse - t0;
-    mesh = parseMeshFile(file.name, buffer);
-    state.timing.parse = performance.now() - tParse;
-  } catch (err) {
-    if (token !== state.token) return;
-    endRun();
-    viewer.clearInput();
-    showError(err.code ? err : Object.assign(err, { code: 'PARSE_ERROR' }));
-    return;
-  }
-  setStat('stat-name', `${file.name} (${mesh.format})`);
-  await computeKernel(mesh, token);
+  setBusy(`Reading ${file.name} (${fmtBytes(file.size)})…`);
+  const bytes = await file.arrayBuffer();
+  if (token !== state.token) return;
+  state.timing.read = performance.now() - t0;
+  state.inputPromise = null;
+  await runKernel(token, (callbacks) => worker().computeFile(bytes, {
+    name: file.name,
+    ...callbacks,
+    onMesh: (mesh) => {
+      if (token === state.token) state.inputPromise = showMesh(mesh, token);
+    },
+  }).then(({ result }) => result));
 }
 
 function loadSample(id) {
@@ -311,7 +449,13 @@ function loadSample(id) {
   const url = new URL(location.href);
   url.searchParams.set('sample', id);
   history.replaceState(null, '', url);
-  computeKernel(sample.build(), token);
+  const mesh = sample.build();
+  state.inputPromise = null;
+  showMesh(mesh, token); // samples are small: drawn right here
+  // The package may transfer (detach) the arrays: give it copies.
+  runKernel(token, (callbacks) => worker().compute(mesh.positions.slice(), mesh.indices.slice(), {
+    faceSizes: mesh.faceSizes?.slice(), ...callbacks,
+  }));
 }
 
 function selectSample(id) {
@@ -338,9 +482,21 @@ function setPlayButton() {
   ui.play.setAttribute('aria-pressed', String(state.playing));
 }
 
+// Steps per second at speed 1×: a full replay takes at most REPLAY_SECONDS whatever the
+// kernel's size (a million-step kernel moves tens of thousands of steps per frame; a frame's work
+// does not depend on it: show(k) only sets draw ranges).
+const replayRate = () => Math.max(MIN_STEPS_PER_S, viewer.kernel.length / REPLAY_SECONDS);
+
 function speedFromSlider() {
-  state.speed = Math.round(2 ** Number(ui.speed.value));
-  ui.speedLabel.textContent = `${state.speed} steps/s`;
+  state.speed = 2 ** Number(ui.speed.value);
+  updateSpeedLabel();
+}
+
+let speedLabel = '';
+function updateSpeedLabel() {
+  const mult = state.speed >= 1 ? `${fmt(state.speed, 3)}×` : `1/${fmt(1 / state.speed, 3)}×`;
+  const text = `${mult} (${fmtCount(Math.round(state.speed * replayRate()))} steps/s)`;
+  if (text !== speedLabel) ui.speedLabel.textContent = speedLabel = text;
 }
 ui.speed.addEventListener('input', speedFromSlider);
 speedFromSlider();
@@ -373,7 +529,7 @@ function frame(now) {
   const total = viewer.kernel.length;
   if (state.stickToEnd) state.cursor = total;
   else if (state.playing) {
-    state.cursor = Math.min(total, state.cursor + state.speed * dt);
+    state.cursor = Math.min(total, state.cursor + state.speed * replayRate() * dt);
     if (state.result && state.cursor >= total) {
       state.playing = false;
       setPlayButton();
@@ -387,6 +543,7 @@ function frame(now) {
     ui.scrubber.max = String(total);
     ui.scrubber.value = String(k);
     ui.stepLabel.textContent = `${k} / ${total}${state.computing ? '+' : ''}`;
+    updateSpeedLabel();
     for (const [el, v] of [[ui.animV, c.vertices], [ui.animE, c.edges], [ui.animF, c.faces]]) {
       el.textContent = String(v);
       el.dataset.value = String(v);
@@ -412,24 +569,42 @@ function download(blob, filename) {
 
 const baseName = () => (state.name || 'mesh').replace(/\.[a-z0-9]+$/i, '').replace(/[^\w.-]+/g, '_');
 
-ui.exportObj.addEventListener('click', () => {
+// The kernel's file is written by the package (the same writer as the CLI's -o), in the worker.
+async function exportKernel(format, mime) {
   const r = state.result;
   if (!r) return;
-  // Convex polygon faces, full double precision (three.js's OBJExporter writes triangles only).
-  const lines = [`# kernel of ${state.name}: ${r.status}, volume ${r.volume} (kergen-wasm)`];
-  for (let i = 0; i < r.vertices.length; i += 3) lines.push(`v ${r.vertices[i]} ${r.vertices[i + 1]} ${r.vertices[i + 2]}`);
-  for (const loop of r.faces) lines.push(`f ${Array.from(loop, (v) => v + 1).join(' ')}`);
-  download(new Blob([lines.join('\n') + '\n'], { type: 'text/plain' }), `${baseName()}-kernel.obj`);
-});
+  try {
+    const bytes = await worker().writeMesh(r, format);
+    download(new Blob([bytes], { type: mime }), `${baseName()}-kernel.${format}`);
+  } catch (err) {
+    showError(err);
+  }
+}
+ui.exportObj.addEventListener('click', () => exportKernel('obj', 'text/plain'));
+ui.exportStl.addEventListener('click', () => exportKernel('stl', 'model/stl'));
+ui.exportOff.addEventListener('click', () => exportKernel('off', 'text/plain'));
 
-ui.exportStl.addEventListener('click', () => {
-  const r = state.result;
-  if (!r) return;
-  const geo = new THREE.BufferGeometry();
-  geo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(r.vertices), 3));
-  geo.setIndex(new THREE.BufferAttribute(new Uint32Array(r.triangles), 1));
-  const data = new STLExporter().parse(new THREE.Mesh(geo), { binary: true });
-  download(new Blob([data], { type: 'model/stl' }), `${baseName()}-kernel.stl`);
+// ------------------------------------------------------------------------------------------
+// View controls
+
+function opacityFromSlider() {
+  const x = Number(ui.opacity.value);
+  viewer.setOpacity(x);
+  ui.opacityLabel.textContent = `${Math.round(100 * x)} %`;
+}
+ui.opacity.addEventListener('input', opacityFromSlider);
+opacityFromSlider();
+
+ui.showEdges.addEventListener('change', async () => {
+  const on = ui.showEdges.checked;
+  viewer.setEdgesVisible(on);
+  if (on && !state.edgesReady && state.inputShown) {
+    // A big file's edges were not computed up front: the drawing worker still has the mesh.
+    state.edgesReady = true;
+    const token = state.token;
+    const { edges } = await drawRequest({ type: 'edges' });
+    if (token === state.token && edges) viewer.setInputEdges(edges);
+  }
 });
 
 ui.fit.addEventListener('click', () => viewer.fit());
@@ -484,6 +659,9 @@ for (const s of SAMPLES) {
   b.addEventListener('click', () => loadSample(s.id));
   ui.samples.append(b);
 }
+
+// Start the drawing worker now, not when the first big file arrives.
+drawRequest({ type: 'noop' });
 
 const initial = new URLSearchParams(location.search).get('sample') ?? 'star-prism';
 if (initial !== 'none') loadSample(initial);

@@ -1,8 +1,11 @@
-// three.js scene: the input mesh (semi-transparent, with its wireframe) and the kernel, drawn
-// from the stream of step events so any prefix of the stream can be shown (the scrubber).
+// three.js scene: the input mesh (semi-transparent, with its faces' edges when asked) and the
+// kernel, drawn from the stream of step events so any prefix of the stream can be shown (the
+// scrubber). The input arrives prepared (draw-prep.js: float32, centred, triangulated), so
+// showing a million-triangle mesh costs this thread only the GPU upload.
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { prepareDrawing } from './draw-prep.js';
 
 export const KERNEL_BLUE = 0x1e6fff;
 const KERNEL_EDGE = 0x0a2f80;
@@ -13,7 +16,9 @@ function cssColor(name, fallback) {
   return v || fallback;
 }
 
-// A growable Float32 attribute (xyz) whose draw range is set separately.
+// A growable Float32 attribute (xyz) whose draw range is set separately. Only the items added
+// since the last frame are uploaded (upload()): re-sending a kernel of a million elements every
+// frame would cost more than drawing it.
 class GrowableBuffer {
   constructor(geometry, name = 'position', itemSize = 3) {
     this.geometry = geometry;
@@ -28,6 +33,7 @@ class GrowableBuffer {
     this.attr = new THREE.BufferAttribute(array, this.itemSize);
     this.attr.setUsage(THREE.DynamicDrawUsage);
     this.geometry.setAttribute(this.name, this.attr);
+    this.uploaded = this.count; // a new attribute is uploaded whole on its first draw
   }
   push(x, y, z) {
     if (this.count * this.itemSize >= this.attr.array.length) this.alloc(this.count * 2);
@@ -36,7 +42,15 @@ class GrowableBuffer {
     this.attr.array[o + 1] = y;
     this.attr.array[o + 2] = z;
     this.count++;
+  }
+  // Marks the items pushed since the last call for upload.
+  upload() {
+    if (this.count === this.uploaded) return;
+    // Ranges add up until the next draw uploads them (three.js clears them then): a frame can be
+    // skipped between two calls.
+    this.attr.addUpdateRange(this.uploaded * this.itemSize, (this.count - this.uploaded) * this.itemSize);
     this.attr.needsUpdate = true;
+    this.uploaded = this.count;
   }
   reset() {
     this.count = 0;
@@ -44,8 +58,31 @@ class GrowableBuffer {
   }
 }
 
+// A growable typed array of plain numbers (no three.js attribute).
+class GrowableArray {
+  constructor(Type, initial = 1024) {
+    this.Type = Type;
+    this.array = new Type(initial);
+    this.length = 0;
+  }
+  push(x) {
+    if (this.length === this.array.length) {
+      const bigger = new this.Type(2 * this.array.length);
+      bigger.set(this.array);
+      this.array = bigger;
+    }
+    this.array[this.length++] = x;
+  }
+}
+
+const KIND = { vertex: 1, edge: 2, face: 3 };
+const BIG_KERNEL_VERTICES = 20000;
+const BIG_KERNEL_EDGES = 30000;
+
 // The kernel as a timeline of step events. `push(event)` records an event; `show(k)` draws the
-// state after the first k events (vertices as points, edges as lines, faces filled).
+// state after the first k events (vertices as points, edges as lines, faces filled). Everything
+// is kept in typed arrays (a kernel can have a million events) and show(k) only sets draw ranges,
+// so a frame costs the same whatever k and the kernel's size.
 export class KernelView {
   constructor() {
     this.group = new THREE.Group();
@@ -57,10 +94,12 @@ export class KernelView {
     this.faceBuf = new GrowableBuffer(this.facesGeo);
     this.points = new THREE.Points(this.pointsGeo, new THREE.PointsMaterial({ color: KERNEL_EDGE, size: 6, sizeAttenuation: false }));
     this.lines = new THREE.LineSegments(this.linesGeo, new THREE.LineBasicMaterial({ color: KERNEL_EDGE }));
+    // Lambert shading: with software WebGL every pixel of PBR shading is paid on the CPU, and
+    // the page's thread waits for the frame (see Viewer.render).
     this.faces = new THREE.Mesh(
       this.facesGeo,
-      new THREE.MeshStandardMaterial({
-        color: KERNEL_BLUE, flatShading: true, roughness: 0.55, metalness: 0.0, side: THREE.DoubleSide,
+      new THREE.MeshLambertMaterial({
+        color: KERNEL_BLUE, flatShading: true, side: THREE.DoubleSide,
         polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
       }),
     );
@@ -79,11 +118,12 @@ export class KernelView {
   }
 
   reset() {
-    this.events = [];
-    this.prefix = [[0, 0, 0]]; // after k events: [points, edges, face triangles]
-    this.vertexPos = new Map(); // id → [x, y, z] (centered)
-    this.counts = { vertices: 0, edges: 0, faces: 0 };
-    this.countsAt = [{ vertices: 0, edges: 0, faces: 0 }];
+    this.kinds = new GrowableArray(Uint8Array);
+    // After k events: points, line vertices, face-triangle vertices, faces (4 numbers per k).
+    this.prefix = new GrowableArray(Uint32Array);
+    for (let i = 0; i < 4; i++) this.prefix.push(0);
+    this.slot = []; // vertex id → its point index
+    this.nFaces = 0;
     this.pointBuf.reset();
     this.lineBuf.reset();
     this.faceBuf.reset();
@@ -92,68 +132,86 @@ export class KernelView {
   }
 
   get length() {
-    return this.events.length;
+    return this.kinds.length;
   }
 
+  pointAt(i) {
+    const a = this.pointBuf.attr.array;
+    return [a[3 * i], a[3 * i + 1], a[3 * i + 2]];
+  }
+
+  // Records one step event; false when it cannot be drawn (an edge before its vertices).
   push(ev) {
     const o = this.offset;
-    if (ev.type === 'vertex') {
-      const p = [ev.position[0] - o.x, ev.position[1] - o.y, ev.position[2] - o.z];
-      this.vertexPos.set(ev.id, p);
-      this.pointBuf.push(...p);
-      this.counts.vertices++;
-    } else if (ev.type === 'edge') {
-      const a = this.vertexPos.get(ev.a), b = this.vertexPos.get(ev.b);
-      if (!a || !b) return false; // an edge before its vertices: ignored (never expected)
-      this.lineBuf.push(...a);
-      this.lineBuf.push(...b);
-      this.counts.edges++;
-    } else if (ev.type === 'face') {
-      const loop = Array.from(ev.loop, (id) => this.vertexPos.get(id));
-      if (loop.some((p) => !p) || loop.length < 3) return false;
+    const kind = KIND[ev.type];
+    if (kind === KIND.vertex) {
+      this.slot[ev.id] = this.pointBuf.count;
+      this.pointBuf.push(ev.position[0] - o.x, ev.position[1] - o.y, ev.position[2] - o.z);
+    } else if (kind === KIND.edge) {
+      const a = this.slot[ev.a], b = this.slot[ev.b];
+      if (a === undefined || b === undefined) return false;
+      this.lineBuf.push(...this.pointAt(a));
+      this.lineBuf.push(...this.pointAt(b));
+    } else if (kind === KIND.face) {
+      const loop = Array.from(ev.loop, (id) => this.slot[id]);
+      if (loop.length < 3 || loop.some((i) => i === undefined)) return false;
+      const p0 = this.pointAt(loop[0]);
       for (let k = 1; k + 1 < loop.length; k++) {
-        this.faceBuf.push(...loop[0]);
-        this.faceBuf.push(...loop[k]);
-        this.faceBuf.push(...loop[k + 1]);
+        this.faceBuf.push(...p0);
+        this.faceBuf.push(...this.pointAt(loop[k]));
+        this.faceBuf.push(...this.pointAt(loop[k + 1]));
       }
-      this.counts.faces++;
+      this.nFaces++;
     } else {
       return false;
     }
-    this.events.push(ev);
-    this.prefix.push([this.pointBuf.count, this.lineBuf.count, this.faceBuf.count]);
-    this.countsAt.push({ ...this.counts });
+    this.kinds.push(kind);
+    this.prefix.push(this.pointBuf.count);
+    this.prefix.push(this.lineBuf.count);
+    this.prefix.push(this.faceBuf.count);
+    this.prefix.push(this.nFaces);
     return true;
+  }
+
+  countsAt(k) {
+    const p = this.prefix.array;
+    return { vertices: p[4 * k], edges: p[4 * k + 1] / 2, faces: p[4 * k + 3] };
   }
 
   // Draws the state after the first k events; returns the partial counts.
   show(k) {
-    k = Math.max(0, Math.min(this.events.length, Math.floor(k)));
+    k = Math.max(0, Math.min(this.length, Math.floor(k)));
+    for (const b of [this.pointBuf, this.lineBuf, this.faceBuf]) b.upload();
     if (k !== this.shown) {
-      const [np, nl, nf] = this.prefix[k];
-      this.pointsGeo.setDrawRange(0, np);
-      this.linesGeo.setDrawRange(0, nl);
-      this.facesGeo.setDrawRange(0, nf);
+      const p = this.prefix.array;
+      // Big kernels: vertex dots and edge lines only while there are few enough to read (and
+      // to draw: software WebGL pays for every primitive); the faces show the shape.
+      this.points.visible = p[4 * k] <= BIG_KERNEL_VERTICES;
+      this.lines.visible = p[4 * k + 1] / 2 <= BIG_KERNEL_EDGES;
+      this.pointsGeo.setDrawRange(0, p[4 * k]);
+      this.linesGeo.setDrawRange(0, p[4 * k + 1]);
+      this.facesGeo.setDrawRange(0, p[4 * k + 2]);
       // Highlight the newest element: the last edge, or the last vertex.
       const pos = this.frontGeo.getAttribute('position');
-      const ev = this.events[k - 1];
+      const kind = k > 0 ? this.kinds.array[k - 1] : 0;
       let n = 0;
-      if (ev?.type === 'edge') {
-        pos.array.set(this.vertexPos.get(ev.a), 0);
-        pos.array.set(this.vertexPos.get(ev.b), 3);
+      if (kind === KIND.edge) {
+        const lines = this.lineBuf.attr.array, e = 3 * (p[4 * k + 1] - 2);
+        pos.array.set(lines.subarray(e, e + 6), 0);
         n = 2;
-      } else if (ev?.type === 'vertex') {
-        pos.array.set(this.vertexPos.get(ev.id), 0);
-        pos.array.set(this.vertexPos.get(ev.id), 3);
+      } else if (kind === KIND.vertex) {
+        const v = this.pointAt(p[4 * k] - 1);
+        pos.array.set(v, 0);
+        pos.array.set(v, 3);
         n = 2;
       }
       pos.needsUpdate = true;
       this.frontGeo.setDrawRange(0, n);
-      this.front.visible = this.frontPoint.visible = k < this.events.length || ev?.type !== 'face';
+      this.front.visible = this.frontPoint.visible = k < this.length || kind !== KIND.face;
       this.shown = k;
       this.dirty = true;
     }
-    return this.countsAt[k];
+    return this.countsAt(k);
   }
 }
 
@@ -170,60 +228,6 @@ function isSoftwareGL() {
   }
 }
 
-// The mesh's unique edges as an indexed line geometry sharing the mesh's position attribute
-// (WireframeGeometry copies positions and dedupes with string keys: slow on large meshes).
-// The input's edges: each face's loop once per edge (polygons without their drawing diagonals).
-function wireframe(meshGeo, indices, faceSizes, nv) {
-  const seen = new Set();
-  const lines = [];
-  const faces = faceSizes ?? { length: indices.length / 3 };
-  for (let f = 0, at = 0; f < faces.length; f++) {
-    const k = faceSizes ? faceSizes[f] : 3;
-    for (let j = 0; j < k; j++) {
-      const a = indices[at + j], b = indices[at + ((j + 1) % k)];
-      const key = a < b ? a * nv + b : b * nv + a;
-      if (!seen.has(key)) {
-        seen.add(key);
-        lines.push(a, b);
-      }
-    }
-    at += k;
-  }
-  const geo = new THREE.BufferGeometry();
-  geo.setAttribute('position', meshGeo.getAttribute('position'));
-  geo.setIndex(new THREE.BufferAttribute(Uint32Array.from(lines), 1));
-  return geo;
-}
-
-// Triangles to draw the faces with (the kernel is computed on the polygons themselves): each
-// polygon is split by three.js's earcut in the projection along its largest normal axis (a fan
-// would fold over a non-convex one).
-function drawnTriangles(positions, indices, faceSizes) {
-  if (!faceSizes) return indices;
-  const out = [];
-  for (let f = 0, at = 0; f < faceSizes.length; at += faceSizes[f], f++) {
-    const k = faceSizes[f];
-    const loop = indices.subarray(at, at + k);
-    if (k === 3) {
-      out.push(loop[0], loop[1], loop[2]);
-      continue;
-    }
-    const n = [0, 0, 0];
-    for (let i = 0; i < k; i++) {
-      const a = 3 * loop[i], b = 3 * loop[(i + 1) % k];
-      for (let c = 0; c < 3; c++) {
-        const c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-        n[c] += (positions[a + c1] - positions[b + c1]) * (positions[a + c2] + positions[b + c2]);
-      }
-    }
-    const axis = Math.abs(n[0]) >= Math.abs(n[1]) && Math.abs(n[0]) >= Math.abs(n[2]) ? 0 : Math.abs(n[1]) >= Math.abs(n[2]) ? 1 : 2;
-    const u = (axis + 1) % 3, w = (axis + 2) % 3;
-    const contour = Array.from(loop, (v) => new THREE.Vector2(positions[3 * v + u], positions[3 * v + w]));
-    for (const [p, q, r] of THREE.ShapeUtils.triangulateShape(contour, [])) out.push(loop[p], loop[q], loop[r]);
-  }
-  return Uint32Array.from(out);
-}
-
 export class Viewer {
   constructor(container) {
     this.container = container;
@@ -231,7 +235,10 @@ export class Viewer {
     // MSAA there, and fewer frames while a computation runs (see render()).
     this.softwareGL = isSoftwareGL();
     this.renderer = new THREE.WebGLRenderer({ antialias: !this.softwareGL });
-    this.renderer.setPixelRatio(this.softwareGL ? 1 : Math.min(window.devicePixelRatio, 2));
+    // With a software compositor the page's thread waits for every frame to be rasterized: half
+    // the resolution (a quarter of the pixels) keeps a frame under 100 ms while the kernel worker
+    // takes a core (3/4 gave frames of 85-150 ms on a loaded 2-core machine).
+    this.renderer.setPixelRatio(this.softwareGL ? 0.5 : Math.min(window.devicePixelRatio, 2));
     this.renderMs = 0; // moving average of the time one frame takes to submit
     this.lastRender = 0;
     container.appendChild(this.renderer.domElement);
@@ -262,20 +269,60 @@ export class Viewer {
     this.scene.add(this.kernelPoint);
 
     this.radius = 1;
+    this.opacity = 0.22;
+    this.edgesVisible = true;
+    this.makeInputMaterials();
     this.applyTheme();
     window.matchMedia?.('(prefers-color-scheme: dark)').addEventListener?.('change', () => this.applyTheme());
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
+    this.warmUp();
+  }
+
+  // Draws one frame with a triangle of every material at page load: compiling a shader and, with
+  // software WebGL, generating its pipeline on first use cost a few hundred ms, which would
+  // otherwise fall in the middle of a file's computation.
+  warmUp() {
+    // A 100 × 100 grid (20k triangles) filling the view in front of the camera (at the origin,
+    // looking down -z until the first fit()): software rasterizers build their pixel stage and
+    // start their threads only when fragments are drawn, and a drawing of this size is what a
+    // big input costs.
+    const geo = new THREE.PlaneGeometry(2, 2, 100, 100);
+    geo.translate(0, 0, -1);
+    geo.setIndex(new THREE.BufferAttribute(Uint32Array.from(geo.index.array), 1));
+    // One dummy per material in the scene (kernel, newest edge, kernel point) and the input's.
+    const dummies = [new THREE.Mesh(geo, this.inputMaterial), new THREE.LineSegments(geo, this.wireMaterial)];
+    dummies[0].renderOrder = 2;
+    this.scene.traverse((o) => {
+      if (o.isMesh) dummies.push(new THREE.Mesh(geo, o.material));
+      else if (o.isLineSegments) dummies.push(new THREE.LineSegments(geo, o.material));
+      else if (o.isPoints) dummies.push(new THREE.Points(geo, o.material));
+    });
+    this.inputGroup.add(...dummies);
+    this.renderer.render(this.scene, this.camera);
+    this.inputGroup.remove(...dummies);
+    geo.dispose();
+    this.dirty = true;
+  }
+
+  // Materials live as long as the page: a new material would cost a shader compile per mesh.
+  makeInputMaterials() {
+    // The input is pushed back in depth: the kernel's faces lie in some of its face planes and
+    // must win there (no z-fighting stripes of amber over blue).
+    // One pass for both sides (three draws a transparent double-sided mesh twice by default):
+    // half the fill cost, and a translucent overlay needs no back-to-front accuracy.
+    this.inputMaterial = new THREE.MeshLambertMaterial({
+      color: 0xe3a04a, transparent: true, opacity: this.opacity, depthWrite: false, side: THREE.DoubleSide,
+      forceSinglePass: true, flatShading: true, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 4,
+    });
+    this.wireMaterial = new THREE.LineBasicMaterial({ color: 0x7a5a2a, transparent: true, opacity: 0.28, depthWrite: false });
   }
 
   applyTheme() {
     this.dirty = true;
     this.scene.background = new THREE.Color(cssColor('--scene-bg', '#f3f4f7'));
     const dark = window.matchMedia?.('(prefers-color-scheme: dark)').matches;
-    if (this.inputMaterial) {
-      this.inputMaterial.opacity = dark ? 0.16 : 0.22;
-      this.wireMaterial.color.set(dark ? 0xc9a26a : 0x7a5a2a);
-    }
+    this.wireMaterial.color.set(dark ? 0xc9a26a : 0x7a5a2a);
   }
 
   resize() {
@@ -292,48 +339,71 @@ export class Viewer {
       o.geometry.dispose();
       this.inputGroup.remove(o);
     }
+    this.inputMesh = this.inputWire = null;
   }
 
-  // Shows the input mesh; everything is drawn relative to its bounding-box centre (float32
-  // rendering of far-from-origin models stays accurate).
-  // positions: xyz; indices: triangles, or polygon loops one after another with faceSizes.
+  /** The input shape's opacity, 0 (hidden) to 1 (opaque). */
+  setOpacity(x) {
+    this.opacity = x;
+    this.inputMaterial.opacity = x;
+    // Opaque: write depth so the shape hides what is behind it, as a solid does.
+    this.inputMaterial.transparent = x < 1;
+    this.inputMaterial.depthWrite = x >= 1;
+    this.inputMaterial.needsUpdate = true;
+    if (this.inputMesh) this.inputMesh.visible = x > 0;
+    this.dirty = true;
+  }
+
+  /** Shows or hides the input's face edges (set with setInputEdges). */
+  setEdgesVisible(on) {
+    this.edgesVisible = on;
+    if (this.inputWire) this.inputWire.visible = on;
+    this.dirty = true;
+  }
+
+  // Shows a small input mesh prepared here (samples); big ones come prepared by the draw worker.
   setInput(positions, indices, faceSizes = undefined) {
+    this.setInputDrawing(prepareDrawing({ positions, indices, faceSizes: faceSizes ?? null }, { edges: true }));
+  }
+
+  /** Shows an input prepared by prepareDrawing(); the kernel is drawn relative to its centre. */
+  setInputDrawing(d) {
     this.clearInput();
-    const nv = positions.length / 3;
-    const box = new THREE.Box3();
-    const v = new THREE.Vector3();
-    for (let i = 0; i < nv; i++) {
-      v.set(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
-      if (Number.isFinite(v.x) && Number.isFinite(v.y) && Number.isFinite(v.z)) box.expandByPoint(v);
-    }
-    const center = box.isEmpty() ? new THREE.Vector3() : box.getCenter(new THREE.Vector3());
-    this.radius = box.isEmpty() ? 1 : Math.max(1e-30, box.getSize(new THREE.Vector3()).length() / 2);
-    this.kernel.offset.copy(center);
+    this.radius = d.radius;
+    this.kernel.offset.set(d.center[0], d.center[1], d.center[2]);
     this.kernel.reset();
     this.kernelPoint.visible = false;
-
-    // Draw only indices that refer to existing vertices (bad files are reported by the package).
-    const drawable = indices.every((i) => i < nv);
-    if (drawable && nv > 0) {
-      const pos = new Float32Array(3 * nv);
-      for (let i = 0; i < 3 * nv; i++) pos[i] = positions[i] - center.getComponent(i % 3);
+    if (d.drawable) {
       const geo = new THREE.BufferGeometry();
-      geo.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-      geo.setIndex(new THREE.BufferAttribute(drawnTriangles(positions, indices, faceSizes), 1));
-      this.inputMaterial = new THREE.MeshStandardMaterial({
-        color: 0xe3a04a, transparent: true, opacity: 0.22, depthWrite: false, side: THREE.DoubleSide,
-        flatShading: true, roughness: 0.8,
-      });
-      this.wireMaterial = new THREE.LineBasicMaterial({ color: 0x7a5a2a, transparent: true, opacity: 0.28, depthWrite: false });
-      const mesh = new THREE.Mesh(geo, this.inputMaterial);
-      mesh.renderOrder = 2;
-      const wire = new THREE.LineSegments(wireframe(geo, indices, faceSizes, nv), this.wireMaterial);
-      wire.renderOrder = 3;
-      this.inputGroup.add(mesh, wire);
-      this.applyTheme();
+      geo.setAttribute('position', new THREE.BufferAttribute(d.positions, 3));
+      geo.setIndex(new THREE.BufferAttribute(d.triangles, 1));
+      this.inputMesh = new THREE.Mesh(geo, this.inputMaterial);
+      this.inputMesh.renderOrder = 2;
+      this.inputMesh.frustumCulled = false; // no bounding sphere to compute over every vertex
+      this.inputMesh.visible = this.opacity > 0;
+      this.inputGroup.add(this.inputMesh);
+      if (d.edges) this.setInputEdges(d.edges);
     }
     this.camera.far = this.radius * 100;
     this.fit();
+  }
+
+  /** The input's face edges (vertex-id pairs into the drawn positions). */
+  setInputEdges(edges) {
+    if (!this.inputMesh) return;
+    if (this.inputWire) {
+      this.inputWire.geometry.dispose();
+      this.inputGroup.remove(this.inputWire);
+    }
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute('position', this.inputMesh.geometry.getAttribute('position'));
+    geo.setIndex(new THREE.BufferAttribute(edges, 1));
+    this.inputWire = new THREE.LineSegments(geo, this.wireMaterial);
+    this.inputWire.renderOrder = 3;
+    this.inputWire.frustumCulled = false;
+    this.inputWire.visible = this.edgesVisible;
+    this.inputGroup.add(this.inputWire);
+    this.dirty = true;
   }
 
   setKernelPoint(p) {

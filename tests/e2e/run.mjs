@@ -14,13 +14,14 @@
 
 import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
-import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { SAMPLES, sampleById } from '../../web/samples.js';
 import { checkSamples, expectedKernel } from './samples-check.mjs';
+import { serve, writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
+import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -95,32 +96,6 @@ function buildIfNeeded() {
   assert(r.status === 0, 'vite build failed');
 }
 
-const MIME = {
-  '.html': 'text/html; charset=utf-8', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
-  '.wasm': 'application/wasm', '.json': 'application/json', '.svg': 'image/svg+xml', '.png': 'image/png',
-};
-
-function serve(root) {
-  const server = http.createServer((req, res) => {
-    const url = new URL(req.url, 'http://127.0.0.1');
-    let file = path.normalize(path.join(root, decodeURIComponent(url.pathname)));
-    if (!file.startsWith(root)) {
-      res.writeHead(403).end();
-      return;
-    }
-    if (fs.existsSync(file) && fs.statSync(file).isDirectory()) file = path.join(file, 'index.html');
-    fs.readFile(file, (err, data) => {
-      if (err) {
-        res.writeHead(404).end('not found');
-        return;
-      }
-      res.writeHead(200, { 'Content-Type': MIME[path.extname(file)] ?? 'application/octet-stream', 'Cache-Control': 'no-store' });
-      res.end(data);
-    });
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
-}
-
 // ---------------------------------------------------------------------------------------------
 // Mesh files written by the tests (from the project's own generators)
 
@@ -138,19 +113,13 @@ function writeOBJ(file, { positions, indices }) {
   fs.writeFileSync(file, lines.join('\n') + '\n');
 }
 
-function writeBinarySTL(file, { positions, indices }) {
-  const n = indices.length / 3;
-  const buf = Buffer.alloc(84 + 50 * n);
-  buf.write('binary STL written by tests/e2e/run.mjs', 0);
-  buf.writeUInt32LE(n, 80);
-  for (let t = 0; t < n; t++) {
-    const o = 84 + 50 * t;
-    for (let k = 0; k < 3; k++) {
-      const v = indices[3 * t + k];
-      for (let c = 0; c < 3; c++) buf.writeFloatLE(positions[3 * v + c], o + 12 + 12 * k + 4 * c);
-    }
-  }
-  fs.writeFileSync(file, buf);
+function writePLY(file, { positions, indices }) {
+  const nv = positions.length / 3, nf = indices.length / 3;
+  const lines = ['ply', 'format ascii 1.0', 'comment written by tests/e2e/run.mjs', `element vertex ${nv}`, 'property double x',
+    'property double y', 'property double z', `element face ${nf}`, 'property list uchar int vertex_indices', 'end_header'];
+  for (let i = 0; i < positions.length; i += 3) lines.push(`${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
+  for (let i = 0; i < indices.length; i += 3) lines.push(`3 ${indices[i]} ${indices[i + 1]} ${indices[i + 2]}`);
+  fs.writeFileSync(file, lines.join('\n') + '\n');
 }
 
 function writeAsciiSTL(file, { positions, indices }) {
@@ -205,6 +174,19 @@ function writeEdgeSharingCubes(file) {
     map.push(id.get(key));
   }
   writeQuadOFF(file, verts, [...CUBE_Q, ...CUBE_Q.map((q) => q.map((v) => map[v]))]);
+}
+
+// '' when the package (in Node) reads `file`, else why not.
+async function packageReadsFile(file) {
+  const K = await import('../../wasm/index.js');
+  if (typeof K.readMeshSync !== 'function') return 'this package build has no readMeshSync';
+  await K.init();
+  try {
+    K.readMeshSync(new Uint8Array(fs.readFileSync(file)), { name: path.basename(file) });
+    return '';
+  } catch (err) {
+    return `${err.code}: ${err.message}`;
+  }
 }
 
 function nativeKernel(file) {
@@ -331,6 +313,465 @@ async function shoot(page, name, { fullPage = false } = {}) {
 
 // ---------------------------------------------------------------------------------------------
 
+// The front door, every gallery sample, and the animation.
+async function samplesAndAnimation(page) {
+  // 2. The front door: the default sample loads and renders.
+  await test('page opens with the star prism and a WebGL view', async () => {
+    const s = await waitFinished(page);
+    const exp = expectedKernel(sampleById('star-prism'));
+    assert(s.status === exp.status, `status ${s.status} (${s.statusText}) ${JSON.stringify(s.message)}`);
+    assert(Number(s.stats.vertices) === exp.vertices && Number(s.stats.faces) === exp.faces, `counts ${s.stats.vertices}/${s.stats.faces}`);
+    const gl = await page.evaluate(() => !!document.querySelector('#viewport canvas')?.getContext('webgl2'));
+    assert(gl, 'no WebGL2 context on the canvas');
+  });
+
+  // 3. Every gallery sample against its expected kernel.
+  for (const sample of SAMPLES) {
+    const exp = expectedKernel(sample);
+    await test(`sample ${sample.id} → ${exp.status}${exp.volume != null ? `, volume ${exp.volume.toPrecision(10)}` : ''}`, async () => {
+      const s = await loadSample(page, sample.id);
+      assert(s.status === exp.status, `status ${s.status}: ${s.statusText} ${JSON.stringify(s.message)}`);
+      if (exp.volume != null) assertClose(Number(s.stats.volume), exp.volume, 1e-9, 'kernel volume');
+      for (const k of ['vertices', 'edges', 'faces']) {
+        if (exp[k] != null) assert(Number(s.stats[k]) === exp[k], `${k}: ${s.stats[k]}, expected ${exp[k]}`);
+      }
+      if (exp.area != null) assertClose(Number(s.stats.area), exp.area, 1e-9, 'kernel area');
+      if (exp.status === 'POLYGON') {
+        assert(s.message?.kind === 'flat' && /flat/i.test(s.message.text), `flat-kernel message: ${JSON.stringify(s.message)}`);
+        assert(Number(s.stats.volume) === 0, `flat kernel volume ${s.stats.volume}`);
+        await jumpToEnd(page);
+        const px = await shoot(page, 'flat-kernel.png', { fullPage: true });
+        assert(px.blue > 500, `flat kernel: ${px.blue} kernel-blue pixels`);
+      } else if (exp.status === 'EMPTY') {
+        assert(s.message?.kind === 'empty' && /not star-shaped/i.test(s.message.text), `empty-kernel message: ${JSON.stringify(s.message)}`);
+      } else {
+        const ratio = Number(s.stats.ratio);
+        assert(ratio > 0 && ratio <= 1 + 1e-12, `kernel/shape volume ratio ${ratio}`);
+        assert(s.stats['kernel-point'].split(',').length === 3, `kernel point ${s.stats['kernel-point']}`);
+      }
+    });
+  }
+
+  // 4. Animation: plays on its own, scrubber shows growing prefixes, jump to end.
+  await test('animation: plays, scrubber prefixes grow, jump to end, screenshot mid-animation', async () => {
+    await page.evaluate(() => { // slow playback (1/8×) so that the first second shows a partial kernel
+      const sp = document.getElementById('speed');
+      sp.value = '-3';
+      sp.dispatchEvent(new Event('input', { bubbles: true }));
+    });
+    const done = await loadSample(page, 'gear');
+    const total = done.steps;
+    const V = Number(done.stats.vertices), E = Number(done.stats.edges), F = Number(done.stats.faces);
+    assert(total === V + E + F, `timeline has ${total} steps, result has ${V}+${E}+${F}`);
+    await page.waitForTimeout(800);
+    const playing = await readState(page);
+    assert(playing.step > 0 && playing.step < total, `after 0.8 s playing at 1/8× (5 steps/s) the step is ${playing.step} of ${total}`);
+    const ks = [0, Math.floor(total * 0.15), Math.floor(total * 0.4), Math.floor(total * 0.75), total];
+    const seen = [];
+    for (const k of ks) seen.push((await scrubTo(page, k)).shown);
+    assert(seen[0].vertices === 0 && seen[0].edges === 0 && seen[0].faces === 0, `step 0 shows ${JSON.stringify(seen[0])}`);
+    for (let i = 1; i < seen.length; i++) {
+      const a = seen[i - 1], b = seen[i];
+      assert(b.vertices >= a.vertices && b.edges >= a.edges && b.faces >= a.faces, `counts shrink: ${JSON.stringify(a)} → ${JSON.stringify(b)}`);
+      assert(b.vertices + b.edges + b.faces === ks[i], `step ${ks[i]} shows ${JSON.stringify(b)}`);
+    }
+    assert(seen[2].edges > seen[1].edges, `edges do not grow between steps ${ks[1]} and ${ks[2]}`);
+    assert(seen[2].faces === 0, 'faces appear before the edges are traced');
+    assert(seen[4].vertices === V && seen[4].edges === E && seen[4].faces === F, `end shows ${JSON.stringify(seen[4])}`);
+    await scrubTo(page, ks[2]);
+    const px = await shoot(page, 'sample-mid-animation.png'); // edges traced so far, no faces yet
+    await shoot(page, 'page-mid-animation.png', { fullPage: true });
+    assert(px.amber > 1000, `input mesh hardly visible: ${px.amber} amber pixels`);
+    assert(px.blue > 30, `partial kernel edges not visible: ${px.blue} kernel-blue pixels`);
+    const late = await scrubTo(page, Math.floor((E + V + total) / 2)); // edges done, faces filling
+    assert(late.shown.faces > 0 && late.shown.faces < F, `faces shown at step ${late.step}: ${late.shown.faces}`);
+    const pxLate = await shoot(page, 'sample-faces-filling.png');
+    assert(pxLate.blue > px.blue, `filling faces add no blue pixels (${px.blue} → ${pxLate.blue})`);
+    await jumpToEnd(page);
+    const end = await readState(page);
+    assert(end.step === total, `jump to end: step ${end.step} of ${total}`);
+    const px2 = await shoot(page, 'sample-gear-kernel.png');
+    assert(px2.blue > 2000, `finished gear kernel: only ${px2.blue} kernel-blue pixels`);
+  });
+}
+
+// Files through the picker, in every format the package reads.
+async function fileTests(page, tmp) {
+  // 5. Files through the picker: the project's own samples written as OFF / STL / OBJ.
+  const fileCases = [
+    ['OFF (double precision)', 'dented-cube.off', 'dented-cube', writeOFF, 1e-9],
+    ['binary STL (float32, welded)', 'plus-prism.stl', 'plus-prism', writeBinarySTL, 1e-6],
+    ['ascii STL (double precision, welded)', 'star-prism.stl', 'star-prism', writeAsciiSTL, 1e-9],
+    ['OBJ (double precision)', 'gear.obj', 'gear', writeOBJ, 1e-9],
+  ];
+  for (const [label, fname, id, writer, tol] of fileCases) {
+    await test(`file picker: ${label} ${fname}`, async () => {
+      const file = path.join(tmp, fname);
+      writer(file, sampleById(id).build());
+      const s = await loadFile(page, file);
+      const exp = expectedKernel(sampleById(id));
+      assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
+      assertClose(Number(s.stats.volume), exp.volume, tol, 'kernel volume');
+      assert(Number(s.stats.vertices) === exp.vertices, `vertices ${s.stats.vertices}, expected ${exp.vertices}`);
+    });
+  }
+
+  // Polygon faces are computed as polygons: an L prism whose caps are single non-convex
+  // hexagons has the unit cube for kernel (a fan of its caps would give a flat one).
+  const lPrism = lPrismFiles();
+  for (const [label, fname] of [['OFF', 'l-prism.off'], ['OBJ', 'l-prism.obj']]) {
+    await test(`file picker: ${label} with non-convex polygon faces ${fname}`, async () => {
+      const file = path.join(tmp, fname);
+      fs.writeFileSync(file, lPrism[fname]);
+      const s = await loadFile(page, file);
+      assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
+      assertClose(Number(s.stats.volume), 1, 1e-12, 'kernel volume');
+      assert(Number(s.stats.vertices) === 8, `vertices ${s.stats.vertices}, expected 8`);
+      assert(Number(s.stats['input-faces']) === 8, `input faces ${s.stats['input-faces']}, expected 8 polygons`);
+      // The caps are drawn (split by earcut for drawing only): the input's amber is on screen.
+      const px = await shoot(page, `${fname}.png`);
+      assert(px.amber > 2000, `L prism drawn with only ${px.amber} amber pixels`);
+    });
+  }
+
+  // PLY (ascii, written here: vertex x y z, face vertex_indices); skipped with a package build
+  // that does not read PLY.
+  const plyFile = path.join(tmp, 'gear.ply');
+  writePLY(plyFile, sampleById('gear').build());
+  const plyProblem = await packageReadsFile(plyFile);
+  if (plyProblem) skip('file picker: ascii PLY', `the package does not read it: ${plyProblem}`);
+  else {
+    await test('file picker: ascii PLY gear.ply', async () => {
+      const s = await loadFile(page, plyFile);
+      const exp = expectedKernel(sampleById('gear'));
+      assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
+      assertClose(Number(s.stats.volume), exp.volume, 1e-9, 'kernel volume');
+    });
+  }
+}
+
+// Phases while a file is read and computed, Show result and replay speed, opacity, face edges.
+async function progressAndControls(page, tmp) {
+  // The file is read in the worker: the page shows each phase as it comes.
+  await test('file load shows the phases: reading (bytes), validating, planes, lp, tracing, assembling', async () => {
+    const file = path.join(tmp, 'vase.off');
+    writeOFF(file, sampleById('vase').build());
+    const s = await loadFile(page, file);
+    assert(s.status === 'POLYHEDRON', `status ${s.status}`);
+    const phases = (await page.getAttribute('#busy', 'data-phases')).split(',');
+    const want = ['loading', 'reading', 'validating', 'planes', 'lp', 'tracing', 'assembling', 'done'];
+    const missing = want.filter((p) => !phases.includes(p));
+    assert(missing.length === 0, `phases shown: ${phases.join(',')}; missing ${missing.join(',')}`);
+    const order = want.filter((p) => p !== 'loading').map((p) => phases.indexOf(p));
+    assert(order.every((x, i) => i === 0 || x > order[i - 1]), `phase order ${phases.join(',')}`);
+    const wall = await page.textContent('#stat-wall');
+    assert(/^\d+ ms \(|^\d+(\.\d)? s \(/.test(wall), `load → kernel text "${wall}"`);
+  });
+
+  await test('the busy line names the phase while a big file is computed', async () => {
+    const big = path.join(tmp, 'sphere-busy.off');
+    const { radialSphere } = await import('../../web/samples.js');
+    writeOFF(big, radialSphere(100, 200, () => 1));
+    await markPending(page);
+    await page.setInputFiles('#file-input', big);
+    const texts = new Set();
+    const t = Date.now();
+    while (Date.now() - t < 60000) {
+      const st = await page.getAttribute('#status', 'data-state');
+      if (!(await page.isHidden('#busy'))) texts.add((await page.textContent('#busy-text')).replace(/[\d,]+/g, 'N'));
+      if (['done', 'error', 'cancelled'].includes(st)) break;
+      await page.waitForTimeout(20);
+    }
+    const s = await waitFinished(page);
+    assert(s.status === 'POLYHEDRON', `status ${s.status}`);
+    console.log(`     busy texts seen: ${[...texts].join(' | ')}`);
+    assert([...texts].some((x) => /^Tracing the kernel · N steps/.test(x)), `no tracing progress seen: ${[...texts].join(' | ')}`);
+  });
+
+  await test('Show result skips the replay; replay speed 1× fits the kernel in ≤ 10 s', async () => {
+    await page.evaluate(() => { // speed 1× (an earlier test slowed it down)
+      const sp = document.getElementById('speed');
+      sp.value = '0';
+      sp.dispatchEvent(new Event('input', { bubbles: true }));
+    });
+    const done = await loadSample(page, 'bumpy-sphere');
+    const total = done.steps;
+    assert(total > 400, `bumpy sphere kernel has ${total} steps`);
+    await scrubTo(page, 0);
+    await page.click('#play');
+    await page.waitForTimeout(1000);
+    const mid = await readState(page);
+    // 1×: max(40, total / 10) steps per second, so about a tenth per second (frames allow slack).
+    assert(mid.step > total * 0.04 && mid.step < total * 0.3, `after 1 s at 1×: step ${mid.step} of ${total}`);
+    const label = await page.textContent('#speed-label');
+    assert(label.includes(`${Math.round(total / 10)} steps/s`), `speed label "${label}"`);
+    await page.click('#jump-end');
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    const end = await readState(page);
+    assert(end.step === total && end.shown.faces === Number(done.stats.faces), `after Show result: step ${end.step} of ${total}, ${JSON.stringify(end.shown)}`);
+  });
+
+  await test('shape opacity: 0 hides the shape, 1 makes it opaque; face-edges toggle', async () => {
+    await loadSample(page, 'gear');
+    await jumpToEnd(page);
+    const setRange = (id, v) => page.evaluate(({ id, v }) => {
+      const el = document.getElementById(id);
+      el.value = String(v);
+      el.dispatchEvent(new Event('input', { bubbles: true }));
+    }, { id, v });
+    await page.click('#fit-view');
+    const normal = await shoot(page, 'opacity-default.png');
+    await setRange('opacity', 0);
+    const hidden = await shoot(page, 'opacity-0.png');
+    await setRange('opacity', 1);
+    const opaque = await shoot(page, 'opacity-1.png');
+    await setRange('opacity', 0.22);
+    assert(hidden.amber < 50 && hidden.blue > normal.blue, `opacity 0: ${hidden.amber} amber, ${hidden.blue} blue (default ${normal.blue})`);
+    // Opaque, the shape hides the kernel's sides; its top face stays (it lies in the gear's top
+    // plane, where the kernel is drawn over the shape).
+    assert(opaque.amber > 3 * normal.amber && opaque.blue < 0.8 * normal.blue, `opacity 1: ${opaque.amber} amber (default ${normal.amber}), ${opaque.blue} blue (default ${normal.blue})`);
+    assert(await page.isChecked('#show-edges'), 'face edges on by default for a small mesh');
+    await page.click('#show-edges');
+    const noEdges = await shoot(page, 'edges-off.png');
+    await page.click('#show-edges');
+    const withEdges = await shoot(page, 'edges-on.png');
+    assert(noEdges.meanLuminance > withEdges.meanLuminance, `edges off should be lighter: ${noEdges.meanLuminance} vs ${withEdges.meanLuminance}`);
+  });
+}
+
+// princeton/350.off against the CLI, the empty-kernel message and broken files.
+async function realMeshesAndMessages(page, tmp) {
+  // 6. A real mesh: princeton/350.off via the file picker, against the native CLI.
+  const p350 = path.join(sharedMeshes, 'princeton/350.off');
+  if (!fs.existsSync(p350)) skip('princeton/350.off', `${p350} not found (shared meshes absent)`);
+  else {
+    await test('princeton/350.off via the file picker: POLYHEDRON, volume vs native CLI, kernel on screen', async () => {
+      const s = await loadFile(page, p350);
+      assert(s.status === 'POLYHEDRON', `status ${s.status}: ${s.statusText} ${JSON.stringify(s.message)}`);
+      assert(Number(s.stats['input-faces']) === 17514, `input faces ${s.stats['input-faces']}`);
+      const vol = Number(s.stats.volume);
+      assert(vol > 0, `volume ${vol}`);
+      console.log(`     350.off: V ${s.stats.vertices}, E ${s.stats.edges}, F ${s.stats.faces}, volume ${vol}, ratio ${s.stats.ratio}, planes ${s.stats.planes}, worker ${Number(s.stats.time).toFixed(1)} ms`);
+      const native = nativeKernel(p350);
+      if (native) {
+        assert(native.status === 'POLYHEDRON', `native status ${native.status}`);
+        assertClose(vol, native.volume, 1e-9, 'volume vs build/kergen --json');
+        console.log(`     native CLI volume ${native.volume} (match)`);
+      } else {
+        skip('princeton/350.off volume vs native CLI', `${nativeCli} not built (npm run build:native)`);
+      }
+      await jumpToEnd(page);
+      const px = await shoot(page, 'princeton-350-kernel.png');
+      assert(px.blue > 100, `only ${px.blue} kernel-blue pixels in the view`);
+      await page.click('#fit-kernel');
+      await page.waitForTimeout(300);
+      const zoomed = await shoot(page, 'princeton-350-kernel-zoom.png');
+      assert(zoomed.blue > 20 * px.blue && zoomed.blue > 20000, `zoom to kernel: ${px.blue} → ${zoomed.blue} kernel-blue pixels`);
+      await page.click('#fit-view');
+    });
+  }
+
+  // 7. Messages: empty kernel, broken files.
+  await test('U prism shows the empty-kernel message (screenshot)', async () => {
+    const s = await loadSample(page, 'u-prism');
+    assert(s.status === 'EMPTY' && s.message?.kind === 'empty', JSON.stringify(s));
+    const shown = await page.isVisible('#message');
+    assert(shown, '#message not visible');
+    const px = await shoot(page, 'empty-kernel.png', { fullPage: true });
+    assert(px.blue < 50, `${px.blue} kernel-blue pixels drawn for an empty kernel`);
+    assert(px.amber > 1000, 'the input mesh is not drawn');
+  });
+
+  const broken = [
+    // (refused by the package's reader, the CLI's, with the file's name and line)
+    ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'PARSE_ERROR', /bad-index\.off:16: vertex index 99 out of range \(the file has 8 vertices\)/],
+    ['open cube (one face missing)', 'open-cube.off', (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)), 'OPEN_MESH', /open/i],
+    ['two cubes sharing an edge', 'edge-cubes.off', writeEdgeSharingCubes, 'NON_MANIFOLD_EDGE', /manifold/i],
+    ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n'), 'PARSE_ERROR', /garbage\.off:4: invalid number 'zero'/],
+    ['OBJ face with a bad index', 'bad-face.obj', (f) => fs.writeFileSync(f, 'v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 x\n'), 'PARSE_ERROR', /bad-face\.obj:5: /],
+    ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /short\.stl: .*STL/],
+    ['unsupported file type', 'mesh.xyz', (f) => fs.writeFileSync(f, 'hello\n'), 'PARSE_ERROR', /mesh\.xyz: unknown mesh format/],
+  ];
+  for (const [label, fname, make, code, re] of broken) {
+    await test(`error message: ${label} → ${code}`, async () => {
+      const file = path.join(tmp, fname);
+      make(file);
+      const s = await loadFile(page, file);
+      assert(s.state === 'error', `state ${s.state} (${s.statusText})`);
+      assert(s.message?.kind === 'error' && s.message.code === code, `message ${JSON.stringify(s.message)}`);
+      assert(re.test(s.message.text), `message text "${s.message.text}" does not match ${re}`);
+      assert(await page.isVisible('#message'), '#message not visible');
+    });
+  }
+}
+
+// Export through the package (read back by dropping), and drag & drop timing of 325.off.
+async function exportAndDrop(page, tmp) {
+  // 8. Export.
+  await test('export OBJ, STL and OFF of the plus-prism kernel (the package writer), each read back by the page', async () => {
+    const s = await loadSample(page, 'plus-prism');
+    assert(s.status === 'POLYHEDRON', s.status);
+    const files = {};
+    for (const format of ['obj', 'stl', 'off']) {
+      const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`#export-${format}`)]);
+      assert(dl.suggestedFilename() === `Plus_prism-kernel.${format}` || dl.suggestedFilename().endsWith(`-kernel.${format}`), dl.suggestedFilename());
+      files[format] = path.join(tmp, `exported-kernel.${format}`);
+      fs.copyFileSync(await dl.path(), files[format]);
+    }
+    const obj = fs.readFileSync(files.obj, 'utf8');
+    const vs = obj.split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1).map(Number));
+    const fs_ = obj.split('\n').filter((l) => l.startsWith('f '));
+    assert(vs.length === 8 && fs_.length === 6, `OBJ has ${vs.length} vertices, ${fs_.length} faces`);
+    for (const v of vs) assert(Math.abs(Math.abs(v[0]) - 0.3) < 1e-12 && Math.abs(Math.abs(v[1]) - 0.3) < 1e-12, `vertex ${v} off the central column`);
+    const stl = fs.readFileSync(files.stl);
+    assert(stl.length === 84 + 50 * 12 && stl.readUInt32LE(80) === 12, `STL: ${stl.length} bytes, ${stl.readUInt32LE(80)} triangles`);
+    const off = fs.readFileSync(files.off, 'utf8').split('\n');
+    assert(/^OFF/.test(off[0]) && /^8 6 /.test(off.find((l, i) => i > 0 && !l.startsWith('#'))), `OFF header ${off.slice(0, 3).join(' | ')}`);
+    // Each file, dropped back on the page, is a cube-like kernel of itself with the same volume.
+    for (const format of ['obj', 'stl', 'off']) {
+      const back = await dropFile(page, files[format]);
+      assert(back.status === 'POLYHEDRON', `${format} read back: ${back.status} ${JSON.stringify(back.message)}`);
+      assertClose(Number(back.stats.volume), Number(s.stats.volume), format === 'stl' ? 1e-6 : 1e-12, `${format} kernel volume`);
+    }
+  });
+
+  // 9. Drag & drop and timing: princeton/325.off.
+  const p325 = path.join(sharedMeshes, 'princeton/325.off');
+  if (!fs.existsSync(p325)) skip('princeton/325.off drop timing', `${p325} not found`);
+  else {
+    await test('drag & drop princeton/325.off: kernel, drop → kernel time', async () => {
+      const runs = [];
+      for (let i = 0; i < 3; i++) {
+        await jumpToEnd(page); // drop onto an idle page (no replay frames being rendered)
+        await page.waitForTimeout(300);
+        runs.push(await dropFile(page, p325));
+      }
+      const s = runs[runs.length - 1];
+      assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
+      const wall = runs.map((r) => Number(r.stats.wall));
+      const detail = await page.textContent('#stat-wall');
+      const worker = runs.map((r) => Number(r.stats.time));
+      console.log(`     325.off (${s.stats['input-faces']} faces, kernel V ${s.stats.vertices} E ${s.stats.edges} F ${s.stats.faces}):` +
+        ` drop → final kernel ${wall.map((x) => x.toFixed(0)).join(' / ')} ms in the page` +
+        ` (worker msTotal ${worker.map((x) => x.toFixed(0)).join(' / ')} ms; test-side ${runs.map((r) => r.testMs).join(' / ')} ms incl. polling)`);
+      console.log(`     last run: ${detail}`);
+      const native = nativeKernel(p325);
+      if (native) assertClose(Number(s.stats.volume), native.volume, 1e-9, 'volume vs build/kergen --json');
+    });
+  }
+}
+
+// Cancel a long run while the page keeps animating.
+async function cancelTest(page, tmp) {
+  // 10. Cancel on a large input; the page stays responsive while the worker computes. Convex
+  // spheres (kernel = the whole shape, the most work per face); bigger ones if a run ends first.
+  await test('cancel a long run; the page keeps animating meanwhile', async () => {
+    const { radialSphere } = await import('../../web/samples.js');
+    let cancelled = false;
+    for (const [nlat, nlon] of [[100, 200], [200, 400], [400, 800]]) {
+      const big = path.join(tmp, `sphere-${nlat}x${nlon}.off`);
+      writeOFF(big, radialSphere(nlat, nlon, () => 1));
+      await markPending(page);
+      await page.setInputFiles('#file-input', big);
+      await page.waitForFunction(() => document.getElementById('status').dataset.state !== 'test-pending' &&
+        document.getElementById('status').dataset.state !== 'reading', null, { timeout: 60000, polling: 10 });
+      // Event-loop latency (a blocked main thread shows as one long gap) and frame gaps.
+      const { maxGap, maxFrameGap, ticks } = await page.evaluate(() => new Promise((resolve) => {
+        const t0 = performance.now();
+        let last = t0, gap = 0, lastFrame = t0, frameGap = 0, done = false, n = 0;
+        const tick = () => {
+          const now = performance.now();
+          n++;
+          gap = Math.max(gap, now - last);
+          last = now;
+          if (now - t0 < 1500) setTimeout(tick, 5);
+          else {
+            done = true;
+            resolve({ maxGap: gap, maxFrameGap: frameGap, ticks: n });
+          }
+        };
+        const frame = (now) => {
+          frameGap = Math.max(frameGap, now - lastFrame);
+          lastFrame = now;
+          if (!done) requestAnimationFrame(frame);
+        };
+        setTimeout(tick, 5);
+        requestAnimationFrame(frame);
+      }));
+      const before = await readState(page);
+      if (before.state !== 'computing') {
+        console.log(`     ${2 * nlat * nlon} triangles finished before cancel (${before.state} ${before.status}); trying a bigger sphere`);
+        continue;
+      }
+      // The run can end between the check above and the click: then try a bigger sphere.
+      const clicked = await page.evaluate(() => {
+        const b = document.getElementById('cancel');
+        if (b.disabled) return false;
+        b.click();
+        return true;
+      });
+      if (!clicked) {
+        console.log(`     ${2 * nlat * nlon} triangles finished just before cancel; trying a bigger sphere`);
+        await waitFinished(page);
+        continue;
+      }
+      const s = await waitFinished(page, 10000);
+      assert(s.state === 'cancelled' && s.message?.code === 'CANCELLED', `after cancel: ${s.state} ${JSON.stringify(s.message)}`);
+      // A computation on the main thread would block the whole 1.5 s window. With software GL
+      // the first frame of the new mesh alone can take ~0.3 s, so: the event loop must run
+      // freely (≥ 50 of ~250 possible 5 ms timer ticks) and never stall for 1 s.
+      assert(ticks >= 50 && maxGap < 1000, `main thread blocked while the worker computed: ${ticks} timer ticks in 1.5 s, longest gap ${maxGap.toFixed(0)} ms`);
+      console.log(`     ${2 * nlat * nlon}-triangle sphere: ${before.steps} steps streamed in the first 1.5 s, ${ticks} timer ticks in 1.5 s, longest event-loop gap ${maxGap.toFixed(0)} ms, longest frame gap ${maxFrameGap.toFixed(0)} ms (software GL), cancelled`);
+      cancelled = true;
+      break;
+    }
+    assert(cancelled, 'every run finished before it could be cancelled');
+    const again = await loadSample(page, 'l-prism'); // the worker is usable after a cancel
+    assert(again.status === 'POLYHEDRON', `after cancel, L prism: ${again.status}`);
+  });
+}
+
+// Light and dark; the million-triangle STL with its long-task check.
+async function themeAndBigFile(page, tmp, served) {
+  // 11. Light and dark.
+  await test('prefers-color-scheme: light and dark scene backgrounds', async () => {
+    await loadSample(page, 'star-prism');
+    await jumpToEnd(page);
+    const light = await shoot(page, 'theme-light.png');
+    await page.emulateMedia({ colorScheme: 'dark' });
+    await page.waitForTimeout(200);
+    const dark = await shoot(page, 'theme-dark.png');
+    await shoot(page, 'page-dark.png', { fullPage: true });
+    await page.emulateMedia({ colorScheme: 'light' });
+    assert(light.meanLuminance > 170, `light scene mean luminance ${light.meanLuminance.toFixed(0)}`);
+    assert(dark.meanLuminance < 70, `dark scene mean luminance ${dark.meanLuminance.toFixed(0)}`);
+    assert(light.blue > 2000 && dark.blue > 2000, `kernel blue pixels: light ${light.blue}, dark ${dark.blue}`);
+  });
+
+  // 12. A million-triangle binary STL (50 MB, generated here, never committed): dropped,
+  // computed and shown with no main-thread task over 100 ms.
+  await test('1M-triangle binary STL: drop → kernel with no main-thread task over 100 ms', async () => {
+    const file = path.join(tmp, 'bumpy-1m.stl');
+    writeBinarySTL(file, bumpySphere(1000, 501));
+    served.set('/__files/bumpy-1m.stl', file);
+    await jumpToEnd(page); // an idle page: no replay frames of the previous mesh
+    const r = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
+    assert(r.status === 'POLYHEDRON', `status ${r.status}: ${r.statusText} ${r.message}`);
+    assert(r.inputFaces === 1000000, `input faces ${r.inputFaces}`);
+    const px = await shoot(page, 'big-stl-1m.png');
+    const top = r.tasks.sort((a, b) => b.duration - a.duration).slice(0, 5).map((t) => `${t.duration.toFixed(0)} ms at +${(t.start - r.dropT0).toFixed(0)} ms`);
+    console.log(`     1M STL: drop → kernel shown ${(r.shownMs / 1000).toFixed(2)} s (status after ${(r.doneMs / 1000).toFixed(2)} s);` +
+      ` worker compute ${r.timeText}; page: ${r.wallText}; kernel V ${r.vertices} E ${r.edges} F ${r.faces}, ${r.steps} steps;` +
+      ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber pixels`);
+    assert(r.longest < 100, `longest main-thread task ${r.longest.toFixed(0)} ms`);
+    assert(px.blue > 2000, `kernel hardly visible: ${px.blue} kernel-blue pixels`);
+    assert(px.amber > 1000, `input hardly visible: ${px.amber} amber pixels`);
+    assert(!(await page.isChecked('#show-edges')), 'face edges are off by default for a million faces');
+    if (r.wallMs >= 1000) assert(/^\d+(\.\d)? s \(/.test(r.wallText), `durations over a second in seconds: "${r.wallText}"`);
+    fs.rmSync(file, { force: true });
+  });
+}
+
 async function main() {
   fs.mkdirSync(artifacts, { recursive: true });
   const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-e2e-'));
@@ -341,7 +782,8 @@ async function main() {
   }
 
   buildIfNeeded();
-  const server = await serve(webDist);
+  const served = new Map(); // test files the page can fetch: '/__files/<name>' → path
+  const server = await serve(webDist, served);
   const base = `http://127.0.0.1:${server.address().port}/`;
   console.log(`e2e: serving web/dist at ${base}`);
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-e2e-chromium-'));
@@ -363,294 +805,13 @@ async function main() {
 
   try {
     await page.goto(base, { waitUntil: 'load' });
-    // 2. The front door: the default sample loads and renders.
-    await test('page opens with the star prism and a WebGL view', async () => {
-      const s = await waitFinished(page);
-      const exp = expectedKernel(sampleById('star-prism'));
-      assert(s.status === exp.status, `status ${s.status} (${s.statusText}) ${JSON.stringify(s.message)}`);
-      assert(Number(s.stats.vertices) === exp.vertices && Number(s.stats.faces) === exp.faces, `counts ${s.stats.vertices}/${s.stats.faces}`);
-      const gl = await page.evaluate(() => !!document.querySelector('#viewport canvas')?.getContext('webgl2'));
-      assert(gl, 'no WebGL2 context on the canvas');
-    });
-
-    // 3. Every gallery sample against its expected kernel.
-    for (const sample of SAMPLES) {
-      const exp = expectedKernel(sample);
-      await test(`sample ${sample.id} → ${exp.status}${exp.volume != null ? `, volume ${exp.volume.toPrecision(10)}` : ''}`, async () => {
-        const s = await loadSample(page, sample.id);
-        assert(s.status === exp.status, `status ${s.status}: ${s.statusText} ${JSON.stringify(s.message)}`);
-        if (exp.volume != null) assertClose(Number(s.stats.volume), exp.volume, 1e-9, 'kernel volume');
-        for (const k of ['vertices', 'edges', 'faces']) {
-          if (exp[k] != null) assert(Number(s.stats[k]) === exp[k], `${k}: ${s.stats[k]}, expected ${exp[k]}`);
-        }
-        if (exp.area != null) assertClose(Number(s.stats.area), exp.area, 1e-9, 'kernel area');
-        if (exp.status === 'POLYGON') {
-          assert(s.message?.kind === 'flat' && /flat/i.test(s.message.text), `flat-kernel message: ${JSON.stringify(s.message)}`);
-          assert(Number(s.stats.volume) === 0, `flat kernel volume ${s.stats.volume}`);
-          await jumpToEnd(page);
-          const px = await shoot(page, 'flat-kernel.png', { fullPage: true });
-          assert(px.blue > 500, `flat kernel: ${px.blue} kernel-blue pixels`);
-        } else if (exp.status === 'EMPTY') {
-          assert(s.message?.kind === 'empty' && /not star-shaped/i.test(s.message.text), `empty-kernel message: ${JSON.stringify(s.message)}`);
-        } else {
-          const ratio = Number(s.stats.ratio);
-          assert(ratio > 0 && ratio <= 1 + 1e-12, `kernel/shape volume ratio ${ratio}`);
-          assert(s.stats['kernel-point'].split(',').length === 3, `kernel point ${s.stats['kernel-point']}`);
-        }
-      });
-    }
-
-    // 4. Animation: plays on its own, scrubber shows growing prefixes, jump to end.
-    await test('animation: plays, scrubber prefixes grow, jump to end, screenshot mid-animation', async () => {
-      await page.evaluate(() => { // slow playback so that the first second shows a partial kernel
-        const sp = document.getElementById('speed');
-        sp.value = '4';
-        sp.dispatchEvent(new Event('input', { bubbles: true }));
-      });
-      const done = await loadSample(page, 'gear');
-      const total = done.steps;
-      const V = Number(done.stats.vertices), E = Number(done.stats.edges), F = Number(done.stats.faces);
-      assert(total === V + E + F, `timeline has ${total} steps, result has ${V}+${E}+${F}`);
-      await page.waitForTimeout(800);
-      const playing = await readState(page);
-      assert(playing.step > 0 && playing.step < total, `after 0.8 s playing at 16 steps/s the step is ${playing.step} of ${total}`);
-      const ks = [0, Math.floor(total * 0.15), Math.floor(total * 0.4), Math.floor(total * 0.75), total];
-      const seen = [];
-      for (const k of ks) seen.push((await scrubTo(page, k)).shown);
-      assert(seen[0].vertices === 0 && seen[0].edges === 0 && seen[0].faces === 0, `step 0 shows ${JSON.stringify(seen[0])}`);
-      for (let i = 1; i < seen.length; i++) {
-        const a = seen[i - 1], b = seen[i];
-        assert(b.vertices >= a.vertices && b.edges >= a.edges && b.faces >= a.faces, `counts shrink: ${JSON.stringify(a)} → ${JSON.stringify(b)}`);
-        assert(b.vertices + b.edges + b.faces === ks[i], `step ${ks[i]} shows ${JSON.stringify(b)}`);
-      }
-      assert(seen[2].edges > seen[1].edges, `edges do not grow between steps ${ks[1]} and ${ks[2]}`);
-      assert(seen[2].faces === 0, 'faces appear before the edges are traced');
-      assert(seen[4].vertices === V && seen[4].edges === E && seen[4].faces === F, `end shows ${JSON.stringify(seen[4])}`);
-      await scrubTo(page, ks[2]);
-      const px = await shoot(page, 'sample-mid-animation.png'); // edges traced so far, no faces yet
-      await shoot(page, 'page-mid-animation.png', { fullPage: true });
-      assert(px.amber > 1000, `input mesh hardly visible: ${px.amber} amber pixels`);
-      assert(px.blue > 30, `partial kernel edges not visible: ${px.blue} kernel-blue pixels`);
-      const late = await scrubTo(page, Math.floor((E + V + total) / 2)); // edges done, faces filling
-      assert(late.shown.faces > 0 && late.shown.faces < F, `faces shown at step ${late.step}: ${late.shown.faces}`);
-      const pxLate = await shoot(page, 'sample-faces-filling.png');
-      assert(pxLate.blue > px.blue, `filling faces add no blue pixels (${px.blue} → ${pxLate.blue})`);
-      await jumpToEnd(page);
-      const end = await readState(page);
-      assert(end.step === total, `jump to end: step ${end.step} of ${total}`);
-      const px2 = await shoot(page, 'sample-gear-kernel.png');
-      assert(px2.blue > 2000, `finished gear kernel: only ${px2.blue} kernel-blue pixels`);
-    });
-
-    // 5. Files through the picker: the project's own samples written as OFF / STL / OBJ.
-    const fileCases = [
-      ['OFF (double precision)', 'dented-cube.off', 'dented-cube', writeOFF, 1e-9],
-      ['binary STL (float32, welded)', 'plus-prism.stl', 'plus-prism', writeBinarySTL, 1e-6],
-      ['ascii STL (double precision, welded)', 'star-prism.stl', 'star-prism', writeAsciiSTL, 1e-9],
-      ['OBJ (double precision)', 'gear.obj', 'gear', writeOBJ, 1e-9],
-    ];
-    for (const [label, fname, id, writer, tol] of fileCases) {
-      await test(`file picker: ${label} ${fname}`, async () => {
-        const file = path.join(tmp, fname);
-        writer(file, sampleById(id).build());
-        const s = await loadFile(page, file);
-        const exp = expectedKernel(sampleById(id));
-        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
-        assertClose(Number(s.stats.volume), exp.volume, tol, 'kernel volume');
-        assert(Number(s.stats.vertices) === exp.vertices, `vertices ${s.stats.vertices}, expected ${exp.vertices}`);
-      });
-    }
-
-    // Polygon faces are computed as polygons: an L prism whose caps are single non-convex
-    // hexagons has the unit cube for kernel (a fan of its caps would give a flat one).
-    const lPrism = lPrismFiles();
-    for (const [label, fname] of [['OFF', 'l-prism.off'], ['OBJ', 'l-prism.obj']]) {
-      await test(`file picker: ${label} with non-convex polygon faces ${fname}`, async () => {
-        const file = path.join(tmp, fname);
-        fs.writeFileSync(file, lPrism[fname]);
-        const s = await loadFile(page, file);
-        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
-        assertClose(Number(s.stats.volume), 1, 1e-12, 'kernel volume');
-        assert(Number(s.stats.vertices) === 8, `vertices ${s.stats.vertices}, expected 8`);
-        assert(Number(s.stats['input-faces']) === 8, `input faces ${s.stats['input-faces']}, expected 8 polygons`);
-        // The caps are drawn (split by earcut for drawing only): the input's amber is on screen.
-        const px = await shoot(page, `${fname}.png`);
-        assert(px.amber > 2000, `L prism drawn with only ${px.amber} amber pixels`);
-      });
-    }
-
-    // 6. A real mesh: princeton/350.off via the file picker, against the native CLI.
-    const p350 = path.join(sharedMeshes, 'princeton/350.off');
-    if (!fs.existsSync(p350)) skip('princeton/350.off', `${p350} not found (shared meshes absent)`);
-    else {
-      await test('princeton/350.off via the file picker: POLYHEDRON, volume vs native CLI, kernel on screen', async () => {
-        const s = await loadFile(page, p350);
-        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${s.statusText} ${JSON.stringify(s.message)}`);
-        assert(Number(s.stats['input-faces']) === 17514, `input faces ${s.stats['input-faces']}`);
-        const vol = Number(s.stats.volume);
-        assert(vol > 0, `volume ${vol}`);
-        console.log(`     350.off: V ${s.stats.vertices}, E ${s.stats.edges}, F ${s.stats.faces}, volume ${vol}, ratio ${s.stats.ratio}, planes ${s.stats.planes}, worker ${Number(s.stats.time).toFixed(1)} ms`);
-        const native = nativeKernel(p350);
-        if (native) {
-          assert(native.status === 'POLYHEDRON', `native status ${native.status}`);
-          assertClose(vol, native.volume, 1e-9, 'volume vs build/kergen --json');
-          console.log(`     native CLI volume ${native.volume} (match)`);
-        } else {
-          skip('princeton/350.off volume vs native CLI', `${nativeCli} not built (npm run build:native)`);
-        }
-        await jumpToEnd(page);
-        const px = await shoot(page, 'princeton-350-kernel.png');
-        assert(px.blue > 100, `only ${px.blue} kernel-blue pixels in the view`);
-        await page.click('#fit-kernel');
-        await page.waitForTimeout(300);
-        const zoomed = await shoot(page, 'princeton-350-kernel-zoom.png');
-        assert(zoomed.blue > 20 * px.blue && zoomed.blue > 20000, `zoom to kernel: ${px.blue} → ${zoomed.blue} kernel-blue pixels`);
-        await page.click('#fit-view');
-      });
-    }
-
-    // 7. Messages: empty kernel, broken files.
-    await test('U prism shows the empty-kernel message (screenshot)', async () => {
-      const s = await loadSample(page, 'u-prism');
-      assert(s.status === 'EMPTY' && s.message?.kind === 'empty', JSON.stringify(s));
-      const shown = await page.isVisible('#message');
-      assert(shown, '#message not visible');
-      const px = await shoot(page, 'empty-kernel.png', { fullPage: true });
-      assert(px.blue < 50, `${px.blue} kernel-blue pixels drawn for an empty kernel`);
-      assert(px.amber > 1000, 'the input mesh is not drawn');
-    });
-
-    const broken = [
-      // (refused by the reader, with its line, as the CLI refuses it)
-      ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'PARSE_ERROR', /line \d+: vertex index 99 out of range \(the file has 8 vertices\)/],
-      ['open cube (one face missing)', 'open-cube.off', (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)), 'OPEN_MESH', /open/i],
-      ['two cubes sharing an edge', 'edge-cubes.off', writeEdgeSharingCubes, 'NON_MANIFOLD_EDGE', /manifold/i],
-      ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n8 6 0\n0 0 zero\n'), 'PARSE_ERROR', /line 3: invalid number "zero"/i],
-      ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /STL/],
-      ['unsupported extension', 'mesh.ply', (f) => fs.writeFileSync(f, 'ply\n'), 'PARSE_ERROR', /unsupported/i],
-    ];
-    for (const [label, fname, make, code, re] of broken) {
-      await test(`error message: ${label} → ${code}`, async () => {
-        const file = path.join(tmp, fname);
-        make(file);
-        const s = await loadFile(page, file);
-        assert(s.state === 'error', `state ${s.state} (${s.statusText})`);
-        assert(s.message?.kind === 'error' && s.message.code === code, `message ${JSON.stringify(s.message)}`);
-        assert(re.test(s.message.text), `message text "${s.message.text}" does not match ${re}`);
-        assert(await page.isVisible('#message'), '#message not visible');
-      });
-    }
-
-    // 8. Export.
-    await test('export OBJ and STL of the plus-prism kernel', async () => {
-      const s = await loadSample(page, 'plus-prism');
-      assert(s.status === 'POLYHEDRON', s.status);
-      const [objDl] = await Promise.all([page.waitForEvent('download'), page.click('#export-obj')]);
-      const obj = fs.readFileSync(await objDl.path(), 'utf8');
-      const vs = obj.split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1).map(Number));
-      const fs_ = obj.split('\n').filter((l) => l.startsWith('f '));
-      assert(vs.length === 8 && fs_.length === 6, `OBJ has ${vs.length} vertices, ${fs_.length} faces`);
-      for (const v of vs) assert(Math.abs(Math.abs(v[0]) - 0.3) < 1e-12 && Math.abs(Math.abs(v[1]) - 0.3) < 1e-12, `vertex ${v} off the central column`);
-      const [stlDl] = await Promise.all([page.waitForEvent('download'), page.click('#export-stl')]);
-      const stl = fs.readFileSync(await stlDl.path());
-      assert(stl.length === 84 + 50 * 12 && stl.readUInt32LE(80) === 12, `STL: ${stl.length} bytes, ${stl.readUInt32LE(80)} triangles`);
-    });
-
-    // 9. Drag & drop and timing: princeton/325.off.
-    const p325 = path.join(sharedMeshes, 'princeton/325.off');
-    if (!fs.existsSync(p325)) skip('princeton/325.off drop timing', `${p325} not found`);
-    else {
-      await test('drag & drop princeton/325.off: kernel, drop → kernel time', async () => {
-        const runs = [];
-        for (let i = 0; i < 3; i++) {
-          await jumpToEnd(page); // drop onto an idle page (no replay frames being rendered)
-          await page.waitForTimeout(300);
-          runs.push(await dropFile(page, p325));
-        }
-        const s = runs[runs.length - 1];
-        assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
-        const wall = runs.map((r) => Number(r.stats.wall));
-        const detail = await page.textContent('#stat-wall');
-        const worker = runs.map((r) => Number(r.stats.time));
-        console.log(`     325.off (${s.stats['input-faces']} faces, kernel V ${s.stats.vertices} E ${s.stats.edges} F ${s.stats.faces}):` +
-          ` drop → final kernel ${wall.map((x) => x.toFixed(0)).join(' / ')} ms in the page` +
-          ` (worker msTotal ${worker.map((x) => x.toFixed(0)).join(' / ')} ms; test-side ${runs.map((r) => r.testMs).join(' / ')} ms incl. polling)`);
-        console.log(`     last run: ${detail}`);
-        const native = nativeKernel(p325);
-        if (native) assertClose(Number(s.stats.volume), native.volume, 1e-9, 'volume vs build/kergen --json');
-      });
-    }
-
-    // 10. Cancel on a large input; the page stays responsive while the worker computes. Convex
-    // spheres (kernel = the whole shape, the most work per face); bigger ones if a run ends first.
-    await test('cancel a long run; the page keeps animating meanwhile', async () => {
-      const { radialSphere } = await import('../../web/samples.js');
-      let cancelled = false;
-      for (const [nlat, nlon] of [[50, 100], [100, 200], [200, 400]]) {
-        const big = path.join(tmp, `sphere-${nlat}x${nlon}.off`);
-        writeOFF(big, radialSphere(nlat, nlon, () => 1));
-        await markPending(page);
-        await page.setInputFiles('#file-input', big);
-        await page.waitForFunction(() => document.getElementById('status').dataset.state !== 'test-pending' &&
-          document.getElementById('status').dataset.state !== 'reading', null, { timeout: 60000, polling: 10 });
-        // Event-loop latency (a blocked main thread shows as one long gap) and frame gaps.
-        const { maxGap, maxFrameGap, ticks } = await page.evaluate(() => new Promise((resolve) => {
-          const t0 = performance.now();
-          let last = t0, gap = 0, lastFrame = t0, frameGap = 0, done = false, n = 0;
-          const tick = () => {
-            const now = performance.now();
-            n++;
-            gap = Math.max(gap, now - last);
-            last = now;
-            if (now - t0 < 1500) setTimeout(tick, 5);
-            else {
-              done = true;
-              resolve({ maxGap: gap, maxFrameGap: frameGap, ticks: n });
-            }
-          };
-          const frame = (now) => {
-            frameGap = Math.max(frameGap, now - lastFrame);
-            lastFrame = now;
-            if (!done) requestAnimationFrame(frame);
-          };
-          setTimeout(tick, 5);
-          requestAnimationFrame(frame);
-        }));
-        const before = await readState(page);
-        if (before.state !== 'computing') {
-          console.log(`     ${2 * nlat * nlon} triangles finished before cancel (${before.state} ${before.status}); trying a bigger sphere`);
-          continue;
-        }
-        await page.click('#cancel');
-        const s = await waitFinished(page, 10000);
-        assert(s.state === 'cancelled' && s.message?.code === 'CANCELLED', `after cancel: ${s.state} ${JSON.stringify(s.message)}`);
-        // A computation on the main thread would block the whole 1.5 s window. With software GL
-        // the first frame of the new mesh alone can take ~0.3 s, so: the event loop must run
-        // freely (≥ 50 of ~250 possible 5 ms timer ticks) and never stall for 1 s.
-        assert(ticks >= 50 && maxGap < 1000, `main thread blocked while the worker computed: ${ticks} timer ticks in 1.5 s, longest gap ${maxGap.toFixed(0)} ms`);
-        console.log(`     ${2 * nlat * nlon}-triangle sphere: ${before.steps} steps streamed in the first 1.5 s, ${ticks} timer ticks in 1.5 s, longest event-loop gap ${maxGap.toFixed(0)} ms, longest frame gap ${maxFrameGap.toFixed(0)} ms (software GL), cancelled`);
-        cancelled = true;
-        break;
-      }
-      assert(cancelled, 'every run finished before it could be cancelled');
-      const again = await loadSample(page, 'l-prism'); // the worker is usable after a cancel
-      assert(again.status === 'POLYHEDRON', `after cancel, L prism: ${again.status}`);
-    });
-
-    // 11. Light and dark.
-    await test('prefers-color-scheme: light and dark scene backgrounds', async () => {
-      await loadSample(page, 'star-prism');
-      await jumpToEnd(page);
-      const light = await shoot(page, 'theme-light.png');
-      await page.emulateMedia({ colorScheme: 'dark' });
-      await page.waitForTimeout(200);
-      const dark = await shoot(page, 'theme-dark.png');
-      await shoot(page, 'page-dark.png', { fullPage: true });
-      await page.emulateMedia({ colorScheme: 'light' });
-      assert(light.meanLuminance > 170, `light scene mean luminance ${light.meanLuminance.toFixed(0)}`);
-      assert(dark.meanLuminance < 70, `dark scene mean luminance ${dark.meanLuminance.toFixed(0)}`);
-      assert(light.blue > 2000 && dark.blue > 2000, `kernel blue pixels: light ${light.blue}, dark ${dark.blue}`);
-    });
+    await samplesAndAnimation(page);
+    await fileTests(page, tmp);
+    await progressAndControls(page, tmp);
+    await realMeshesAndMessages(page, tmp);
+    await exportAndDrop(page, tmp);
+    await cancelTest(page, tmp);
+    await themeAndBigFile(page, tmp, served);
 
     await test('no uncaught errors or console errors in the page', async () => {
       assert(pageErrors.length === 0, pageErrors.slice(0, 5).join(' | '));

@@ -89,19 +89,83 @@ test('input buffers are transferred (detached) unless copy: true; views of large
   assert.equal(r3.volume, r1.volume);
 });
 
-test('step events arrive in batches of at most 256', async () => {
+test('step events arrive in batches of at most 2048', async () => {
   const kw = newWorker();
-  const m = starPrism(150, 0.8);
+  const m = starPrism(1500, 0.9);
   let count = 0;
   const r = await kw.compute(m.positions, m.indices, { onStep: () => void count++ });
   const total = r.vertices.length / 3 + r.edges.length / 2 + r.faces.length;
   assert.equal(count, total, 'every event delivered');
-  assert.ok(total > 1000, `a large kernel (${total} events)`);
+  assert.ok(total > 4 * 2048, `a large kernel (${total} events)`);
   const shim = WebWorkerShim.spawned.find((s) => s.received.some((msg) => msg.type === 'result' && msg.result.vertices.length === r.vertices.length));
   const batches = shim.received.filter((msg) => msg.type === 'steps');
-  assert.ok(batches.length >= Math.ceil(total / 256), `${batches.length} batches`);
-  assert.ok(batches.length < total / 4, `${batches.length} batches for ${total} events: batched, not one message per event`);
-  assert.ok(batches.every((b) => b.events.length <= 256));
+  assert.ok(batches.length >= Math.ceil(total / 2048), `${batches.length} batches`);
+  assert.ok(batches.length < total / 64, `${batches.length} batches for ${total} events: batched, not one message per event`);
+  assert.ok(batches.every((b) => b.events.length <= 2048));
+});
+
+// computeFile / writeMesh need the package's file layer (readMeshSync, writeMesh).
+const fileLayer = () => typeof K.readMeshSync === 'function' && typeof K.writeMesh === 'function';
+
+// An L prism with non-convex hexagon caps as OFF text: its kernel is the unit cube.
+function lPrismOff() {
+  const base = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]];
+  const points = base.flatMap(([x, y]) => [[x, y, 0], [x, y, 1]]);
+  const faces = [[10, 8, 6, 4, 2, 0], [1, 3, 5, 7, 9, 11]];
+  for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
+  const lines = ['OFF', `${points.length} ${faces.length} 0`, ...points.map((p) => p.join(' ')), ...faces.map((f) => `${f.length} ${f.join(' ')}`)];
+  return new TextEncoder().encode(lines.join('\n') + '\n');
+}
+
+test('computeFile parses in the worker: mesh and kernel, bytes transferred, onMesh before the result, progress by phase', async (t) => {
+  if (!fileLayer()) return t.skip('this package build has no readMeshSync / writeMesh');
+  const kw = newWorker();
+  const bytes = lPrismOff();
+  const size = bytes.byteLength;
+  const order = [];
+  const progress = [];
+  const { mesh, result } = await kw.computeFile(bytes, {
+    name: 'l-prism.off',
+    onMesh: (m) => order.push(['mesh', m.faceSizes.length]),
+    onProgress: (p) => progress.push(p),
+    onStep: () => void order.push('step'),
+  });
+  assert.equal(bytes.byteLength, 0, 'the bytes were transferred');
+  assert.equal(result.status, 'POLYHEDRON');
+  assert.equal(result.volume, 1);
+  assert.ok(mesh.positions instanceof Float64Array && mesh.positions.length === 36);
+  assert.deepEqual(Array.from(mesh.faceSizes), [6, 6, 4, 4, 4, 4, 4, 4]);
+  assert.deepEqual(order[0], ['mesh', 8], 'onMesh comes before the first step');
+  assert.equal(order.filter((x) => x === 'step').length, 8 + 12 + 6);
+  const phases = progress.map((p) => p.phase);
+  assert.deepEqual(progress.find((p) => p.phase === 'reading'), { phase: 'reading', steps: 0, bytes: size });
+  for (const phase of ['validating', 'planes', 'lp', 'tracing', 'assembling']) assert.ok(phases.includes(phase), `phase ${phase} in ${phases}`);
+  assert.ok(phases.indexOf('reading') < phases.indexOf('validating') && phases.indexOf('validating') < phases.indexOf('assembling'));
+  assert.equal(progress.find((p) => p.phase === 'validating').count, 8, 'validating counts the 8 input faces');
+  assert.equal(phases.at(-1), 'done');
+});
+
+test('computeFile: parse errors reject with PARSE_ERROR naming the file and line', async (t) => {
+  if (!fileLayer()) return t.skip('this package build has no readMeshSync / writeMesh');
+  const kw = newWorker();
+  const text = new TextEncoder().encode('OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n');
+  await assert.rejects(kw.computeFile(text, { name: 'garbage.off' }), (err) => err.code === 'PARSE_ERROR' && /^garbage\.off:4: invalid number 'zero'/.test(err.message));
+  const r = await kw.computeFile(lPrismOff(), { format: 'off' });
+  assert.equal(r.result.volume, 1, 'the worker keeps working after a parse error');
+});
+
+test('writeMesh in the worker: OFF, OBJ and STL bytes of a kernel read back to the same kernel', async (t) => {
+  if (!fileLayer()) return t.skip('this package build has no readMeshSync / writeMesh');
+  const kw = newWorker();
+  const { result } = await kw.computeFile(lPrismOff(), { name: 'l.off' });
+  for (const format of ['off', 'obj', 'stl']) {
+    const bytes = await kw.writeMesh(result, format);
+    assert.ok(bytes instanceof Uint8Array && bytes.length > 0, format);
+    const again = await kw.computeFile(bytes, { name: `kernel.${format}` });
+    assert.equal(again.result.status, 'POLYHEDRON', format);
+    assert.ok(Math.abs(again.result.volume - 1) < 1e-12, `${format}: volume ${again.result.volume}`);
+  }
+  assert.equal(result.vertices.length, 24, 'the caller keeps its result');
 });
 
 test('errors cross as KergenError with the core code', async () => {

@@ -102,11 +102,16 @@ async function main(): Promise<void> {
     copy: true,
     onStep: (e) => e.type !== 'face',
     onProgress: (pr: ProgressEvent) => {
-      const phase: 'loading' | 'computing' | 'tracing' | 'done' = pr.phase;
-      void [phase, pr.steps];
+      const phase: 'loading' | 'reading' | 'computing' | 'validating' | 'planes' | 'lp' | 'tracing' | 'assembling' | 'done' = pr.phase;
+      void [phase, pr.steps, pr.count, pr.bytes];
     },
   });
   void fromWorker.edges;
+  const { mesh, result: fileKernel } = await worker.computeFile(new Uint8Array(8), { name: 'a.stl', onMesh: (m) => void m.faceSizes });
+  const positions64: Float64Array = mesh.positions;
+  void [positions64, fileKernel.volume];
+  const stlBytes: Uint8Array = await worker.writeMesh(fileKernel, 'stl');
+  void stlBytes;
   worker.cancel();
   worker.dispose();
 }

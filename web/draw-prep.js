@@ -1,0 +1,185 @@
+// What the view needs to draw an input mesh, computed from the parsed mesh without three.js
+// objects so it can run in a worker (draw-worker.js) for big meshes and inline for small ones:
+// float32 positions relative to the bounding-box centre (float32 rendering of far-from-origin
+// models stays accurate), triangles (polygons split by earcut, in the projection along their
+// largest normal axis: a fan would fold over a non-convex face), and optionally the faces' edges.
+import { Earcut } from 'three/src/extras/Earcut.js';
+
+// Returns { center, radius } of the finite positions' bounding box.
+function bounds(positions) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < positions.length; i += 3) {
+    const x = positions[i], y = positions[i + 1], z = positions[i + 2];
+    if (!(Number.isFinite(x) && Number.isFinite(y) && Number.isFinite(z))) continue;
+    if (x < lo[0]) lo[0] = x;
+    if (x > hi[0]) hi[0] = x;
+    if (y < lo[1]) lo[1] = y;
+    if (y > hi[1]) hi[1] = y;
+    if (z < lo[2]) lo[2] = z;
+    if (z > hi[2]) hi[2] = z;
+  }
+  if (!(lo[0] <= hi[0])) return { center: [0, 0, 0], radius: 1 };
+  const center = [0, 1, 2].map((c) => (lo[c] + hi[c]) / 2);
+  const radius = Math.max(1e-30, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
+  return { center, radius };
+}
+
+// One polygon (k > 3 vertex ids in `loop`) as triangles appended to `out`.
+function splitPolygon(positions, loop, out) {
+  const k = loop.length;
+  const n = [0, 0, 0];
+  for (let i = 0; i < k; i++) {
+    const a = 3 * loop[i], b = 3 * loop[(i + 1) % k];
+    for (let c = 0; c < 3; c++) {
+      const c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      n[c] += (positions[a + c1] - positions[b + c1]) * (positions[a + c2] + positions[b + c2]);
+    }
+  }
+  const ax = Math.abs(n[0]), ay = Math.abs(n[1]), az = Math.abs(n[2]);
+  const axis = ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
+  const u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const flat = new Array(2 * k);
+  for (let i = 0; i < k; i++) {
+    flat[2 * i] = positions[3 * loop[i] + u];
+    flat[2 * i + 1] = positions[3 * loop[i] + w];
+  }
+  const tri = Earcut.triangulate(flat, [], 2);
+  if (tri.length === 3 * (k - 2)) {
+    for (const t of tri) out.push(loop[t]);
+  } else {
+    // earcut gives up on self-touching loops: a fan still draws something near the face.
+    for (let i = 1; i + 1 < k; i++) out.push(loop[0], loop[i], loop[i + 1]);
+  }
+}
+
+export function drawnTriangles(positions, indices, faceSizes) {
+  if (!faceSizes) return indices;
+  const out = [];
+  for (let f = 0, at = 0; f < faceSizes.length; at += faceSizes[f], f++) {
+    const k = faceSizes[f];
+    if (k === 3) out.push(indices[at], indices[at + 1], indices[at + 2]);
+    else if (k > 3) splitPolygon(positions, indices.subarray(at, at + k), out);
+  }
+  return Uint32Array.from(out);
+}
+
+// The faces' edges, each once (polygons without their drawing diagonals), as vertex-id pairs:
+// keys sorted in a typed array (a Set of a million keys is several times slower).
+export function faceEdges(indices, faceSizes, nv) {
+  const nFaces = faceSizes ? faceSizes.length : indices.length / 3;
+  const keys = new Float64Array(indices.length);
+  let n = 0;
+  for (let f = 0, at = 0; f < nFaces; f++) {
+    const k = faceSizes ? faceSizes[f] : 3;
+    for (let j = 0; j < k; j++) {
+      const a = indices[at + j], b = indices[at + ((j + 1) % k)];
+      keys[n++] = a < b ? a * nv + b : b * nv + a;
+    }
+    at += k;
+  }
+  keys.sort();
+  const lines = new Uint32Array(2 * n);
+  let m = 0;
+  for (let i = 0; i < n; i++) {
+    if (i > 0 && keys[i] === keys[i - 1]) continue;
+    lines[m++] = Math.floor(keys[i] / nv);
+    lines[m++] = keys[i] % nv;
+  }
+  return lines.slice(0, m);
+}
+
+// Vertex clustering on a grid of `res` cells along the longest side: every vertex moves to the
+// mean of its cell's vertices, and triangles that collapse are dropped. The shape stays within a
+// cell of the original, which is all a semi-transparent overlay needs.
+function cluster(pos, triangles, res) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < pos.length; i++) {
+    const c = i % 3;
+    if (pos[i] < lo[c]) lo[c] = pos[i];
+    if (pos[i] > hi[c]) hi[c] = pos[i];
+  }
+  const h = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / res || 1;
+  const n = [0, 1, 2].map((c) => Math.floor((hi[c] - lo[c]) / h) + 1);
+  const cellOf = new Map();
+  const remap = new Uint32Array(pos.length / 3);
+  const sums = [];
+  for (let v = 0; v < remap.length; v++) {
+    const ix = Math.floor((pos[3 * v] - lo[0]) / h), iy = Math.floor((pos[3 * v + 1] - lo[1]) / h), iz = Math.floor((pos[3 * v + 2] - lo[2]) / h);
+    const key = ix + n[0] * (iy + n[1] * iz);
+    let id = cellOf.get(key);
+    if (id === undefined) {
+      id = sums.length / 4;
+      cellOf.set(key, id);
+      sums.push(0, 0, 0, 0);
+    }
+    remap[v] = id;
+    sums[4 * id] += pos[3 * v];
+    sums[4 * id + 1] += pos[3 * v + 1];
+    sums[4 * id + 2] += pos[3 * v + 2];
+    sums[4 * id + 3]++;
+  }
+  const positions = new Float32Array((sums.length / 4) * 3);
+  for (let id = 0; id < sums.length / 4; id++) {
+    for (let c = 0; c < 3; c++) positions[3 * id + c] = sums[4 * id + c] / sums[4 * id + 3];
+  }
+  const out = new Uint32Array(triangles.length);
+  let m = 0;
+  for (let t = 0; t < triangles.length; t += 3) {
+    const a = remap[triangles[t]], b = remap[triangles[t + 1]], c = remap[triangles[t + 2]];
+    if (a === b || b === c || a === c) continue;
+    out[m++] = a;
+    out[m++] = b;
+    out[m++] = c;
+  }
+  return { positions, triangles: out.slice(0, m) };
+}
+
+// A coarser copy of a big surface to draw, with at most about `target` triangles. Software WebGL
+// (SwiftShader) spends ~1 s per frame on a million triangles, and with a software compositor the
+// page's thread waits for each frame.
+export function simplify(pos, triangles, target) {
+  // A closed surface on a grid of res cells per side has ~4 res² triangles after clustering.
+  let res = Math.max(8, Math.floor(Math.sqrt(target / 4)));
+  let best = null;
+  for (let attempt = 0; attempt < 4; attempt++) {
+    const c = cluster(pos, triangles, res);
+    if (!best || c.triangles.length <= 3 * target * 1.2) best = c;
+    if (c.triangles.length <= 3 * target * 1.2) break;
+    res = Math.max(4, Math.floor(res * Math.sqrt((3 * target) / c.triangles.length) * 0.95));
+  }
+  return best;
+}
+
+/**
+ * mesh: { positions (xyz), indices, faceSizes (null: triangles) }. Returns { center, radius,
+ * positions: Float32Array (centred), triangles: Uint32Array, edges: Uint32Array | null, faces,
+ * drawable } — drawable is false when a face refers to a missing vertex (the package reports it).
+ */
+export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } = {}) {
+  const { positions, indices, faceSizes } = mesh;
+  const nv = positions.length / 3;
+  const { center, radius } = bounds(positions);
+  const faces = faceSizes ? faceSizes.length : indices.length / 3;
+  let drawable = nv > 0;
+  for (let i = 0; i < indices.length && drawable; i++) if (!(indices[i] < nv)) drawable = false;
+  if (!drawable) return { center, radius, faces, drawable, positions: new Float32Array(0), triangles: new Uint32Array(0), edges: null };
+  const pos = new Float32Array(3 * nv);
+  for (let i = 0; i < 3 * nv; i += 3) {
+    pos[i] = positions[i] - center[0];
+    pos[i + 1] = positions[i + 1] - center[1];
+    pos[i + 2] = positions[i + 2] - center[2];
+  }
+  const triangles = drawnTriangles(positions, indices, faceSizes);
+  if (triangles.length / 3 > maxTriangles) {
+    // Drawn simplified; `edges` then are the drawn triangles' edges.
+    const s = simplify(pos, triangles, maxTriangles);
+    return { center, radius, faces, drawable, simplified: true, positions: s.positions, triangles: s.triangles,
+      edges: edges ? faceEdges(s.triangles, null, s.positions.length / 3) : null };
+  }
+  return { center, radius, faces, drawable, simplified: false, positions: pos, triangles, edges: edges ? faceEdges(indices, faceSizes, nv) : null };
+}
+
+/** The buffers of a prepareDrawing() result, for a transfer list. */
+export function drawingBuffers(d) {
+  return [...new Set([d.positions.buffer, d.triangles.buffer, d.edges?.buffer].filter((b) => b && b.byteLength > 0))];
+}
