@@ -175,10 +175,11 @@ class VertexIndex {
   size_t mask_ = 0, size_ = 0;
 };
 
-// Structure-of-arrays copy of a list of planes (doubles and the error terms of the filter),
-// padded to a multiple of kLanes with planes that never hit a ray (n = 0) and are never near
-// (d = -1, no error).
-struct PlaneArrays {
+// The planes a trace certifies against: a structure-of-arrays copy of a list of planes (doubles
+// and the vertex filter's per-plane terms, exact/error_bounds.h), padded to a multiple of kLanes
+// with planes that never hit a ray (n = 0) and are never near (d = -1, no error). (Culling's
+// PlaneArrays is a view of coefficients with their raw error bounds, for the support test.)
+struct CertifyPlanes {
   std::vector<double> ax, ay, az, ad;
   std::vector<double> bn1, ben, be0;  // per plane: |n|_1, coefficient error of n, of d + rounding
 
@@ -220,7 +221,7 @@ struct PlaneArrays {
 // The filter, then exact signs for the undecided planes of `list` (planes marked in
 // known_tight_mark, if given, are tight without evaluation): the complete sorted tight set of w,
 // or the first violated plane.
-uint32_t certify_over(const PlaneSet& ps, const std::vector<uint32_t>& list, const PlaneArrays& arr,
+uint32_t certify_over(const PlaneSet& ps, const std::vector<uint32_t>& list, const CertifyPlanes& arr,
                       const VertexGeom& w, const std::vector<char>& known_tight_mark, std::vector<uint32_t>& cand,
                       std::vector<uint32_t>& tight) {
   tight.clear();
@@ -307,7 +308,7 @@ class Tracer {
   // line plane sets grow by the added planes through it. Only the rest is traced: the rays from
   // surviving vertices along lines not yet known, and everything from the new vertices.
   TraceResult run_update(const TraceResult& prev, const std::vector<uint32_t>& added) {
-    PlaneArrays added_arr;
+    CertifyPlanes added_arr;
     added_arr.build(ps_, added);
     std::vector<uint32_t> new_id(prev.vertices.size(), kNoVertex);
     std::vector<std::vector<uint32_t>> tight_added(prev.vertices.size());
@@ -649,7 +650,7 @@ class Tracer {
   const std::vector<uint32_t>& active_;
   TraceOptions opt_;
   std::vector<char> mark_;
-  PlaneArrays arr_;
+  CertifyPlanes arr_;
   std::vector<uint64_t> seen_;
   std::vector<int> rate_;
   static constexpr size_t kMaxKeptTight = 64;  // triple signs are kept for up to this many tight planes
