@@ -57,8 +57,8 @@ void join_close_vertices(const MeshView& mesh, double tolerance, UnionFind& grou
           for (uint32_t w = it->second; w != UINT32_MAX; w = next[w]) {
             const double* q = pos(w);
             const double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-            const bool close = tolerance == 0 ? d[0] == 0 && d[1] == 0 && d[2] == 0
-                                              : d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= t2;
+            const bool close =
+                tolerance == 0 ? d[0] == 0 && d[1] == 0 && d[2] == 0 : d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= t2;
             if (close) groups.unite(v, w);
           }
         }

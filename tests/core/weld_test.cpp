@@ -1,6 +1,8 @@
 // Options::weld: a triangle soup and seams that differ by rounding become the closed surface they
 // describe; the kernel is then the one of the indexed mesh. Welding never runs on malformed input
 // (validation reports that as given), and exact equality (weld = 0) merges only equal positions.
+#include "weld.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 
 #include "fixtures.h"
 #include "kergen/kergen.h"
-#include "weld.h"
 
 namespace {
 
