@@ -74,7 +74,7 @@ bool count_crossings(const PreparedMesh& mesh, const double p[3], const double q
   // An orthonormal-ish frame across u = q - p (exactness does not depend on it: it only filters).
   const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
   const int m = std::fabs(u[0]) < std::fabs(u[1]) ? (std::fabs(u[0]) < std::fabs(u[2]) ? 0 : 2)
-                                                   : (std::fabs(u[1]) < std::fabs(u[2]) ? 1 : 2);
+                                                  : (std::fabs(u[1]) < std::fabs(u[2]) ? 1 : 2);
   double e1[3] = {0, 0, 0};
   e1[m] = 1;  // the axis least aligned with u, made orthogonal to it
   const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], ue = u[m] / uu;

@@ -27,7 +27,7 @@ struct EmbeddingCheck {
                     // ray tried met an edge or a vertex
   };
   Outcome outcome = Outcome::Undecided;
-  long crossings = 0;  // the degree: signed crossings (each +1 for a face seen from inside)
+  long crossings = 0;           // the degree: signed crossings (each +1 for a face seen from inside)
   double point[3] = {0, 0, 0};  // p, in the mesh's scaled units
 };
 

@@ -2,13 +2,14 @@
 // from its inner side there, is refused with SELF_INTERSECTION (its half-space intersection would
 // otherwise be reported as its kernel); every full-dimensional kernel of the shared meshes is
 // certified with degree 1.
+#include "embedding.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <vector>
 
-#include "embedding.h"
 #include "fixtures.h"
 #include "kergen/io.h"
 #include "kergen/kergen.h"
