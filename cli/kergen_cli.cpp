@@ -35,7 +35,7 @@ namespace fs = std::filesystem;
 const char* const kUsage =
     "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
     "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
-    "                      [--weld [EPS]] [--weld-relative R]\n"
+    "                      [--weld [EPS]] [--weld-relative R] [--repair]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -53,6 +53,7 @@ const char* const kUsage =
     "  --weld [EPS]    merge vertices closer than EPS (default: 1e-9 of the bounding box\n"
     "                  diagonal) before validation: closes triangle soups and seams\n"
     "  --weld-relative R  merge vertices closer than R times the bounding box diagonal\n"
+    "  --repair        weld, remove repeated and cancelling faces, split T-junctions (exactly)\n"
     "Exit code: 0 all meshes processed, 1 some mesh had an input error, 2 usage error.\n";
 
 struct Arguments {
@@ -73,8 +74,8 @@ constexpr double kDefaultRelativeWeld = 1e-9;
 
 // The core's messages name options as the C++ API does (Options::field); the CLI names its flags.
 std::string in_cli_words(std::string text) {
-  static const std::pair<const char*, const char*> kWords[] = {{"Options::allow_open", "--allow-open"},
-                                                               {"Options::weld", "--weld"}};
+  static const std::pair<const char*, const char*> kWords[] = {
+      {"Options::allow_open", "--allow-open"}, {"Options::weld", "--weld"}, {"Options::repair", "--repair"}};
   for (const auto& [api, flag] : kWords)
     for (size_t at = text.find(api); at != std::string::npos; at = text.find(api, at + std::strlen(flag)))
       text.replace(at, std::strlen(api), flag);
@@ -123,6 +124,8 @@ Arguments parse_arguments(int argc, char** argv) {
         args.options.weld = kDefaultRelativeWeld;
         args.options.weld_relative = true;
       }
+    } else if (arg == "--repair") {
+      args.options.repair = true;
     } else if (arg == "--weld-relative") {
       const std::string text = value();
       double r = 0;

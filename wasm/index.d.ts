@@ -122,6 +122,14 @@ export interface KernelOptions {
    * `VERTICES_WELDED` warning. Default: off.
    */
   weld?: boolean | number | { relative: number };
+  /**
+   * Repair, before validation, what leaves a well-defined solid refused: weld (within `weld`, or
+   * equal positions), remove faces repeating another's corners (copies; pairs of opposite
+   * orientation), split T-junctions (a vertex exactly inside an edge one face uses is inserted
+   * into that face). Each repair is a warning with a count (`VERTICES_WELDED`,
+   * `DUPLICATE_FACES_REMOVED`, `CANCELLING_FACES_REMOVED`, `T_JUNCTIONS_SPLIT`). Default: off.
+   */
+  repair?: boolean;
   /** Vertices per face, for polygon input (absent or null: every face is a triangle, as readMesh gives it). */
   faceSizes?: Uint32Array | number[] | null;
 }

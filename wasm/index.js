@@ -110,7 +110,7 @@ function requireModule(fn) {
 // The layout names this file uses (see W); a module without one of them is from another build.
 const WIRE_NAMES = {
   option: ['fromX', 'fromY', 'fromZ', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed',
-    'weld', 'weldRelative', 'slots'],
+    'weld', 'weldRelative', 'repair', 'slots'],
   head: ['ok', 'complete', 'hasKernelPoint', 'hasDeepestPoint', 'starShaped', 'numWarnings', 'textBytes', 'numVertexValues',
     'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numBytes', 'words'],
   scalar: ['volume', 'area', 'shapeVolume', 'volumeRatio', 'kernelPoint', 'deepestPoint', 'inscribedRadius', 'stats', 'count'],
@@ -215,6 +215,7 @@ function checkWeld(fn, weld) {
 const JS_WORDS = [
   [/Options::allow_open/g, 'allowOpen: true'],
   [/Options::weld/g, 'weld: true'],
+  [/Options::repair/g, 'repair: true'],
   [/Options::max_faces \/ max_vertices/g, 'options.maxFaces / maxVertices'],
 ];
 const inJsWords = (text) => JS_WORDS.reduce((t, [api, js]) => t.replace(api, js), text);
@@ -242,7 +243,7 @@ function checkOptions(fn, options) {
       out[key] = m;
     }
   }
-  for (const key of ['allowOpen', 'deepestPoint', 'cullFaces']) {
+  for (const key of ['allowOpen', 'deepestPoint', 'cullFaces', 'repair']) {
     if (options[key] != null) {
       if (typeof options[key] !== 'boolean') throw invalid(fn, `options.${key} must be a boolean`);
       out[key] = options[key];
@@ -314,6 +315,7 @@ function writeRequest(m, positions, indices, faceSizes, opts) {
   f64[at + o.seed] = slot(opts.seed);
   f64[at + o.weld] = opts.weld ? opts.weld.distance : NaN;
   f64[at + o.weldRelative] = opts.weld ? Number(opts.weld.relative) : NaN;
+  f64[at + o.repair] = slot(opts.repair);
   f64.set(positions, at + slots);
   const u32 = m.HEAPU32;
   const indexAt = (at + slots + positions.length) * 2;

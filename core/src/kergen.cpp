@@ -17,6 +17,7 @@
 #include "plane_classes.h"
 #include "plane_culling.h"
 #include "polytope.h"
+#include "repair.h"
 #include "step_replay.h"
 #include "tracer.h"
 #include "weld.h"
@@ -65,6 +66,9 @@ const char* warning_kind_name(Warning::Kind k) {
     case Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
     case Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
     case Warning::Kind::VerticesWelded: return "VERTICES_WELDED";
+    case Warning::Kind::DuplicateFacesRemoved: return "DUPLICATE_FACES_REMOVED";
+    case Warning::Kind::CancellingFacesRemoved: return "CANCELLING_FACES_REMOVED";
+    case Warning::Kind::TJunctionsSplit: return "T_JUNCTIONS_SPLIT";
   }
   return "UNKNOWN";
 }
@@ -123,14 +127,18 @@ bool weldable(const MeshView& m) {
   return true;
 }
 
-// prepare_mesh after Options::weld: the welded input's prepared mesh, the weld reported first
-// among its warnings and its dropped faces counted with the input's.
-PreparedMesh prepare_welded(const MeshView& mesh, const Options& options) {
-  if (!(options.weld >= 0) || !weldable(mesh)) return prepare_mesh(mesh, options);
-  const WeldResult w = weld_vertices(mesh, options.weld, options.weld_relative);
+// prepare_mesh after Options::weld and Options::repair: the prepared mesh of the welded (and
+// repaired) input, what was done reported first among its warnings and the dropped faces
+// counted with the input's.
+PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
+  const bool weld = options.weld >= 0;
+  if ((!weld && !options.repair) || !weldable(mesh)) return prepare_mesh(mesh, options);
+  WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
+  RepairCounts repaired;
+  if (options.repair) repaired = repair_mesh(w.mesh);
   PreparedMesh m = prepare_mesh(w.mesh.view(), options);
-  m.input_faces += w.dropped_faces;
-  m.dropped_faces += w.dropped_faces;
+  m.input_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
+  m.dropped_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   // The merged vertices are no face's any more: only the input's own unused ones are reported.
   for (size_t i = 0; i < m.warnings.size(); ++i)
     if (m.warnings[i].kind == Warning::Kind::UnusedVertices) {
@@ -143,13 +151,26 @@ PreparedMesh prepare_welded(const MeshView& mesh, const Options& options) {
       }
       break;
     }
+  std::vector<Warning> done;
   if (w.merged_vertices || w.dropped_faces) {
     char tolerance[32];
     std::snprintf(tolerance, sizeof tolerance, "%.3g", w.tolerance);
     std::string message = std::to_string(w.merged_vertices) + " vertices were merged into others within " + tolerance;
     if (w.dropped_faces) message += ", and " + std::to_string(w.dropped_faces) + " faces that collapsed were dropped";
-    m.warnings.insert(m.warnings.begin(), Warning{Warning::Kind::VerticesWelded, w.merged_vertices, message});
+    done.push_back({Warning::Kind::VerticesWelded, w.merged_vertices, message});
   }
+  if (repaired.duplicate_faces)
+    done.push_back({Warning::Kind::DuplicateFacesRemoved, repaired.duplicate_faces,
+                    std::to_string(repaired.duplicate_faces) + " faces repeating another face were removed"});
+  if (repaired.cancelling_faces)
+    done.push_back({Warning::Kind::CancellingFacesRemoved, repaired.cancelling_faces,
+                    std::to_string(repaired.cancelling_faces) +
+                        " faces were removed in pairs of opposite orientation on the same corners"});
+  if (repaired.t_junctions)
+    done.push_back({Warning::Kind::TJunctionsSplit, repaired.t_junctions,
+                    std::to_string(repaired.t_junctions) +
+                        " vertices lying on the edge of another face were inserted into it (T-junctions split)"});
+  m.warnings.insert(m.warnings.begin(), done.begin(), done.end());
   return m;
 }
 
@@ -171,7 +192,7 @@ struct Setup {
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
   report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
-  s.mesh = prepare_welded(mesh, options);
+  s.mesh = prepare_input(mesh, options);
   stats.input_vertices = mesh.num_vertices;
   stats.input_faces = s.mesh.input_faces;
   stats.dropped_faces = s.mesh.dropped_faces;
@@ -395,7 +416,7 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
 
 Validation validate_mesh(const MeshView& mesh, const Options& options) {
   Validation v;
-  PreparedMesh m = prepare_welded(mesh, options);
+  PreparedMesh m = prepare_input(mesh, options);
   v.error = m.error;
   v.message = m.message;
   v.warnings = m.warnings;

@@ -1100,7 +1100,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   if (nonmanifold) {
     return fail(m, Error::NonManifoldEdge,
                 std::to_string(nonmanifold) + " edge(s) are shared by more than two faces, e.g. edge " +
-                    edge_name(nonmanifold_ex));
+                    edge_name(nonmanifold_ex) + " (repeated faces? Options::repair removes them)");
   }
   if (inconsistent) {
     return fail(m, Error::InconsistentOrientation,
@@ -1113,7 +1113,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     return fail(m, Error::OpenMesh,
                 "the mesh is open: " + std::to_string(open) + " edge(s) belong to one face only, e.g. edge " +
                     edge_name(open_ex) +
-                    " (Options::weld merges nearly coincident vertices; Options::allow_open accepts open meshes)");
+                    " (Options::weld merges nearly coincident vertices, Options::repair also splits T-junctions; "
+                    "Options::allow_open accepts open meshes)");
   }
   m.boundary_edges = open;
   // Faces joined by boundary edges only are joined through vertices for the component count.

@@ -53,8 +53,10 @@ function runPackage(file) {
 
 // Each front end names the options a message suggests in its own words (CLI flags, JS option
 // names); the rest of the message is the core's and must be the same.
-const cliWords = (m) => m.replaceAll('--weld', '<weld>').replaceAll('--allow-open', '<allowOpen>');
-const jsWords = (m) => m.replaceAll('weld: true', '<weld>').replaceAll('allowOpen: true', '<allowOpen>');
+const cliWords = (m) =>
+  m.replaceAll('--weld', '<weld>').replaceAll('--allow-open', '<allowOpen>').replaceAll('--repair', '<repair>');
+const jsWords = (m) =>
+  m.replaceAll('weld: true', '<weld>').replaceAll('allowOpen: true', '<allowOpen>').replaceAll('repair: true', '<repair>');
 
 // Differences between the CLI's and the package's outcome for one file ('' when they agree).
 function compareOutcome(file) {

@@ -61,3 +61,15 @@ test('bad weld values are INVALID_ARGUMENT', async () => {
   const off = await K.computeKernel(sphere.positions, sphere.indices, { weld: false });
   assert.equal(off.warnings.length, 0);
 });
+
+test('repair: true splits T-junctions: the box whose bottom is two squares gets its kernel', async () => {
+  // [0,2]x[0,1]x[0,1]; (1,0,0) and (1,1,0) lie inside the bottom edges of the front and back quads.
+  const positions = new Float64Array([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]);
+  const indices = new Uint32Array([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]);
+  const faceSizes = new Uint32Array([4, 4, 4, 4, 4, 4, 4]);
+  await assert.rejects(K.computeKernel(positions, indices, { faceSizes }), (e) => e.code === 'OPEN_MESH' && /repair: true/.test(e.message));
+  const r = await K.computeKernel(positions, indices, { faceSizes, repair: true });
+  assert.equal(r.status, 'POLYHEDRON');
+  assert.equal(r.volume, 2);
+  assert.equal(r.warnings.find((w) => w.kind === 'T_JUNCTIONS_SPLIT').count, 2);
+});

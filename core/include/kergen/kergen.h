@@ -170,6 +170,13 @@ struct Options {
   // than three corners is not welded: validation reports that as given.
   double weld = -1;
   bool weld_relative = false;
+  // Repair what leaves a well-defined solid refused, before validation (reported as warnings with
+  // counts): vertices are welded (within `weld` when it is set, else at equal positions), faces
+  // repeating another's corner cycle are removed (copies: one is kept; a pair of opposite
+  // orientations: both go), and T-junctions are split (a vertex lying exactly inside an edge
+  // that one face uses, whose neighbours use its two halves, is inserted into that face's loop).
+  // What is still open or non-manifold afterwards is refused as before.
+  bool repair = false;
 };
 
 struct Warning {
@@ -179,6 +186,9 @@ struct Warning {
     NonPlanarFacesSplit,     // polygons whose vertices are not coplanar were split into triangles
     UnusedVertices,          // vertices not referenced by any face
     VerticesWelded,          // Options::weld merged vertices (count) and dropped collapsed faces
+    DuplicateFacesRemoved,   // Options::repair removed copies of faces
+    CancellingFacesRemoved,  // Options::repair removed pairs of faces of opposite orientation
+    TJunctionsSplit,         // Options::repair inserted vertices lying on edges into their faces
   };
   Kind kind;
   size_t count;
