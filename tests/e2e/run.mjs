@@ -22,6 +22,7 @@ import { SAMPLES, sampleById } from '../../web/samples.js';
 import { checkSamples, expectedKernel } from './samples-check.mjs';
 import { serve, writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
+import { writeThreeApp, runThreeApp } from './three-app.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -772,6 +773,32 @@ async function themeAndBigFile(page, tmp, served) {
   });
 }
 
+// A fresh three.js app (tests/e2e/three-app.mjs) built with Vite against the package: the input
+// mesh still renders after KernelWorker computed its kernel (its arrays were copied, not
+// detached), no GL error, the kernel drawn, and a wrong wasmUrl reported with its HTTP status.
+async function threeAppTest(context, tmp) {
+  await test('three.js app: the input mesh renders after the worker call, the kernel is drawn, a 404 wasmUrl says HTTP 404', async () => {
+    const app = path.join(tmp, 'three-app');
+    fs.mkdirSync(path.join(app, 'node_modules'), { recursive: true });
+    fs.symlinkSync(repo, path.join(app, 'node_modules', 'kergen-wasm'), 'dir');
+    fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
+    writeThreeApp(app);
+    const vite = await import('vite');
+    await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true } });
+    const r = await runThreeApp(context, path.join(app, 'dist'));
+    assert(!r.error, `the app failed: ${r.error}`);
+    assert(r.errors.length === 0, r.errors.join(' | '));
+    assert(r.before[0] > 200 && r.before[1] < 50, `the red sphere is drawn before the call: ${r.before}`);
+    assert(JSON.stringify(r.after) === JSON.stringify(r.before), `the same pixel after the worker calls: ${r.after} vs ${r.before}`);
+    assert(r.glErrorAfterInput === 0 && r.glError === 0, `GL errors ${r.glErrorAfterInput}, ${r.glError}`);
+    assert(r.sameArrays && r.lengths[0] === 3 * 33 * 17 && r.lengths[1] > 0, `the geometry keeps its arrays: ${r.lengths}`);
+    assert(r.status === 'POLYHEDRON' && r.rawStatus === 'POLYHEDRON', `statuses ${r.status}, ${r.rawStatus}`);
+    assert(Math.abs(r.volume - r.rawVolume) <= 1e-12 * r.volume && r.volume > 3.9 && r.volume < 4.19, `volumes ${r.volume}, ${r.rawVolume}`);
+    assert(r.kernelPixel[1] > 200 && r.kernelPixel[0] < 50 && r.kernelTriangles > 100 && r.kernelEdges > 100, `the kernel is drawn: ${r.kernelPixel}`);
+    assert(/^WASM_LOAD_FAILED: .*\/no-such-dir\/kergen\.wasm: HTTP 404/.test(r.wasm404 ?? ''), `404 message: ${r.wasm404}`);
+  });
+}
+
 async function main() {
   fs.mkdirSync(artifacts, { recursive: true });
   const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-e2e-'));
@@ -812,6 +839,7 @@ async function main() {
     await exportAndDrop(page, tmp);
     await cancelTest(page, tmp);
     await themeAndBigFile(page, tmp, served);
+    await threeAppTest(context, tmp);
 
     await test('no uncaught errors or console errors in the page', async () => {
       assert(pageErrors.length === 0, pageErrors.slice(0, 5).join(' | '));
