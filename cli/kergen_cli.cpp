@@ -22,6 +22,7 @@
 #include <string>
 #include <system_error>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "kergen/io.h"
@@ -34,6 +35,7 @@ namespace fs = std::filesystem;
 const char* const kUsage =
     "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
     "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
+    "                      [--weld [EPS]] [--weld-relative R]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -48,6 +50,9 @@ const char* const kUsage =
     "                  output is the same as with --jobs 1, in input order\n"
     "  --no-cull-faces keep every face's plane (the same kernel; distinct_planes then counts all)\n"
     "  --seed N        order of the LP's constraints (the results do not depend on it)\n"
+    "  --weld [EPS]    merge vertices closer than EPS (default: 1e-9 of the bounding box\n"
+    "                  diagonal) before validation: closes triangle soups and seams\n"
+    "  --weld-relative R  merge vertices closer than R times the bounding box diagonal\n"
     "Exit code: 0 all meshes processed, 1 some mesh had an input error, 2 usage error.\n";
 
 struct Arguments {
@@ -61,6 +66,19 @@ struct Arguments {
 [[noreturn]] void usage_error(const std::string& reason) {
   std::fprintf(stderr, "kergen: %s\n\n%s", reason.c_str(), kUsage);
   std::exit(2);
+}
+
+// --weld without a distance: vertices within this fraction of the bounding box diagonal merge.
+constexpr double kDefaultRelativeWeld = 1e-9;
+
+// The core's messages name options as the C++ API does (Options::field); the CLI names its flags.
+std::string in_cli_words(std::string text) {
+  static const std::pair<const char*, const char*> kWords[] = {{"Options::allow_open", "--allow-open"},
+                                                               {"Options::weld", "--weld"}};
+  for (const auto& [api, flag] : kWords)
+    for (size_t at = text.find(api); at != std::string::npos; at = text.find(api, at + std::strlen(flag)))
+      text.replace(at, std::strlen(api), flag);
+  return text;
 }
 
 bool parse_number(const std::string& text, double& out) {
@@ -93,6 +111,25 @@ Arguments parse_arguments(int argc, char** argv) {
         usage_error("output '" + args.output + "' must end in .obj, .off or .stl");
     } else if (arg == "--json") {
       args.json = true;
+    } else if (arg == "--weld") {
+      // An optional distance: the next argument when it is a number (else the default, relative).
+      double eps = 0;
+      if (i + 1 < argc && parse_number(argv[i + 1], eps)) {
+        if (eps < 0) usage_error("--weld needs a non-negative distance, got '" + std::string(argv[i + 1]) + "'");
+        ++i;
+        args.options.weld = eps;
+        args.options.weld_relative = false;
+      } else {
+        args.options.weld = kDefaultRelativeWeld;
+        args.options.weld_relative = true;
+      }
+    } else if (arg == "--weld-relative") {
+      const std::string text = value();
+      double r = 0;
+      if (!parse_number(text, r) || r < 0)
+        usage_error("--weld-relative needs a non-negative number, got '" + text + "'");
+      args.options.weld = r;
+      args.options.weld_relative = true;
     } else if (arg == "--allow-open") {
       args.options.allow_open = true;
     } else if (arg == "--deepest") {
@@ -334,7 +371,7 @@ MeshOutcome process(const std::string& file, const Arguments& args) {
   m.kernel = kergen::compute_kernel(read.mesh.view(), args.options);
   m.ms_total = milliseconds_since(start);
   m.error = m.kernel.error;
-  m.message = m.kernel.message;
+  m.message = in_cli_words(m.kernel.message);
   if (m.ok() && !args.output.empty()) {
     std::string write_message;
     if (kergen::write_mesh_file(args.output, kergen::kernel_mesh(m.kernel), &write_message) != kergen::Error::Ok) {

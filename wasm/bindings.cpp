@@ -53,7 +53,7 @@ namespace {
 // clang-format off
 #define KERGEN_OPTION_SLOTS(X) \
   X(fromX) X(fromY) X(fromZ) X(maxSteps) X(allowOpen) X(deepestPoint) X(maxFaces) X(maxVertices) \
-  X(cullFaces) X(seed)
+  X(cullFaces) X(seed) X(weld) X(weldRelative)
 // clang-format on
 enum Option : uint32_t {
 #define KERGEN_ENUM(name) kOpt_##name,
@@ -237,6 +237,8 @@ kergen::Options read_options(uintptr_t request) {
   if (!std::isnan(slot[kOpt_maxVertices])) o.max_vertices = static_cast<size_t>(slot[kOpt_maxVertices]);
   if (!std::isnan(slot[kOpt_cullFaces])) o.cull_faces = slot[kOpt_cullFaces] != 0;
   if (!std::isnan(slot[kOpt_seed])) o.seed = static_cast<uint64_t>(slot[kOpt_seed]);
+  if (!std::isnan(slot[kOpt_weld])) o.weld = slot[kOpt_weld];
+  if (!std::isnan(slot[kOpt_weldRelative])) o.weld_relative = slot[kOpt_weldRelative] != 0;
   return o;
 }
 

@@ -121,12 +121,22 @@ export interface KernelOptions {
   cullFaces?: boolean;
   /** Order of the LP's constraints (a non-negative safe integer; results do not depend on it). */
   seed?: number;
+  /**
+   * Merge vertices closer than a tolerance before validation, so that a triangle soup (an
+   * unindexed STL, a three.js geometry) or a mesh whose seams differ by rounding becomes the
+   * closed surface it describes: `true` (within 1e-9 of the bounding box diagonal), a distance
+   * in the input's units (0: only vertices at exactly one position), or `{ relative: r }` (r
+   * times the diagonal). Groups merge transitively into their lowest-indexed vertex (its input
+   * position is kept); faces left with fewer than three corners are dropped. Reported as a
+   * `VERTICES_WELDED` warning. Default: off.
+   */
+  weld?: boolean | number | { relative: number };
   /** Vertices per face, for polygon input (absent or null: every face is a triangle, as readMesh gives it). */
   faceSizes?: Uint32Array | readonly number[] | null;
 }
 
 export interface KernelWarning {
-  /** 'ORIENTATION_FLIPPED' | 'DEGENERATE_FACES_DROPPED' | 'NON_PLANAR_FACES_SPLIT' | 'UNUSED_VERTICES' */
+  /** 'ORIENTATION_FLIPPED' | 'DEGENERATE_FACES_DROPPED' | 'NON_PLANAR_FACES_SPLIT' | 'UNUSED_VERTICES' | 'VERTICES_WELDED' */
   kind: string;
   count: number;
   message: string;

@@ -126,7 +126,8 @@ function requireModule(fn) {
 
 // The layout names this file uses (see W); a module without one of them is from another build.
 const WIRE_NAMES = {
-  option: ['fromX', 'fromY', 'fromZ', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'slots'],
+  option: ['fromX', 'fromY', 'fromZ', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed',
+    'weld', 'weldRelative', 'slots'],
   head: ['ok', 'complete', 'hasKernelPoint', 'hasDeepestPoint', 'starShaped', 'numWarnings', 'textBytes', 'numVertexValues',
     'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numBytes', 'words'],
   scalar: ['volume', 'area', 'shapeVolume', 'volumeRatio', 'kernelPoint', 'deepestPoint', 'inscribedRadius', 'stats', 'count'],
@@ -216,6 +217,25 @@ function checkMesh(fn, positions, indices, faceSizes) {
   }
 }
 
+// weld: true (DEFAULT_RELATIVE_WELD of the bounding box diagonal), a distance, or { relative: r }.
+const DEFAULT_RELATIVE_WELD = 1e-9;
+function checkWeld(fn, weld) {
+  const ok = (x) => typeof x === 'number' && Number.isFinite(x) && x >= 0;
+  if (weld === true) return { distance: DEFAULT_RELATIVE_WELD, relative: true };
+  if (ok(weld)) return { distance: weld, relative: false };
+  if (weld !== null && typeof weld === 'object' && ok(weld.relative)) return { distance: weld.relative, relative: true };
+  throw invalid(fn, 'options.weld must be true, a non-negative distance or { relative: r } with r >= 0');
+}
+
+// The core's messages name options as the C++ API does (Options::field); this package names its
+// own options.
+const JS_WORDS = [
+  [/Options::allow_open/g, 'allowOpen: true'],
+  [/Options::weld/g, 'weld: true'],
+  [/Options::max_faces \/ max_vertices/g, 'options.maxFaces / maxVertices'],
+];
+const inJsWords = (text) => JS_WORDS.reduce((t, [api, js]) => t.replace(api, js), text);
+
 function checkOptions(fn, options) {
   if (options === undefined || options === null) return {};
   if (typeof options !== 'object') throw invalid(fn, 'options must be an object');
@@ -245,6 +265,7 @@ function checkOptions(fn, options) {
       out[key] = options[key];
     }
   }
+  if (options.weld != null && options.weld !== false) out.weld = checkWeld(fn, options.weld);
   if (options.onStep != null && typeof options.onStep !== 'function') throw invalid(fn, 'options.onStep must be a function');
   if (options.onProgress != null && typeof options.onProgress !== 'function') throw invalid(fn, 'options.onProgress must be a function');
   if (options.faceSizes != null && !(options.faceSizes instanceof Uint32Array || Array.isArray(options.faceSizes))) {
@@ -254,7 +275,7 @@ function checkOptions(fn, options) {
 }
 
 function throwIfError(raw) {
-  if (raw.error !== undefined) throw new KergenError(raw.error, raw.message || raw.error);
+  if (raw.error !== undefined) throw new KergenError(raw.error, inJsWords(raw.message || raw.error));
 }
 
 // Calls into wasm; a trap (not a user error) leaves the instance unusable, so drop it and
@@ -308,6 +329,8 @@ function writeRequest(m, positions, indices, faceSizes, opts) {
   f64[at + o.maxVertices] = slot(opts.maxVertices);
   f64[at + o.cullFaces] = slot(opts.cullFaces);
   f64[at + o.seed] = slot(opts.seed);
+  f64[at + o.weld] = opts.weld ? opts.weld.distance : NaN;
+  f64[at + o.weldRelative] = opts.weld ? Number(opts.weld.relative) : NaN;
   f64.set(positions, at + slots);
   const u32 = m.HEAPU32;
   const indexAt = (at + slots + positions.length) * 2;

@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "deepest_point.h"
@@ -17,6 +18,7 @@
 #include "polytope.h"
 #include "step_replay.h"
 #include "tracer.h"
+#include "weld.h"
 
 namespace kergen {
 
@@ -60,6 +62,7 @@ const char* warning_kind_name(Warning::Kind k) {
     case Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
     case Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
     case Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
+    case Warning::Kind::VerticesWelded: return "VERTICES_WELDED";
   }
   return "UNKNOWN";
 }
@@ -98,6 +101,56 @@ void report(const Options& options, Progress::Phase phase, size_t count) {
   if (options.on_progress) options.on_progress(Progress{phase, count});
 }
 
+// Whether Options::weld can run on the input as given: finite coordinates, indices in range,
+// face sizes that add up, no face of fewer than three corners. Otherwise validation reports the
+// input's defect as given (welding would hide or change it).
+bool weldable(const MeshView& m) {
+  if (m.num_vertices == 0 || (m.face_sizes == nullptr && m.num_indices % 3 != 0)) return false;
+  for (size_t i = 0; i < 3 * m.num_vertices; ++i)
+    if (!std::isfinite(m.positions[i])) return false;
+  for (size_t i = 0; i < m.num_indices; ++i)
+    if (m.indices[i] >= m.num_vertices) return false;
+  if (m.face_sizes) {
+    size_t sum = 0;
+    for (size_t f = 0; f < m.num_faces; ++f) {
+      if (m.face_sizes[f] < 3) return false;
+      sum += m.face_sizes[f];
+    }
+    if (sum != m.num_indices) return false;
+  }
+  return true;
+}
+
+// prepare_mesh after Options::weld: the welded input's prepared mesh, the weld reported first
+// among its warnings and its dropped faces counted with the input's.
+PreparedMesh prepare_welded(const MeshView& mesh, const Options& options) {
+  if (!(options.weld >= 0) || !weldable(mesh)) return prepare_mesh(mesh, options);
+  const WeldResult w = weld_vertices(mesh, options.weld, options.weld_relative);
+  PreparedMesh m = prepare_mesh(w.mesh.view(), options);
+  m.input_faces += w.dropped_faces;
+  m.dropped_faces += w.dropped_faces;
+  // The merged vertices are no face's any more: only the input's own unused ones are reported.
+  for (size_t i = 0; i < m.warnings.size(); ++i)
+    if (m.warnings[i].kind == Warning::Kind::UnusedVertices) {
+      const size_t unused = m.warnings[i].count - std::min(m.warnings[i].count, w.merged_vertices);
+      if (unused == 0) {
+        m.warnings.erase(m.warnings.begin() + long(i));
+      } else {
+        m.warnings[i].count = unused;
+        m.warnings[i].message = std::to_string(unused) + " vertices are not used by any face";
+      }
+      break;
+    }
+  if (w.merged_vertices || w.dropped_faces) {
+    char tolerance[32];
+    std::snprintf(tolerance, sizeof tolerance, "%.3g", w.tolerance);
+    std::string message = std::to_string(w.merged_vertices) + " vertices were merged into others within " + tolerance;
+    if (w.dropped_faces) message += ", and " + std::to_string(w.dropped_faces) + " faces that collapsed were dropped";
+    m.warnings.insert(m.warnings.begin(), Warning{Warning::Kind::VerticesWelded, w.merged_vertices, message});
+  }
+  return m;
+}
+
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
@@ -116,7 +169,7 @@ struct Setup {
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
   report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
-  s.mesh = prepare_mesh(mesh, options);
+  s.mesh = prepare_welded(mesh, options);
   stats.input_vertices = mesh.num_vertices;
   stats.input_faces = s.mesh.input_faces;
   stats.dropped_faces = s.mesh.dropped_faces;
@@ -314,7 +367,7 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
 
 Validation validate_mesh(const MeshView& mesh, const Options& options) {
   Validation v;
-  PreparedMesh m = prepare_mesh(mesh, options);
+  PreparedMesh m = prepare_welded(mesh, options);
   v.error = m.error;
   v.message = m.message;
   v.warnings = m.warnings;

@@ -1112,7 +1112,8 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
   if (open && !options.allow_open) {
     return fail(m, Error::OpenMesh,
                 "the mesh is open: " + std::to_string(open) + " edge(s) belong to one face only, e.g. edge " +
-                    edge_name(open_ex) + " (Options::allow_open accepts open meshes)");
+                    edge_name(open_ex) +
+                    " (Options::weld merges nearly coincident vertices; Options::allow_open accepts open meshes)");
   }
   m.boundary_edges = open;
   // Faces joined by boundary edges only are joined through vertices for the component count.
@@ -1130,9 +1131,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
     }
     const size_t pieces = cf - unions;
     if (pieces > 1) {
-      return fail(
-          m, Error::MultipleComponents,
-          "the mesh has " + std::to_string(pieces) + " separate pieces; the kernel is defined for one closed surface");
+      return fail(m, Error::MultipleComponents,
+                  "the mesh has " + std::to_string(pieces) +
+                      " separate pieces; the kernel is defined for one closed surface (a triangle soup? Options::weld "
+                      "merges its corners)");
     }
   }
   double lo3[3], hi3[3];  // bounding box of the used vertices, taken with the check below

@@ -332,6 +332,31 @@ TEST_F(CliTest, NoCullFacesAndSeedKeepTheKernel) {
   EXPECT_EQ(json_raw(seeded.out, "kernel_point"), json_raw(plain.out, "kernel_point"));
 }
 
+// --weld closes a triangle soup; without it the message names the CLI's flags, not the C++ API.
+TEST_F(CliTest, WeldClosesASoupAndOpenMeshesNameTheFlags) {
+  kergen::Mesh cube = kergen_test::unit_cube(), soup;
+  for (uint32_t v : cube.indices) {
+    for (int k = 0; k < 3; ++k)
+      soup.positions.push_back(cube.positions[3 * v + k] + (soup.indices.size() % 2 ? 1e-12 : 0));
+    soup.indices.push_back(uint32_t(soup.indices.size()));
+  }
+  const std::string path = (dir_ / "soup.off").string();
+  std::string message;
+  ASSERT_EQ(kergen::write_mesh_file(path, soup, &message), kergen::Error::Ok) << message;
+  const CliRun open = run(shell_quote(path));
+  EXPECT_EQ(open.exit_code, 1);
+  EXPECT_TRUE(has(open.err, "--weld") && has(open.err, "--allow-open")) << open.err;
+  EXPECT_FALSE(has(open.err, "Options::")) << open.err;
+  for (const std::string& flags :
+       {std::string("--weld"), std::string("--weld 1e-9"), std::string("--weld-relative 1e-6")}) {
+    const CliRun r = run("--json " + flags + " " + shell_quote(path));
+    ASSERT_EQ(r.exit_code, 0) << flags << ": " << r.err;
+    EXPECT_EQ(json_raw(r.out, "status"), "POLYHEDRON") << flags;
+    EXPECT_TRUE(has(r.out, "VERTICES_WELDED")) << flags;
+  }
+  EXPECT_EQ(run("--weld-relative -1 " + shell_quote(path)).exit_code, 2);
+}
+
 TEST_F(CliTest, JobsNeedsAPositiveCount) {
   for (const std::string& value : {"0", "-1", "two", "", "1025"}) {
     CliRun r = run("x.off --jobs " + shell_quote(value));

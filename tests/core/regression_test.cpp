@@ -982,8 +982,8 @@ TEST(RegressionValidation, OpenMeshNamesTheSmallestBoundaryEdge) {
   const kergen::Kernel k = validate(m);
   EXPECT_EQ(k.error, kergen::Error::OpenMesh);
   EXPECT_EQ(k.message,
-            "the mesh is open: 6 edge(s) belong to one face only, e.g. edge (0, 1) (Options::allow_open accepts open "
-            "meshes)");
+            "the mesh is open: 6 edge(s) belong to one face only, e.g. edge (0, 1) (Options::weld merges nearly "
+            "coincident vertices; Options::allow_open accepts open meshes)");
 }
 
 TEST(RegressionValidation, InconsistentOrientationNamesTheSmallestEdge) {

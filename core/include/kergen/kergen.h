@@ -155,6 +155,18 @@ struct Options {
   // kernel of a sample of faces strictly) before coplanar faces are merged into planes. The
   // kernel is the same either way; off, Stats::distinct_planes counts the planes of every face.
   bool cull_faces = true;
+  // Merge vertices closer than `weld` (Euclidean distance, in the input's units; with
+  // weld_relative, in units of the input's bounding box diagonal) before validation, so that a
+  // triangle soup (an unindexed STL, a three.js geometry) or a mesh whose seams were written
+  // with slightly different coordinates becomes the closed surface it describes. Vertices merge
+  // transitively (a chain of close vertices becomes one), each group into its lowest-indexed
+  // vertex, whose input position it keeps (no coordinate is computed: exactness downstream is
+  // unaffected); faces left with fewer than three distinct corners are dropped. Reported as
+  // Warning::Kind::VerticesWelded. Negative (the default): off; 0: only vertices at exactly the
+  // same position. An input with non-finite coordinates, indices out of range or faces of fewer
+  // than three corners is not welded: validation reports that as given.
+  double weld = -1;
+  bool weld_relative = false;
 };
 
 struct Warning {
@@ -163,6 +175,7 @@ struct Warning {
     DegenerateFacesDropped,  // zero-area faces (exactly collinear vertices) were ignored
     NonPlanarFacesSplit,     // polygons whose vertices are not coplanar were split into triangles
     UnusedVertices,          // vertices not referenced by any face
+    VerticesWelded,          // Options::weld merged vertices (count) and dropped collapsed faces
   };
   Kind kind;
   size_t count;

@@ -1,0 +1,27 @@
+// Welding: merging vertices closer than a tolerance (Options::weld) before validation, so that
+// a triangle soup (an unindexed STL, a three.js geometry) or a mesh whose seams were written with
+// slightly different coordinates becomes the closed surface it describes.
+#pragma once
+
+#include <cstddef>
+
+#include "kergen/kergen.h"
+
+namespace kergen {
+
+struct WeldResult {
+  Mesh mesh;                   // the welded mesh: the input's positions, faces renumbered
+  size_t merged_vertices = 0;  // vertices that took another's place
+  size_t dropped_faces = 0;    // faces left with fewer than three distinct corners
+  double tolerance = 0;        // the distance used (absolute)
+};
+
+// Vertices within `tolerance` of each other (Euclidean; relative: in units of the bounding box
+// diagonal) are merged transitively, each group into its lowest-indexed vertex, whose input
+// position it keeps (no coordinate is computed, so exactness downstream is unaffected). Equal
+// consecutive corners of a face collapse into one. `mesh` must have finite coordinates and
+// indices in range (checked by the caller). Expected O(n) (a hash grid of cells of the
+// tolerance's size).
+WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative);
+
+}  // namespace kergen
