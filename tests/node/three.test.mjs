@@ -146,7 +146,7 @@ test('BoxGeometry (24 vertices, 4 per face): the box itself', async () => {
   await checkGeometry('box', new THREE.BoxGeometry(1, 2, 3), { status: 'POLYHEDRON', volume: 6 });
 });
 
-test('STLLoader (non-indexed, a normal per corner): the same kernel as readMesh + computeKernel on the same bytes', async () => {
+test('STLLoader (non-indexed, a normal per corner): the same kernel as readMesh + computeKernel (weld) on the same bytes', async () => {
   const source = new THREE.Mesh(new THREE.SphereGeometry(2, 16, 10));
   const bytes = new STLExporter().parse(source, { binary: true });
   const stlBuffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
@@ -154,9 +154,19 @@ test('STLLoader (non-indexed, a normal per corner): the same kernel as readMesh 
   assert.equal(geometry.index, null);
   const r = await checkGeometry('stl', geometry, { status: 'POLYHEDRON' });
   const read = await K.readMesh(new Uint8Array(stlBuffer), { name: 'sphere.stl' });
-  const core = await K.computeKernel(read.positions, read.indices);
+  // readMesh merges equal corners; the seam's corners differ by float32 rounding (sin 2π ≠ 0),
+  // which only the weld closes.
+  await assert.rejects(K.computeKernel(read.positions, read.indices), (e) => e.code === 'OPEN_MESH' && /weld: true/.test(e.message));
+  const core = await K.computeKernel(read.positions, read.indices, { weld: true });
   assert.equal(r.status, core.status);
-  assert.equal(r.volume, core.volume, 'readMesh welds STL corners exactly: the same mesh, the same kernel');
+  assert.equal(r.volume, core.volume, 'the same welded mesh, the same kernel');
+  if (fs.existsSync(nativeCli)) {
+    const file = path.join(tmp, 'sphere.stl');
+    fs.writeFileSync(file, new Uint8Array(stlBuffer));
+    const n = JSON.parse(execFileSync(nativeCli, ['--json', '--weld', '--', file], { encoding: 'utf8' }).split('\n').find((l) => l.startsWith('{')));
+    assert.equal(n.status, r.status, 'kergen --weld: the same status');
+    assert.ok(Math.abs(n.volume - r.volume) <= 1e-12 * r.volume, `kergen --weld: volume ${n.volume} vs ${r.volume}`);
+  }
 });
 
 test('a non-indexed Float64 geometry whose seam is 1e-12 apart: welded (relative 1e-9), the kernel of the closed mesh', async () => {
@@ -245,9 +255,10 @@ test('kernelToGeometry: flat-shaded faces (corners per face, outward unit normal
   const line = new THREE.LineSegments(edges);
   assert.equal(line.geometry.index.count / 2, 12);
 
-  const flat = K.computeKernelSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2, 0, 2, 1], { allowOpen: true });
-  const g = T.kernelToGeometry(flat);
-  assert.equal(g.mesh.attributes.position.count, flat.faceIndices.length, `a ${flat.status} kernel gives its faces too`);
+  const empty = await T.computeKernelOfGeometry(new THREE.TorusKnotGeometry(1, 0.3, 64, 8));
+  const g = T.kernelToGeometry(empty);
+  assert.equal(empty.status, 'EMPTY');
+  assert.ok(g.mesh.attributes.position.count === 0 && g.mesh.index.count === 0 && g.edges.index.count === 0, 'an empty kernel gives empty geometries');
   assert.throws(() => T.kernelToGeometry({}), (e) => e.code === 'INVALID_ARGUMENT' && /must be a kernel result/.test(e.message));
 });
 

@@ -19,7 +19,7 @@ import { KernelWorker as PlainWorker } from 'kergen-wasm/worker';
 
 async function three(): Promise<void> {
   const sphere = new THREE.SphereGeometry(1, 32, 16);
-  const options: GeometryKernelOptions = { from: [0, 0, 0], deepestPoint: true };
+  const options: GeometryKernelOptions = { from: [0, 0, 0], deepestPoint: true, weld: { relative: 1e-8 } };
   const k: KernelResult = await computeKernelOfGeometry(sphere, options);
   const { mesh, edges }: KernelGeometries = kernelToGeometry(k);
   const scene = new THREE.Scene();
@@ -30,7 +30,7 @@ async function three(): Promise<void> {
   const objMesh = group.children[0] as THREE.Mesh;
   const worker = new KernelWorker({ wasmUrl: '/kergen.wasm' });
   const fromWorker: KernelResult = await worker.computeGeometry(stl, { onProgress: (p) => void p.phase, onStep: (e) => e.type !== 'face' });
-  const fromObj = await worker.computeGeometry(objMesh.geometry);
+  const fromObj = await worker.computeGeometry(objMesh.geometry, { weld: 1e-6 });
   const knot = await computeKernelOfGeometry(new THREE.TorusKnotGeometry());
   void [fromWorker.volume, fromObj.status, knot.status];
   // KernelWorker from kergen-wasm/three is the worker helper, with the plain compute too.
