@@ -203,8 +203,9 @@ export class KernelWorker {
   /**
    * Reads a mesh file (OFF, OBJ, STL, PLY: the package's readMesh) and computes its kernel, both
    * in the worker. `bytes` (ArrayBuffer or Uint8Array, e.g. from `file.arrayBuffer()`) is
-   * copied, or transferred with `transfer: true`. Options: format / name (as readMesh: the format is taken from
-   * the name's extension or the content; the name appears in parse errors), the compute options,
+   * copied, or transferred with `transfer: true`. Options: format / name (as readMesh: the format
+   * is taken from the name's extension or the content; the name appears in parse errors), the
+   * compute options,
    * onProgress (phases 'loading', 'reading' with `bytes`, then the core's 'validating', 'planes',
    * 'lp', 'tracing', 'assembling' with `count`, and 'done'), onStep, and onMesh(mesh), called with
    * the parsed mesh before the computation starts (so the input can be drawn meanwhile).
