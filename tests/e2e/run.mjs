@@ -784,7 +784,7 @@ async function threeAppTest(context, tmp) {
     fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
     writeThreeApp(app);
     const vite = await import('vite');
-    await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true } });
+    await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 4000 } });
     const r = await runThreeApp(context, path.join(app, 'dist'));
     assert(!r.error, `the app failed: ${r.error}`);
     assert(r.errors.length === 0, r.errors.join(' | '));
@@ -798,6 +798,42 @@ async function threeAppTest(context, tmp) {
     assert(/^WASM_LOAD_FAILED: .*\/no-such-dir\/kergen\.wasm: HTTP 404/.test(r.wasm404 ?? ''), `404 message: ${r.wasm404}`);
   });
 
+  await test('three.js app under the Vite dev server: without the exclude the worker fails once (no restart loop), with it the app works', async () => {
+    // The package copied (not linked) into node_modules, as npm installs it, so that the dev
+    // server pre-bundles it as it would in a user's project.
+    const app = path.join(tmp, 'three-dev');
+    const pkg = path.join(app, 'node_modules', 'kergen-wasm');
+    fs.mkdirSync(pkg, { recursive: true });
+    for (const f of ['package.json', 'wasm', 'dist']) fs.cpSync(path.join(repo, f), path.join(pkg, f), { recursive: true });
+    fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
+    writeThreeApp(app);
+    const vite = await import('vite');
+    for (const exclude of [false, true]) {
+      const server = await vite.createServer({ root: app, configFile: false, logLevel: 'silent', clearScreen: false,
+        optimizeDeps: exclude ? { exclude: ['kergen-wasm'] } : {}, server: { host: '127.0.0.1', port: 0, strictPort: false } });
+      await server.listen();
+      const page = await context.newPage();
+      const workerLoads = [];
+      page.on('request', (r) => /kergen-worker/.test(r.url()) && workerLoads.push(r.url()));
+      try {
+        await page.goto(server.resolvedUrls.local[0]);
+        await page.waitForFunction(() => document.title === 'done', null, { timeout: 60000 });
+        const r = await page.evaluate(() => window.__result);
+        await new Promise((res) => setTimeout(res, 2000)); // time for a restart loop to show
+        if (!exclude) {
+          assert(/WORKER_ERROR|failed to start/.test(r.error ?? '') && /optimizeDeps\.exclude/.test(r.error), `the call fails with the hint: ${r.error ?? JSON.stringify(r)}`);
+          assert(workerLoads.length === 1, `one worker load, no restart loop: ${workerLoads.length} loads`);
+        } else {
+          assert(!r.error && r.status === 'POLYHEDRON', `with the exclude the app works: ${r.error ?? r.status}`);
+          assert(JSON.stringify(r.after) === JSON.stringify(r.before), 'the input still renders');
+        }
+      } finally {
+        await page.close();
+        await server.close();
+      }
+    }
+  });
+
   await test('three.js: the README\'s smallest app loads an STL and shows its kernel', async () => {
     const app = path.join(tmp, 'readme-app');
     fs.mkdirSync(path.join(app, 'node_modules'), { recursive: true });
@@ -805,7 +841,7 @@ async function threeAppTest(context, tmp) {
     fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
     writeReadmeApp(app, path.join(repo, 'README.md'));
     const vite = await import('vite');
-    await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true } });
+    await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 4000 } });
     // shape.stl: a plus prism, whose kernel (the central cube) is at the view's centre; written by
     // three.js's STLExporter, with face normals, as a real STL has them (lit, the input shows).
     const THREE = await import('three');
