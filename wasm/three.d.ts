@@ -13,7 +13,6 @@ export type { ProgressEvent, WorkerComputeOptions } from './worker.js';
  * triangle) are read; groups, draw range and other attributes are ignored.
  */
 // `any` attributes: a geometry typed with its own attribute map (a loader's, a generator's) fits.
-// eslint-disable-next-line @typescript-eslint/no-explicit-any
 export type GeometryInput = BufferGeometry<any, any>;
 
 /** Options of the geometry functions: computeKernel's, without faceSizes (triangles only). */
