@@ -38,7 +38,9 @@ export type CoreErrorCode =
   /** readMesh: a malformed file; the message is the CLI's, "name:line: reason" (binary: "name: byte N: reason"). */
   | 'PARSE_ERROR'
   /** Coordinates span too many orders of magnitude for exact evaluation (e.g. 1 next to 1e-60). */
-  | 'COORDINATE_RANGE';
+  | 'COORDINATE_RANGE'
+  /** The surface crosses itself (a ray from inside the half-spaces' intersection crosses it more than once). */
+  | 'SELF_INTERSECTION';
 
 /** Every `KergenError.code` this package produces. */
 export type KergenErrorCode =

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "deepest_point.h"
+#include "embedding.h"
 #include "exact/predicates.h"
 #include "face_culling.h"
 #include "lp.h"
@@ -40,6 +41,7 @@ const char* error_name(Error e) {
     case Error::InvalidArgument: return "INVALID_ARGUMENT";
     case Error::CoordinateRange: return "COORDINATE_RANGE";
     case Error::Internal: return "INTERNAL_ERROR";
+    case Error::SelfIntersection: return "SELF_INTERSECTION";
   }
   return "UNKNOWN";
 }
@@ -224,6 +226,31 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_lp += ms_since(t);
 }
 
+// A bounded, full-dimensional kernel is answered only for a surface that does not cross itself
+// (embedding.h): false, with the error set, when it does. Flat kernels and open meshes are not
+// certified (no point of the kernel sees every face strictly from its inner side).
+bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out) {
+  if (s.mesh.boundary_edges > 0 || tr.vertices.size() < 4) return true;
+  for (const TracedVertex& v : tr.vertices)
+    for (uint32_t p : v.tight)
+      if (s.is_box[p]) return true;              // unbounded
+  const PlaneIds& tight = tr.vertices[0].tight;  // flat: a plane and its opposite hold it
+  for (uint32_t p : tight) {
+    const uint32_t o = s.planes->opposite(p);
+    if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) return true;
+  }
+  const EmbeddingCheck check = check_embedding(s.mesh, *s.planes, tr);
+  if (check.outcome != EmbeddingCheck::Outcome::CrossesItself) return true;
+  char point[96];
+  std::snprintf(point, sizeof point, "(%.9g, %.9g, %.9g)", s.mesh.to_input(check.point[0]),
+                s.mesh.to_input(check.point[1]), s.mesh.to_input(check.point[2]));
+  out.error = Error::SelfIntersection;
+  out.message = "the surface crosses itself: a ray from " + std::string(point) +
+                ", a point every face is seen from the inside, crosses it " + std::to_string(check.crossings) +
+                " times (a closed surface that does not cross itself is crossed once)";
+  return false;
+}
+
 }  // namespace
 
 Kernel compute_kernel(const MeshView& mesh, const Options& options) {
@@ -280,6 +307,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       if (!s.is_box[i]) mesh_planes.push_back(i);
     CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
     TraceResult& tr = ct.trace;
+    if (!tr.internal_error && !certify_embedding(s, tr, out)) return out;
     if (!tr.internal_error && (options.on_step || options.max_steps))
       replay_steps(*s.planes, ct.start_vertex, tr, ropt);
     out.stats.active_planes = 0;

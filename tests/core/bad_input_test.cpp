@@ -293,7 +293,8 @@ TEST_P(BadInput, Row) {
   const kergen::Kernel k = kergen::compute_kernel(view, o);
   if (std::getenv("KERGEN_PRINT_MESSAGES")) std::printf("ROW %s: %s\n", row["name"].str.c_str(), k.message.c_str());
   expect_outcome(row["expect"], k.error, k.message, &k);
-  // The cheaper entry points agree on the verdict.
+  // The cheaper entry points agree on the verdict (except on what only compute_kernel certifies).
+  if (row.has("compute_kernel_only")) return;
   const kergen::KernelPoint p = kergen::find_kernel_point(view, o);
   EXPECT_EQ(p.error, k.error) << p.message;
   const kergen::Validation val = kergen::validate_mesh(view, o);

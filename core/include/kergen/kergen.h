@@ -49,6 +49,9 @@ enum class Error : int {
                             // evaluation in double-based arithmetic (e.g. 1 next to 1e-60)
   Internal,                 // a failure inside the library (a bug, not a verdict on the input):
                             // please report the mesh; the message says what failed
+  SelfIntersection,         // the surface crosses itself: a ray from a point strictly inside the
+                            // half-spaces' intersection crosses it more than once (compute_kernel
+                            // certifies every full-dimensional kernel; see there)
 };
 
 // Shape of the kernel (meaningful when error == Error::Ok).
@@ -242,7 +245,10 @@ struct Kernel {
 // Computes the kernel. Never throws for bad input: check `error` / `message`.
 Kernel compute_kernel(const MeshView& mesh, const Options& options = {});
 
-// Emptiness test and one kernel point: validation + planes + one LP (expected O(N)).
+// Emptiness test and one kernel point: validation + planes + one LP (expected O(N)). It stops
+// before compute_kernel's embedding certificate (which needs the kernel): a surface that crosses
+// itself (Error::SelfIntersection there) is answered here as the intersection of its faces'
+// half-spaces.
 struct KernelPoint {
   Error error = Error::Ok;
   std::string message;

@@ -1,0 +1,105 @@
+// The embedding certificate (embedding.h): a surface wound twice around a point, every face seen
+// from its inner side there, is refused with SELF_INTERSECTION (its half-space intersection would
+// otherwise be reported as its kernel); every full-dimensional kernel of the shared meshes is
+// certified with degree 1.
+#include "embedding.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include "fixtures.h"
+#include "kergen/io.h"
+#include "kergen/kergen.h"
+#include "lp.h"
+#include "plane_classes.h"
+#include "plane_culling.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using kergen::Mesh;
+
+// A bipyramid over a polygon of n corners that winds `turns` times around the z axis: for odd n
+// and turns = 2 every face is still seen from inside at the origin, and the surface is a double
+// cover of the sphere around it.
+Mesh wound_bipyramid(int n, int turns) {
+  Mesh m;
+  m.positions = {0, 0, 1, 0, 0, -1};
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * turns * i / n;
+    m.positions.insert(m.positions.end(), {std::cos(a), std::sin(a), 0.0});
+  }
+  for (uint32_t i = 0; i < uint32_t(n); ++i) {
+    const uint32_t v = 2 + i, w = 2 + (i + 1) % n;
+    m.indices.insert(m.indices.end(), {0, v, w});
+    m.indices.insert(m.indices.end(), {1, w, v});
+  }
+  return m;
+}
+
+// The certificate of a mesh's kernel, through the same pipeline as compute_kernel (without face
+// culling, which does not change the kernel).
+kergen::EmbeddingCheck certificate(const Mesh& m, kergen::KernelType& type) {
+  using namespace kergen;
+  EmbeddingCheck none;
+  const PreparedMesh mesh = prepare_mesh(m.view(), Options{});
+  if (mesh.error != Error::Ok) return none;
+  PlaneSet ps(&mesh.points, mesh.exact_shift);
+  ps.set_extent(mesh.extent());
+  std::vector<uint32_t> face_plane, planes, box;
+  build_planes(mesh, ps, face_plane);
+  for (uint32_t i = 0; i < ps.size(); ++i) planes.push_back(i);
+  add_bounding_box(ps, box);
+  std::vector<uint32_t> lp_planes = planes;
+  lp_planes.insert(lp_planes.end(), box.begin(), box.end());
+  const LpResult lp = solve_lp(ps, lp_planes, kDefaultDirection, kLpBound, 1);
+  if (lp.outcome != LpResult::Outcome::Optimal) return none;
+  const CulledTrace ct = trace_with_culling(ps, planes, box, lp.vertex, TraceOptions(), 1);
+  type = kergen::compute_kernel(m.view()).type;
+  return check_embedding(mesh, ps, ct.trace);
+}
+
+TEST(Embedding, SurfaceWoundTwiceIsRefused) {
+  for (int n : {5, 7, 9, 31}) {
+    const kergen::Kernel once = kergen::compute_kernel(wound_bipyramid(n, 1).view());
+    ASSERT_TRUE(once.ok()) << once.message;
+    EXPECT_EQ(once.type, kergen::KernelType::Polyhedron);
+    const kergen::Kernel twice = kergen::compute_kernel(wound_bipyramid(n, 2).view());
+    EXPECT_EQ(twice.error, kergen::Error::SelfIntersection) << n << ": " << twice.message;
+    EXPECT_NE(twice.message.find("crosses it 2 times"), std::string::npos) << twice.message;
+    kergen::KernelType type;
+    const kergen::EmbeddingCheck c = certificate(wound_bipyramid(n, 2), type);
+    EXPECT_EQ(c.outcome, kergen::EmbeddingCheck::Outcome::CrossesItself);
+    EXPECT_EQ(c.crossings, 2);
+  }
+  // Three turns of a polygon of 7 corners (a {7/3} star), likewise.
+  EXPECT_EQ(kergen::compute_kernel(wound_bipyramid(7, 3).view()).error, kergen::Error::SelfIntersection);
+}
+
+TEST(Embedding, EveryFullDimensionalKernelOfTheSharedMeshesIsCertified) {
+  const fs::path root = KERGEN_SHARED_MESHES;
+  if (!fs::exists(root)) GTEST_SKIP() << "shared meshes not found at " << root;
+  size_t certified = 0, meshes = 0;
+  for (const char* dir : {"fixtures", "princeton", "refinements", "polyhedra/tet10", "polyhedra/tet20",
+                          "polyhedra/tet30", "polyhedra/voro"}) {
+    if (!fs::exists(root / dir)) continue;
+    for (const auto& entry : fs::directory_iterator(root / dir)) {
+      if (kergen::format_from_path(entry.path().string()) == kergen::MeshFormat::Unknown) continue;
+      const kergen::ReadResult r = kergen::read_mesh_file(entry.path().string());
+      if (!r.ok()) continue;
+      kergen::KernelType type = kergen::KernelType::Empty;
+      const kergen::EmbeddingCheck c = certificate(r.mesh, type);
+      if (type != kergen::KernelType::Polyhedron) continue;
+      ++meshes;
+      EXPECT_EQ(c.outcome, kergen::EmbeddingCheck::Outcome::Embedded) << entry.path() << ": degree " << c.crossings;
+      certified += c.outcome == kergen::EmbeddingCheck::Outcome::Embedded;
+    }
+  }
+  std::printf("%zu of %zu full-dimensional kernels certified with degree 1\n", certified, meshes);
+  EXPECT_GT(meshes, 3000u);
+}
+
+}  // namespace
