@@ -10,6 +10,6 @@ emcmake cmake -S . -B build-wasm -DCMAKE_BUILD_TYPE=Release ${KERGEN_WASM_CMAKE_
 cmake --build build-wasm -j2
 mkdir -p dist
 cp build-wasm/wasm/kergen.mjs build-wasm/wasm/kergen.wasm dist/
-raw=$(stat -c %s dist/kergen.wasm)
-gz=$(gzip -9 -c dist/kergen.wasm | wc -c)
-echo "build-wasm: dist/kergen.mjs ($(stat -c %s dist/kergen.mjs) B), dist/kergen.wasm ($raw B raw, $gz B gzip -9)"
+# The README's size table is this build's (printed, and rewritten in README.md when it changed).
+echo "build-wasm: dist/kergen.mjs and dist/kergen.wasm written; sizes:"
+node scripts/size-table.mjs --write

@@ -8,5 +8,6 @@ echo "== native build"; bash scripts/build-native.sh
 echo "== native tests (ctest)"; ctest --test-dir build --output-on-failure -j2 -LE long
 echo "== wasm build"; bash scripts/build-wasm.sh
 echo "== package tests (node)"; npm run --silent test:node
+echo "== package tests (oldest Node claimed)"; bash scripts/test-oldest-node.sh
 echo "== browser e2e"; npm run --silent test:e2e
 echo "all tests passed"

@@ -4,11 +4,18 @@
 /** A point or direction `[x, y, z]`. */
 export type Vec3 = [number, number, number];
 
-/** Vertex coordinates, flat `x, y, z` per vertex. */
-export type PositionsInput = Float32Array | Float64Array | number[];
+/**
+ * Vertex coordinates, flat `x, y, z` per vertex: exactly the arrays the functions accept at run
+ * time. (A three.js geometry, whose attribute arrays may be any typed array, normalized or
+ * interleaved, goes through `kergen-wasm/three`.)
+ */
+export type PositionsInput = Float32Array | Float64Array | readonly number[];
 
-/** Vertex indices of the faces, concatenated (triangles unless `faceSizes` is given). */
-export type IndicesInput = Uint32Array | Uint16Array | Int32Array | number[];
+/**
+ * Vertex indices of the faces, concatenated (triangles unless `faceSizes` is given). Any of these
+ * index arrays of a three.js geometry (`geometry.index.array`) is accepted as it is.
+ */
+export type IndicesInput = Uint32Array | Uint16Array | Uint8Array | Int32Array | readonly number[];
 
 /** Shape of the kernel. */
 export type KernelStatus = 'EMPTY' | 'POINT' | 'SEGMENT' | 'POLYGON' | 'POLYHEDRON' | 'UNBOUNDED';
@@ -26,6 +33,8 @@ export type CoreErrorCode =
   | 'DEGENERATE_INPUT'
   | 'TOO_LARGE'
   | 'INVALID_ARGUMENT'
+  /** A file could not be opened or written (the core's file functions; not produced in wasm). */
+  | 'IO_ERROR'
   /** readMesh: a malformed file; the message is the CLI's, "name:line: reason" (binary: "name: byte N: reason"). */
   | 'PARSE_ERROR'
   /** Coordinates span too many orders of magnitude for exact evaluation (e.g. 1 next to 1e-60). */
@@ -49,14 +58,16 @@ export type KergenErrorCode =
   /** KernelWorker: compute() after dispose(). */
   | 'DISPOSED'
   /** KernelWorker: the worker script or the module could not start, or crashed. */
-  | 'WORKER_ERROR';
+  | 'WORKER_ERROR'
+  /** KernelWorker: the worker runs a build of the package without the requested function. */
+  | 'UNSUPPORTED';
 
 /** The error thrown (or rejected with) by every function of this package. */
 export class KergenError extends Error {
-  constructor(code: KergenErrorCode | string, message: string, options?: { cause?: unknown });
+  constructor(code: KergenErrorCode, message: string, options?: { cause?: unknown });
   readonly name: 'KergenError';
-  /** What went wrong, e.g. 'OPEN_MESH', 'NON_MANIFOLD_EDGE', 'INVALID_ARGUMENT'. */
-  code: KergenErrorCode | string;
+  /** What went wrong, e.g. 'OPEN_MESH', 'NON_MANIFOLD_EDGE', 'INVALID_ARGUMENT' (a closed set: a typo does not compile). */
+  code: KergenErrorCode;
 }
 
 export interface InitOptions {
@@ -131,7 +142,7 @@ export interface KernelOptions {
    */
   repair?: boolean;
   /** Vertices per face, for polygon input (absent or null: every face is a triangle, as readMesh gives it). */
-  faceSizes?: Uint32Array | number[] | null;
+  faceSizes?: Uint32Array | readonly number[] | null;
 }
 
 export interface KernelWarning {
@@ -274,7 +285,7 @@ export type MeshBytes = ArrayBuffer | ArrayBufferView;
 export interface MeshInput {
   positions: PositionsInput;
   indices: IndicesInput;
-  faceSizes?: Uint32Array | number[] | null;
+  faceSizes?: Uint32Array | readonly number[] | null;
 }
 
 /**

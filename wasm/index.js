@@ -37,16 +37,34 @@ async function readWasmInNode(source) {
   if (typeof source === 'string' && /^[a-z][a-z0-9+.-]*:/i.test(source) && !/^[a-z]:[\\/]/i.test(source)) {
     target = new URL(source);
   }
-  if (target instanceof URL && target.protocol !== 'file:') {
-    const response = await fetch(target);
-    if (!response.ok) throw new Error(`fetching ${target.href} failed: HTTP ${response.status}`);
-    return new Uint8Array(await response.arrayBuffer());
-  }
+  if (target instanceof URL && target.protocol !== 'file:') return fetchWasm(target.href);
   if (target instanceof URL) {
     const { fileURLToPath } = await import(/* webpackIgnore: true */ /* @vite-ignore */ NODE_URL);
     target = fileURLToPath(target);
   }
   return new Uint8Array(await fs.readFile(target));
+}
+
+// The bytes of the .wasm at `href`, checked before anything compiles them: a 404 page or a dev
+// server's HTML fallback is reported with the URL and the HTTP status, not as a CompileError
+// ("expected magic word").
+async function fetchWasm(href) {
+  const fail = (what, cause) => new KergenError('WASM_LOAD_FAILED', `could not load kergen.wasm from ${href}: ${what}`, { cause });
+  let response;
+  try {
+    response = await fetch(href, { credentials: 'same-origin' });
+  } catch (err) {
+    throw fail(err && err.message ? err.message : String(err), err);
+  }
+  const status = `HTTP ${response.status}${response.statusText ? ` ${response.statusText}` : ''}`;
+  if (!response.ok) throw fail(status);
+  const bytes = new Uint8Array(await response.arrayBuffer());
+  if (bytes[0] !== 0 || bytes[1] !== 0x61 || bytes[2] !== 0x73 || bytes[3] !== 0x6d) {
+    const type = response.headers.get('content-type') || 'none';
+    const start = JSON.stringify(new TextDecoder().decode(bytes.subarray(0, 24)));
+    throw fail(`${status} but not a WebAssembly module (content-type ${type}, starts with ${start})`);
+  }
+  return bytes;
 }
 
 async function load(options) {
@@ -59,8 +77,7 @@ async function load(options) {
   } else if (runningInNode()) {
     moduleArg.wasmBinary = await readWasmInNode(wasmUrl ?? new URL(WASM_NEXT_TO_MODULE, import.meta.url));
   } else if (wasmUrl != null) {
-    const href = String(wasmUrl);
-    moduleArg.locateFile = (path, prefix) => (path.endsWith('.wasm') ? href : prefix + path);
+    moduleArg.wasmBinary = await fetchWasm(String(wasmUrl));
   }
   // Keep the glue quiet: problems surface as rejected promises / KergenError instead.
   moduleArg.print = () => {};

@@ -2,7 +2,7 @@
 import type { IndicesInput, KernelOptions, KernelResult, MeshData, MeshFormat, MeshInput, PositionsInput } from './index.js';
 
 export { KergenError } from './index.js';
-export type { KernelResult, StepEvent, KernelOptions, KergenErrorCode } from './index.js';
+export type { KernelResult, StepEvent, KernelOptions, KergenErrorCode, PositionsInput, IndicesInput } from './index.js';
 
 export interface KernelWorkerOptions {
   /** Where the worker loads kergen.wasm from (default: next to the module, found by the bundler). */
@@ -47,9 +47,12 @@ export interface WorkerComputeOptions extends Omit<KernelOptions, 'onProgress'> 
   /** Called on the main thread once per phase, and while tracing at most every ~50 ms. */
   onProgress?: (progress: ProgressEvent) => void;
   /**
-   * Copy the input arrays instead of transferring them. By default typed arrays that own their
-   * whole buffer are transferred: they are detached (length 0) in the caller after compute().
+   * Transfer the input typed arrays (those that own their whole buffer) to the worker instead of
+   * copying them: no copy is made, and they are detached (length 0) in the caller afterwards.
+   * Default false: the caller's arrays are copied and stay usable (e.g. a three.js geometry's).
    */
+  transfer?: boolean;
+  /** Copy the inputs: the default (accepted for older code; contradicts `transfer: true`). */
   copy?: boolean;
 }
 
@@ -58,13 +61,17 @@ export class KernelWorker {
   /** Computes the kernel in the worker; calls queue up and run one after another. */
   compute(positions: PositionsInput, indices: IndicesInput, options?: WorkerComputeOptions): Promise<KernelResult>;
   /**
-   * Reads a mesh file and computes its kernel, both in the worker; `bytes` is transferred unless
-   * `copy: true`. Parse errors reject with 'PARSE_ERROR' ("name:line: reason").
+   * Reads a mesh file and computes its kernel, both in the worker; `bytes` is copied, or
+   * transferred (detached here) with `transfer: true`. Parse errors reject with 'PARSE_ERROR' ("name:line: reason").
    */
   computeFile(bytes: ArrayBuffer | Uint8Array, options?: WorkerComputeFileOptions): Promise<{ mesh: MeshData; result: KernelResult }>;
   /** Writes a mesh or kernel result as file bytes in the worker (arrays are copied). */
   writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Promise<Uint8Array>;
-  /** Terminates the running computation and starts a fresh worker; pending promises reject with 'CANCELLED'. */
+  /**
+   * Terminates the running computation and starts a fresh worker; pending promises reject with
+   * 'CANCELLED'. (A worker that fails to start or crashes rejects the pending calls with
+   * 'WORKER_ERROR' and is started again only by the next call.)
+   */
   cancel(): void;
   /** Terminates the worker for good; pending promises reject with 'CANCELLED'. */
   dispose(): void;

@@ -8,9 +8,11 @@
 //   kw.cancel();   // stop the running computation (its promise rejects with code 'CANCELLED')
 //   kw.dispose();  // terminate for good
 //
-// The input typed arrays are *transferred* to the worker (their buffers become detached in the
-// caller) unless `{ copy: true }` is passed; so are computeFile's bytes. Step events arrive in
-// batches (every ~50 ms or 2048 events) and are replayed in order through onStep on the main thread.
+// The input arrays are *copied* to the worker: the caller's arrays (a three.js geometry's
+// attribute arrays, say) stay usable. `{ transfer: true }` transfers whole-buffer typed arrays
+// instead (no copy; they are detached in the caller); so for computeFile's bytes. Step events
+// arrive in batches (every ~50 ms or 2048 events) and are replayed in order through onStep on the
+// main thread.
 import { KergenError } from './errors.js';
 
 function isDetached(buffer) {
@@ -23,18 +25,31 @@ function isDetached(buffer) {
   }
 }
 
-function toTransferable(name, arr, copy, transfer) {
+// What is posted for one input array. By default a copy of its own (a view into a larger buffer
+// would otherwise be cloned with its whole buffer), whose buffer is then transferred. With
+// `transfer`, a typed array that owns its whole buffer is transferred as it is (detached here).
+function toTransferable(fn, name, arr, wantTransfer, transfer) {
   if (arr == null) return arr;
   if (!ArrayBuffer.isView(arr)) return arr; // plain arrays are structured-cloned
   if (isDetached(arr.buffer)) {
-    throw new KergenError('INVALID_ARGUMENT', `compute: ${name} is detached: its buffer was transferred to the worker by an earlier call (pass { copy: true } to keep using an array)`);
+    throw new KergenError('INVALID_ARGUMENT', `${fn}: ${name} is detached: its buffer was transferred to the worker by an earlier call with { transfer: true }`);
   }
   if (arr.byteLength === 0) return arr;
   const whole = arr.byteOffset === 0 && arr.byteLength === arr.buffer.byteLength;
   const shared = typeof SharedArrayBuffer !== 'undefined' && arr.buffer instanceof SharedArrayBuffer;
-  if (copy || !whole || shared) return arr.slice(); // never detach a buffer we do not fully own
-  transfer.push(arr.buffer);
-  return arr;
+  const own = wantTransfer && whole && !shared ? arr : arr.slice(); // never detach a buffer we do not fully own
+  transfer.push(own.buffer);
+  return own;
+}
+
+// `transfer: true` moves the caller's buffers; `copy` is the default and still accepted (it was
+// the opt-out when transferring was the default).
+function wantsTransfer(fn, options) {
+  const { copy, transfer } = options;
+  if (transfer != null && typeof transfer !== 'boolean') throw new KergenError('INVALID_ARGUMENT', `${fn}: options.transfer must be a boolean`);
+  if (copy != null && typeof copy !== 'boolean') throw new KergenError('INVALID_ARGUMENT', `${fn}: options.copy must be a boolean`);
+  if (transfer && copy) throw new KergenError('INVALID_ARGUMENT', `${fn}: options.copy and options.transfer contradict each other (copying is the default)`);
+  return transfer === true;
 }
 
 function resolveUrl(url) {
@@ -78,8 +93,12 @@ export class KernelWorker {
         e && e.message
           ? `the kergen worker failed: ${e.message}`
           : 'the kergen worker failed to start or crashed (under a dev server, exclude kergen-wasm from dependency pre-bundling, e.g. Vite optimizeDeps.exclude)';
+      // No restart here: a worker that cannot start (a dev server serving the wrong file, say)
+      // would fail again at once, forever. Its calls are rejected once; the next call starts a
+      // new worker.
       this._failAll(new KergenError('WORKER_ERROR', message));
-      this._restart();
+      if (this._worker === worker) this._worker = null;
+      worker.terminate();
     };
     worker.postMessage({ type: 'init', wasmUrl: this._wasmUrl });
     this._worker = worker;
@@ -164,25 +183,29 @@ export class KernelWorker {
 
   /**
    * Computes the kernel in the worker. Options as computeKernel, plus onProgress({ phase, steps })
-   * and copy (keep the caller's input arrays usable instead of transferring their buffers).
+   * and transfer (move the input arrays' buffers instead of copying them: they are detached here).
    * onStep's return value `false` cancels the computation (the promise rejects with 'CANCELLED').
    */
   compute(positions, indices, options = {}) {
     const fn = 'compute';
     options = options || {};
-    const { copy, faceSizes } = options;
-    return this._submit(fn, 'compute', options, (transfer) => ({
-      positions: toTransferable('positions', positions, copy, transfer),
-      indices: toTransferable('indices', indices, copy, transfer),
-      faceSizes: toTransferable('faceSizes', faceSizes, copy, transfer),
-    }));
+    const { faceSizes } = options;
+    return this._submit(fn, 'compute', options, (transfer) => {
+      const move = wantsTransfer(fn, options);
+      return {
+        positions: toTransferable(fn, 'positions', positions, move, transfer),
+        indices: toTransferable(fn, 'indices', indices, move, transfer),
+        faceSizes: toTransferable(fn, 'faceSizes', faceSizes, move, transfer),
+      };
+    });
   }
 
   /**
    * Reads a mesh file (OFF, OBJ, STL, PLY: the package's readMesh) and computes its kernel, both
    * in the worker. `bytes` (ArrayBuffer or Uint8Array, e.g. from `file.arrayBuffer()`) is
-   * transferred unless `copy: true`. Options: format / name (as readMesh: the format is taken from
-   * the name's extension or the content; the name appears in parse errors), the compute options,
+   * copied, or transferred with `transfer: true`. Options: format / name (as readMesh: the format
+   * is taken from the name's extension or the content; the name appears in parse errors), the
+   * compute options,
    * onProgress (phases 'loading', 'reading' with `bytes`, then the core's 'validating', 'planes',
    * 'lp', 'tracing', 'assembling' with `count`, and 'done'), onStep, and onMesh(mesh), called with
    * the parsed mesh before the computation starts (so the input can be drawn meanwhile).
@@ -190,12 +213,13 @@ export class KernelWorker {
    */
   computeFile(bytes, options = {}) {
     options = options || {};
-    const { copy, format, name, onMesh } = options;
+    const { format, name, onMesh } = options;
     if (onMesh != null && typeof onMesh !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'computeFile: options.onMesh must be a function'));
     return this._submit('computeFile', 'computeFile', options, (transfer) => {
       const view = bytes instanceof ArrayBuffer ? new Uint8Array(bytes) : bytes;
       if (!(view instanceof Uint8Array)) throw new KergenError('INVALID_ARGUMENT', 'computeFile: bytes must be an ArrayBuffer or a Uint8Array');
-      const message = { bytes: toTransferable('bytes', view, copy, transfer), wantMesh: typeof onMesh === 'function' };
+      const move = wantsTransfer('computeFile', options);
+      const message = { bytes: toTransferable('computeFile', 'bytes', view, move, transfer), wantMesh: typeof onMesh === 'function' };
       if (format != null) message.format = String(format);
       if (name != null) message.name = String(name);
       return message;
@@ -220,7 +244,7 @@ export class KernelWorker {
     if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onStep must be a function`));
     if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onProgress must be a function`));
     const plain = {};
-    for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices']) if (rest[key] !== undefined) plain[key] = rest[key];
+    for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'weld']) if (rest[key] !== undefined) plain[key] = rest[key];
     if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
 
     const transfer = [];
@@ -229,6 +253,14 @@ export class KernelWorker {
       message = { type: kind, id: this._nextId++, wasmUrl: this._wasmUrl, ...build(transfer), options: plain, wantSteps: typeof onStep === 'function' };
     } catch (err) {
       return Promise.reject(err instanceof KergenError ? err : new KergenError('INVALID_ARGUMENT', `${fn}: ${err.message}`));
+    }
+    // The worker is started again only here, by a call, after it failed to start or crashed.
+    if (!this._worker) {
+      try {
+        this._spawn();
+      } catch (err) {
+        return Promise.reject(err);
+      }
     }
     return new Promise((resolve, reject) => {
       const job = { id: message.id, kind, resolve, reject, onStep, onProgress, ...callbacks };

@@ -430,8 +430,10 @@ async function loadFile(file, t0 = performance.now()) {
   if (token !== state.token) return;
   state.timing.read = performance.now() - t0;
   state.inputPromise = null;
+  // The page keeps no use for the file's bytes: move them to the worker instead of copying.
   await runKernel(token, (callbacks) => worker().computeFile(bytes, {
     name: file.name,
+    transfer: true,
     ...callbacks,
     onMesh: (mesh) => {
       if (token === state.token) state.inputPromise = showMesh(mesh, token);
@@ -452,9 +454,9 @@ function loadSample(id) {
   const mesh = sample.build();
   state.inputPromise = null;
   showMesh(mesh, token); // samples are small: drawn right here
-  // The package may transfer (detach) the arrays: give it copies.
-  runKernel(token, (callbacks) => worker().compute(mesh.positions.slice(), mesh.indices.slice(), {
-    faceSizes: mesh.faceSizes?.slice(), ...callbacks,
+  // The worker copies the arrays: the drawn input keeps its own.
+  runKernel(token, (callbacks) => worker().compute(mesh.positions, mesh.indices, {
+    faceSizes: mesh.faceSizes, ...callbacks,
   }));
 }
 

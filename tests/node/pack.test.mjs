@@ -26,7 +26,7 @@ after(() => {
 test('the tarball holds the runtime files only', (t) => {
   const files = packInfo.files.map((f) => f.path).sort();
   t.diagnostic(`${packInfo.filename}: ${packInfo.size} B packed, ${packInfo.unpackedSize} B unpacked, ${files.length} files`);
-  for (const needed of ['package.json', 'LICENSE', 'dist/kergen.mjs', 'dist/kergen.wasm', 'wasm/index.js', 'wasm/index.d.ts', 'wasm/worker.js', 'wasm/worker.d.ts', 'wasm/kergen-worker.js', 'wasm/errors.js']) {
+  for (const needed of ['package.json', 'LICENSE', 'dist/kergen.mjs', 'dist/kergen.wasm', 'wasm/index.js', 'wasm/index.d.ts', 'wasm/worker.js', 'wasm/worker.d.ts', 'wasm/kergen-worker.js', 'wasm/errors.js', 'wasm/three.js', 'wasm/three.d.ts']) {
     assert.ok(files.includes(needed), `${needed} is packed`);
   }
   for (const f of files) {
@@ -57,12 +57,16 @@ test('npm install <tarball> --offline into an empty folder, then compute a cube 
     const r = await computeKernel(new Float32Array(positions), new Uint32Array(indices));
     let code = null;
     try { await computeKernel(positions, indices.slice(0, 33)); } catch (e) { code = e instanceof KergenError ? e.code : String(e); }
-    console.log(JSON.stringify({ status: r.status, volume: r.volume, v: r.vertices.length / 3, f: r.faces.length,
+    // three is an optional peer, not installed here: only kergen-wasm/three needs it.
+    let three = null;
+    try { await import('kergen-wasm/three'); } catch (e) { three = e.code + ' ' + e.message; }
+    console.log(JSON.stringify({ three, status: r.status, volume: r.volume, v: r.vertices.length / 3, f: r.faces.length,
       star: await isStarShaped(positions, indices), code, worker: typeof KernelWorker, wasmPath }));
   `;
   fs.writeFileSync(path.join(app, 'smoke.mjs'), script);
   const out = JSON.parse(execFileSync(process.execPath, ['smoke.mjs'], { cwd: app, encoding: 'utf8' }).trim());
   assert.equal(out.status, 'POLYHEDRON');
+  assert.match(out.three, /^ERR_MODULE_NOT_FOUND .*'three'/, 'the core and worker entries work without three; kergen-wasm/three asks for it');
   assert.equal(out.volume, 24);
   assert.equal(out.v, 8);
   assert.equal(out.f, 6);

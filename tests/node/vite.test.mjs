@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { assertBuilt, distWasm, repoRoot } from './lib/env.mjs';
+import { assertBuilt, distWasm, repoRoot, viteUnsupported } from './lib/env.mjs';
 
 let app;
 before(() => {
@@ -32,6 +32,7 @@ before(() => {
 after(() => fs.rmSync(app, { recursive: true, force: true }));
 
 test('vite build: worker chunk + hashed .wasm, no Node built-ins in the web bundle', { timeout: 120000 }, async (t) => {
+  if (viteUnsupported()) return t.skip(viteUnsupported());
   let vite;
   try {
     vite = await import('vite');

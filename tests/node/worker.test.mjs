@@ -64,29 +64,39 @@ test('compute in the worker equals computeKernelSync; step events replay in orde
   for (let i = 1; i < progress.length; i++) assert.ok(progress[i].steps >= progress[i - 1].steps, 'steps never decrease');
 });
 
-test('input buffers are transferred (detached) unless copy: true; views of larger buffers are copied', async () => {
+test('input arrays are copied by default (never detached); transfer: true detaches them; copy is an accepted no-op', async () => {
   const kw = newWorker();
   const m = plusPrism(0.3, 1);
-  const positions = Float64Array.from(m.positions);
-  const indices = Uint32Array.from(m.indices);
+  const positions = Float32Array.from(m.positions);
+  const indices = Uint16Array.from(m.indices);
+  const bytesBefore = [Buffer.from(positions.buffer).toString('hex'), Buffer.from(indices.buffer).toString('hex')];
+  const buffers = [positions.buffer, indices.buffer];
   const r1 = await kw.compute(positions, indices);
   assert.equal(r1.status, 'POLYHEDRON');
-  assert.equal(positions.byteLength, 0, 'positions detached');
-  assert.equal(indices.byteLength, 0, 'indices detached');
+  assert.equal(positions.length, m.positions.length, 'positions kept');
+  assert.equal(indices.length, m.indices.length, 'indices kept');
+  assert.ok(positions.buffer === buffers[0] && indices.buffer === buffers[1], 'same buffers');
+  assert.deepEqual([Buffer.from(positions.buffer).toString('hex'), Buffer.from(indices.buffer).toString('hex')], bytesBefore, 'same bytes');
 
-  const p2 = Float64Array.from(m.positions);
-  const i2 = Uint32Array.from(m.indices);
-  const r2 = await kw.compute(p2, i2, { copy: true });
-  assert.equal(p2.length, m.positions.length, 'kept with copy: true');
-  assert.deepEqual(Array.from(i2), Array.from(m.indices));
+  const r2 = await kw.compute(positions, indices, { copy: true });
+  assert.equal(positions.length, m.positions.length, 'kept with copy: true');
   assert.equal(r2.volume, r1.volume);
+
+  const p3 = Float32Array.from(m.positions);
+  const i3 = Uint32Array.from(m.indices);
+  const r3 = await kw.compute(p3, i3, { transfer: true });
+  assert.equal(r3.volume, r1.volume);
+  assert.equal(p3.byteLength, 0, 'positions detached with transfer: true');
+  assert.equal(i3.byteLength, 0, 'indices detached with transfer: true');
+  await assert.rejects(kw.compute(positions, indices, { copy: true, transfer: true }), (err) => err.code === 'INVALID_ARGUMENT' && /contradict/.test(err.message));
+  await assert.rejects(kw.compute(positions, indices, { transfer: 'yes' }), (err) => err.code === 'INVALID_ARGUMENT' && /transfer must be a boolean/.test(err.message));
 
   const big = new Float64Array(m.positions.length + 6);
   big.set(m.positions, 3);
   const view = big.subarray(3, 3 + m.positions.length);
-  const r3 = await kw.compute(view, Array.from(m.indices));
-  assert.equal(big.byteLength, (m.positions.length + 6) * 8, 'a partial view never detaches its buffer');
-  assert.equal(r3.volume, r1.volume);
+  const r4 = await kw.compute(view, Array.from(m.indices), { transfer: true });
+  assert.equal(big.byteLength, (m.positions.length + 6) * 8, 'a partial view never detaches its buffer, even with transfer: true');
+  assert.equal(r4.volume, K.computeKernelSync(view, m.indices).volume);
 });
 
 test('step events arrive in batches of at most 2048', async () => {
@@ -117,7 +127,7 @@ function lPrismOff() {
   return new TextEncoder().encode(lines.join('\n') + '\n');
 }
 
-test('computeFile parses in the worker: mesh and kernel, bytes transferred, onMesh before the result, progress by phase', async (t) => {
+test('computeFile parses in the worker: mesh and kernel, bytes kept (transferred only with transfer: true), onMesh before the result, progress by phase', async (t) => {
   if (!fileLayer()) return t.skip('this package build has no readMeshSync / writeMesh');
   const kw = newWorker();
   const bytes = lPrismOff();
@@ -130,8 +140,11 @@ test('computeFile parses in the worker: mesh and kernel, bytes transferred, onMe
     onProgress: (p) => progress.push(p),
     onStep: () => void order.push('step'),
   });
-  assert.equal(bytes.byteLength, 0, 'the bytes were transferred');
+  assert.equal(bytes.byteLength, size, 'the bytes are copied by default');
   assert.equal(result.status, 'POLYHEDRON');
+  const moved = lPrismOff();
+  assert.equal((await kw.computeFile(moved, { name: 'l.off', transfer: true })).result.volume, 1);
+  assert.equal(moved.byteLength, 0, 'transfer: true moves the bytes');
   assert.equal(result.volume, 1);
   assert.ok(mesh.positions instanceof Float64Array && mesh.positions.length === 36);
   assert.deepEqual(Array.from(mesh.faceSizes), [6, 6, 4, 4, 4, 4, 4, 4]);
@@ -171,7 +184,7 @@ test('writeMesh in the worker: OFF, OBJ and STL bytes of a kernel read back to t
 test('errors cross as KergenError with the core code', async () => {
   const kw = newWorker();
   const m = box();
-  await assert.rejects(kw.compute(m.positions, m.indices.subarray(0, 33)), (err) => err instanceof W.KergenError && err.code === 'OPEN_MESH' && err.message.length > 3);
+  await assert.rejects(kw.compute(m.positions, m.indices.subarray(0, 33), { transfer: true }), (err) => err instanceof W.KergenError && err.code === 'OPEN_MESH' && err.message.length > 3);
   assert.equal(m.positions.byteLength, 0, 'transferred');
   // Reusing a transferred (detached) array is reported, not silently lost.
   await assert.rejects(kw.compute(m.positions, box().indices), (err) => err.code === 'INVALID_ARGUMENT' && /detached/.test(err.message));
@@ -216,4 +229,42 @@ test('dispose() terminates for good', async () => {
   kw.dispose();
   await assert.rejects(pending, (err) => err.code === 'CANCELLED');
   await assert.rejects(kw.compute(m.positions, m.indices), (err) => err.code === 'DISPOSED');
+});
+
+// A Worker that never starts (as a dev server serving an HTML page for the worker script does):
+// it reports an error event shortly after construction.
+class NeverStartingWorker {
+  static spawned = 0;
+  constructor() {
+    NeverStartingWorker.spawned++;
+    this.onmessage = null;
+    this.onerror = null;
+    setTimeout(() => this.onerror && this.onerror({ preventDefault() {} }), 5);
+  }
+  postMessage() {}
+  terminate() {}
+}
+
+test('a worker that cannot start rejects the pending calls once and is not restarted until the next call', async () => {
+  const RealWorker = globalThis.Worker;
+  globalThis.Worker = NeverStartingWorker;
+  try {
+    const kw = new W.KernelWorker();
+    const m = box();
+    const pending = kw.compute(m.positions, m.indices);
+    const queued = kw.compute(m.positions, m.indices);
+    await assert.rejects(pending, (err) => err.code === 'WORKER_ERROR' && /failed to start/.test(err.message));
+    await assert.rejects(queued, (err) => err.code === 'WORKER_ERROR');
+    await new Promise((r) => setTimeout(r, 200));
+    assert.equal(NeverStartingWorker.spawned, 1, 'no restart while nothing is asked');
+    await assert.rejects(kw.compute(m.positions, m.indices), (err) => err.code === 'WORKER_ERROR');
+    await new Promise((r) => setTimeout(r, 200));
+    assert.equal(NeverStartingWorker.spawned, 2, 'one new worker for the one new call');
+    kw.dispose();
+  } finally {
+    globalThis.Worker = RealWorker;
+  }
+  const kw = newWorker();
+  const m = box();
+  assert.equal((await kw.compute(m.positions, m.indices)).volume, 1, 'a working Worker works as before');
 });

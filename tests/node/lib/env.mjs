@@ -27,3 +27,9 @@ export function offFiles(folder) {
   if (!fs.existsSync(dir)) return [];
   return fs.readdirSync(dir).filter((f) => f.endsWith('.off')).sort().map((f) => path.join(dir, f));
 }
+
+/** Why Vite cannot run under this Node (a skip message), or '' (Vite 7 and 8 need Node >= 20.19). */
+export function viteUnsupported() {
+  const [major, minor] = process.versions.node.split('.').map(Number);
+  return major > 20 || (major === 20 && minor >= 19) ? '' : `Vite needs Node >= 20.19 (this is ${process.version}); the package itself is tested here by the other files`;
+}
