@@ -35,7 +35,7 @@ namespace fs = std::filesystem;
 const char* const kUsage =
     "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
     "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
-    "                      [--weld [EPS]] [--weld-relative R] [--repair]\n"
+    "                      [--weld [EPS]] [--weld-relative R] [--no-weld] [--repair]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -53,6 +53,7 @@ const char* const kUsage =
     "  --weld [EPS]    merge vertices closer than EPS (default: 1e-9 of the bounding box\n"
     "                  diagonal) before validation: closes triangle soups and seams\n"
     "  --weld-relative R  merge vertices closer than R times the bounding box diagonal\n"
+    "  --no-weld       do not weld .stl files (welded by default, as with --weld)\n"
     "  --repair        weld, remove repeated and cancelling faces, split T-junctions (exactly)\n"
     "Exit code: 0 all meshes processed, 1 some mesh had an input error, 2 usage error.\n";
 
@@ -62,6 +63,7 @@ struct Arguments {
   bool json = false;
   unsigned jobs = 0;  // 0: std::thread::hardware_concurrency()
   kergen::Options options;
+  bool weld_given = false;  // --weld, --weld-relative or --no-weld: else STL files are welded
 };
 
 [[noreturn]] void usage_error(const std::string& reason) {
@@ -112,7 +114,11 @@ Arguments parse_arguments(int argc, char** argv) {
         usage_error("output '" + args.output + "' must end in .obj, .off or .stl");
     } else if (arg == "--json") {
       args.json = true;
+    } else if (arg == "--no-weld") {
+      args.options.weld = -1;
+      args.weld_given = true;
     } else if (arg == "--weld") {
+      args.weld_given = true;
       // An optional distance: the next argument when it is a number (else the default, relative).
       double eps = 0;
       if (i + 1 < argc && parse_number(argv[i + 1], eps)) {
@@ -127,6 +133,7 @@ Arguments parse_arguments(int argc, char** argv) {
     } else if (arg == "--repair") {
       args.options.repair = true;
     } else if (arg == "--weld-relative") {
+      args.weld_given = true;
       const std::string text = value();
       double r = 0;
       if (!parse_number(text, r) || r < 0)
@@ -371,7 +378,14 @@ MeshOutcome process(const std::string& file, const Arguments& args) {
     return m;
   }
   m.read_ok = true;
-  m.kernel = kergen::compute_kernel(read.mesh.view(), args.options);
+  // An STL file stores every triangle's corners on their own: a seam whose copies differ by
+  // rounding would leave it open, so STL is welded unless the command line says otherwise.
+  kergen::Options options = args.options;
+  if (!args.weld_given && kergen::format_from_path(file) == kergen::MeshFormat::Stl) {
+    options.weld = kDefaultRelativeWeld;
+    options.weld_relative = true;
+  }
+  m.kernel = kergen::compute_kernel(read.mesh.view(), options);
   m.ms_total = milliseconds_since(start);
   m.error = m.kernel.error;
   m.message = in_cli_words(m.kernel.message);

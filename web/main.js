@@ -434,6 +434,8 @@ async function loadFile(file, t0 = performance.now()) {
   await runKernel(token, (callbacks) => worker().computeFile(bytes, {
     name: file.name,
     transfer: true,
+    // STL stores each triangle's corners on their own: welded, as the CLI does.
+    weld: /\.stl$/i.test(file.name) ? true : undefined,
     ...callbacks,
     onMesh: (mesh) => {
       if (token === state.token) state.inputPromise = showMesh(mesh, token);

@@ -357,6 +357,28 @@ TEST_F(CliTest, WeldClosesASoupAndOpenMeshesNameTheFlags) {
   EXPECT_EQ(run("--weld-relative -1 " + shell_quote(path)).exit_code, 2);
 }
 
+// STL files are welded by default (their triangles' corners are stored apart), other formats not.
+TEST_F(CliTest, StlIsWeldedByDefault) {
+  kergen::Mesh cube = kergen_test::unit_cube();
+  cube.positions[3 * 6] += 1e-13;  // a corner's copies differ by rounding once written per triangle
+  kergen::Mesh soup;
+  for (size_t i = 0; i < cube.indices.size(); ++i) {
+    const uint32_t v = cube.indices[i];
+    for (int k = 0; k < 3; ++k)
+      soup.positions.push_back(cube.positions[3 * v + k] - (v == 6 && i % 2 && k == 0 ? 1e-13 : 0));
+    soup.indices.push_back(uint32_t(i));
+  }
+  const std::string stl = (dir_ / "seam.stl").string(), off = (dir_ / "seam.off").string();
+  ASSERT_EQ(kergen::write_mesh_file(stl, soup), kergen::Error::Ok);
+  ASSERT_EQ(kergen::write_mesh_file(off, soup), kergen::Error::Ok);
+  const CliRun welded = run("--json " + shell_quote(stl));
+  ASSERT_EQ(welded.exit_code, 0) << welded.err;
+  EXPECT_TRUE(has(welded.out, "VERTICES_WELDED")) << welded.out;
+  EXPECT_EQ(run("--json --no-weld " + shell_quote(stl)).exit_code, 1);
+  EXPECT_EQ(run("--json " + shell_quote(off)).exit_code, 1);  // OFF: only with --weld
+  EXPECT_EQ(run("--json --weld " + shell_quote(off)).exit_code, 0);
+}
+
 TEST_F(CliTest, JobsNeedsAPositiveCount) {
   for (const std::string& value : {"0", "-1", "two", "", "1025"}) {
     CliRun r = run("x.off --jobs " + shell_quote(value));
