@@ -18,6 +18,7 @@
 #include "plane_culling.h"
 #include "polytope.h"
 #include "repair.h"
+#include "shells.h"
 #include "step_replay.h"
 #include "tracer.h"
 #include "weld.h"
@@ -69,6 +70,7 @@ const char* warning_kind_name(Warning::Kind k) {
     case Warning::Kind::DuplicateFacesRemoved: return "DUPLICATE_FACES_REMOVED";
     case Warning::Kind::CancellingFacesRemoved: return "CANCELLING_FACES_REMOVED";
     case Warning::Kind::TJunctionsSplit: return "T_JUNCTIONS_SPLIT";
+    case Warning::Kind::SeparateShells: return "SEPARATE_SHELLS";
   }
   return "UNKNOWN";
 }
@@ -127,16 +129,44 @@ bool weldable(const MeshView& m) {
   return true;
 }
 
+// A closed mesh of several pieces (shells.h): refused when two pieces cross or touch, else
+// prepared with a warning (the kernel is then empty, or the pieces are nested alike: the entry
+// points refuse that once the LP has found a point).
+PreparedMesh judge_shells(PreparedMesh m) {
+  if (m.error != Error::Ok || m.shells < 2) return m;
+  const std::string pieces = std::to_string(m.shells) + " separate pieces";
+  if (find_shell_contact(m).found) {
+    m.error = Error::SelfIntersection;
+    m.message = "the mesh has " + pieces + " and two of them cross or touch each other: no solid has that surface";
+    return m;
+  }
+  m.warnings.push_back({Warning::Kind::SeparateShells, m.shells,
+                        "the mesh has " + pieces +
+                            " that neither cross nor touch (disjoint solids, or a solid and a void inside it): no "
+                            "point sees all of them from inside"});
+  return m;
+}
+
+// Several pieces and a non-empty intersection of the faces' half-spaces: a point in it sees
+// every piece from inside, so it lies inside every piece: they are nested alike (a second solid
+// inside the first, not a void), which no solid's surface is.
+void refuse_nested_shells(const PreparedMesh& m, Error& error, std::string& message) {
+  error = Error::MultipleComponents;
+  message = "the mesh has " + std::to_string(m.shells) +
+            " separate pieces nested with the same orientation (an inner piece faces outward: a second solid "
+            "inside the first, not a void)";
+}
+
 // prepare_mesh after Options::weld and Options::repair: the prepared mesh of the welded (and
 // repaired) input, what was done reported first among its warnings and the dropped faces
 // counted with the input's.
 PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
   const bool weld = options.weld >= 0;
-  if ((!weld && !options.repair) || !weldable(mesh)) return prepare_mesh(mesh, options);
+  if ((!weld && !options.repair) || !weldable(mesh)) return judge_shells(prepare_mesh(mesh, options, true));
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
   RepairCounts repaired;
   if (options.repair) repaired = repair_mesh(w.mesh);
-  PreparedMesh m = prepare_mesh(w.mesh.view(), options);
+  PreparedMesh m = judge_shells(prepare_mesh(w.mesh.view(), options, true));
   m.input_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   m.dropped_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   // The merged vertices are no face's any more: only the input's own unused ones are reported.
@@ -295,6 +325,11 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   }
   out.stats.active_planes = s.planes->size() - s.box.size();
 
+  if (s.lp.outcome != LpResult::Outcome::Infeasible && s.mesh.shells > 1) {
+    refuse_nested_shells(s.mesh, out.error, out.message);
+    out.stats.ms_total = ms_since(t_total);
+    return out;
+  }
   if (s.lp.outcome == LpResult::Outcome::Infeasible) {
     out.type = KernelType::Empty;
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
@@ -401,6 +436,10 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
   if (s.mesh.error != Error::Ok) {
     r.error = s.mesh.error;
     r.message = s.mesh.message;
+    return r;
+  }
+  if (s.lp.outcome != LpResult::Outcome::Infeasible && s.mesh.shells > 1) {
+    refuse_nested_shells(s.mesh, r.error, r.message);
     return r;
   }
   if (s.lp.outcome == LpResult::Outcome::Optimal) {

@@ -743,7 +743,7 @@ void magnitude_extrema(const double* x, size_t n, uint64_t& top_bits, int64_t& l
 
 }  // namespace
 
-PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells) {
   PreparedMesh m;
   const size_t nv = mesh.num_vertices;
   const size_t nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
@@ -1131,7 +1131,10 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options) {
         }
     }
     const size_t pieces = cf - unions;
-    if (pieces > 1) {
+    m.shells = pieces;
+    // Several closed pieces are the caller's to judge (shells.h) when it says so; an open one is
+    // refused as before.
+    if (pieces > 1 && (open || !allow_shells)) {
       return fail(m, Error::MultipleComponents,
                   "the mesh has " + std::to_string(pieces) +
                       " separate pieces; the kernel is defined for one closed surface (a triangle soup? Options::weld "

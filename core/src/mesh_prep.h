@@ -36,6 +36,7 @@ struct PreparedMesh {
 
   size_t input_faces = 0;
   size_t dropped_faces = 0;
+  size_t shells = 1;                                        // connected pieces (> 1 only with allow_shells)
   size_t boundary_edges = 0;                                // > 0 only with allow_open
   double volume = 0;                                        // enclosed volume, in scaled units
   double bbox_min[3] = {0, 0, 0}, bbox_max[3] = {0, 0, 0};  // scaled units
@@ -48,6 +49,8 @@ struct PreparedMesh {
   }
 };
 
-PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options);
+// `allow_shells`: a closed mesh of several pieces is prepared (PreparedMesh::shells counts them)
+// instead of refused with Error::MultipleComponents.
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells = false);
 
 }  // namespace kergen

@@ -202,16 +202,6 @@ double number(const Json& v) {
   throw std::runtime_error("not a number: " + v.str);
 }
 
-const char* warning_name(kergen::Warning::Kind k) {
-  switch (k) {
-    case kergen::Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
-    case kergen::Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
-    case kergen::Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
-    case kergen::Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
-  }
-  return "?";
-}
-
 // Checks an outcome (error code + message, or a kernel) against a row's expectation.
 void expect_outcome(const Json& expect, kergen::Error error, const std::string& message, const kergen::Kernel* k) {
   const std::string code = expect["code"].str;
@@ -229,7 +219,7 @@ void expect_outcome(const Json& expect, kergen::Error error, const std::string& 
   if (expect.has("volume")) EXPECT_NEAR(k->volume, expect["volume"].num, 1e-12 * expect["volume"].num);
   if (expect.has("warning")) {
     bool found = false;
-    for (const auto& w : k->warnings) found |= expect["warning"].str == warning_name(w.kind);
+    for (const auto& w : k->warnings) found |= expect["warning"].str == kergen::warning_kind_name(w.kind);
     EXPECT_TRUE(found) << "warning " << expect["warning"].str << " missing";
   }
 }
@@ -298,7 +288,8 @@ TEST_P(BadInput, Row) {
   const kergen::KernelPoint p = kergen::find_kernel_point(view, o);
   EXPECT_EQ(p.error, k.error) << p.message;
   const kergen::Validation val = kergen::validate_mesh(view, o);
-  if (k.error != kergen::Error::Ok) EXPECT_EQ(val.error, k.error) << val.message;
+  if (k.error != kergen::Error::Ok)
+    EXPECT_EQ(val.error, row.has("validation_passes") ? kergen::Error::Ok : k.error) << val.message;
 }
 
 std::vector<size_t> row_ids() {

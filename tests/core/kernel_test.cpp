@@ -644,7 +644,12 @@ TEST(Kernel, BadInputGetsSpecificErrors) {
   uint32_t base = uint32_t(twocubes.num_vertices());
   twocubes.positions.insert(twocubes.positions.end(), far.positions.begin(), far.positions.end());
   for (uint32_t v : far.indices) twocubes.indices.push_back(v + base);
-  EXPECT_EQ(run(twocubes).error, Error::MultipleComponents);
+  // Two closed pieces that neither cross nor touch: no point sees both from inside.
+  const Kernel two = run(twocubes);
+  ASSERT_TRUE(two.ok()) << two.message;
+  EXPECT_EQ(two.type, KernelType::Empty);
+  ASSERT_FALSE(two.warnings.empty());
+  EXPECT_EQ(two.warnings.back().kind, Warning::Kind::SeparateShells);
   Mesh incons = m;
   std::swap(incons.indices[0], incons.indices[1]);
   EXPECT_EQ(run(incons).error, Error::InconsistentOrientation);

@@ -92,9 +92,13 @@ test('two boxes sharing only an edge → NON_MANIFOLD_EDGE', async () => {
   await expectCode('NON_MANIFOLD_EDGE', () => K.computeKernel(m.positions, m.indices));
 });
 
-test('two separate boxes → MULTIPLE_COMPONENTS', async () => {
+test('two separate boxes → EMPTY with SEPARATE_SHELLS; crossing ones → SELF_INTERSECTION', async () => {
   const m = weld(box([0, 0, 0], [1, 1, 1]), box([3, 0, 0], [4, 1, 1]));
-  await expectCode('MULTIPLE_COMPONENTS', () => K.computeKernel(m.positions, m.indices));
+  const r = await K.computeKernel(m.positions, m.indices);
+  assert.equal(r.status, 'EMPTY');
+  assert.ok(r.warnings.some((w) => w.kind === 'SEPARATE_SHELLS' && w.count === 2));
+  const crossing = weld(box([0, 0, 0], [2, 2, 2]), box([1, 1, 1], [3, 3, 3]));
+  await expectCode('SELF_INTERSECTION', () => K.computeKernel(crossing.positions, crossing.indices));
 });
 
 test('one flipped triangle → INCONSISTENT_ORIENTATION', async () => {

@@ -39,7 +39,11 @@ enum class Error : int {
                             // (the surface touches itself), or a polygon face that crosses itself
                             // (a non-planar one: that folds over itself)
   InconsistentOrientation,  // two faces traverse a shared edge in the same direction
-  MultipleComponents,       // more than one connected piece (the kernel of such a shape is undefined)
+  MultipleComponents,       // more than one connected piece, where that leaves no solid: an open mesh
+                            // of several pieces, or closed pieces nested with the same orientation.
+                            // (Closed pieces that neither cross nor touch, disjoint or a solid with
+                            // a void, have an empty kernel: Warning::Kind::SeparateShells; pieces
+                            // that cross or touch: SelfIntersection.)
   DegenerateInput,          // encloses no volume (flat, or only zero-area faces)
   TooLarge,                 // exceeds Options::max_faces / max_vertices
   ParseError,               // a mesh file could not be read (io.h)
@@ -189,6 +193,8 @@ struct Warning {
     DuplicateFacesRemoved,   // Options::repair removed copies of faces
     CancellingFacesRemoved,  // Options::repair removed pairs of faces of opposite orientation
     TJunctionsSplit,         // Options::repair inserted vertices lying on edges into their faces
+    SeparateShells,          // a closed mesh of several pieces that neither cross nor touch (count):
+                             // disjoint solids or a solid with a void, whose kernel is empty
   };
   Kind kind;
   size_t count;
