@@ -126,7 +126,8 @@ inline void check_kernel(const kergen::MeshView& mesh, const kergen::Kernel& k, 
   using kergen::KernelType;
   if (k.error != Error::Ok) {
     const int code = static_cast<int>(k.error);
-    KFUZZ_CHECK(code > 0 && code <= static_cast<int>(Error::Internal), "unknown error code " + std::to_string(code));
+    KFUZZ_CHECK(code > 0 && code <= static_cast<int>(Error::SelfIntersection),
+                "unknown error code " + std::to_string(code));
     KFUZZ_CHECK(k.error != Error::Internal, k.message);
     KFUZZ_CHECK(k.error != Error::ParseError && k.error != Error::IoError, "compute_kernel returned a reader error");
     KFUZZ_CHECK(!k.message.empty(), std::string("error ") + kergen::error_name(k.error) + " without a message");
