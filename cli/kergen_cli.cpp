@@ -74,13 +74,15 @@ struct Arguments {
 // --weld without a distance: vertices within this fraction of the bounding box diagonal merge.
 constexpr double kDefaultRelativeWeld = 1e-9;
 
-// The core's messages name options as the C++ API does (Options::field); the CLI names its flags.
+// The core's messages name options as the C++ API does (Options::field); the CLI names its flags
+// (kergen::option_names; an option without a flag keeps the library's name).
 std::string in_cli_words(std::string text) {
-  static const std::pair<const char*, const char*> kWords[] = {
-      {"Options::allow_open", "--allow-open"}, {"Options::weld", "--weld"}, {"Options::repair", "--repair"}};
-  for (const auto& [api, flag] : kWords)
-    for (size_t at = text.find(api); at != std::string::npos; at = text.find(api, at + std::strlen(flag)))
-      text.replace(at, std::strlen(api), flag);
+  for (const kergen::OptionName& o : kergen::option_names()) {
+    if (!o.cli) continue;
+    const std::string api = std::string("Options::") + o.field;
+    for (size_t at = text.find(api); at != std::string::npos; at = text.find(api, at + std::strlen(o.cli)))
+      text.replace(at, api.size(), o.cli);
+  }
   return text;
 }
 

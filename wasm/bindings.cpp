@@ -426,6 +426,14 @@ val wire_format() {
   val kinds = val::array();  // StepOut.kind values 0, 1, 2 (static_assert above)
   for (const char* k : {"vertex", "edge", "face"}) kinds.call<void>("push", std::string(k));
   w.set("stepKinds", kinds);
+  val words = val::array();  // [library name, JS name] of each option (kergen::option_names)
+  for (const kergen::OptionName& o : kergen::option_names()) {
+    val pair = val::array();
+    pair.call<void>("push", std::string("Options::") + o.field);
+    pair.call<void>("push", std::string(o.js));
+    words.call<void>("push", pair);
+  }
+  w.set("optionWords", words);
   val statuses = val::array();
   for (int t = 0; t <= static_cast<int>(kergen::KernelType::Unbounded); ++t)
     statuses.call<void>("push", std::string(kergen::kernel_type_name(static_cast<kergen::KernelType>(t))));

@@ -145,7 +145,7 @@ export function checkWireFormat(w) {
   for (const [group, names] of Object.entries(WIRE_NAMES)) {
     for (const n of names) if (typeof w?.[group]?.[n] !== 'number') missing.push(`${group}.${n}`);
   }
-  for (const list of ['stats', 'statuses', 'stepKinds']) if (!Array.isArray(w?.[list])) missing.push(list);
+  for (const list of ['stats', 'statuses', 'stepKinds', 'optionWords']) if (!Array.isArray(w?.[list])) missing.push(list);
   if (missing.length === 0 && !['vertex', 'edge', 'face'].every((k) => w.stepKinds.includes(k))) missing.push('stepKinds');
   if (missing.length) {
     throw new KergenError('WASM_LOAD_FAILED', `kergen.wasm does not match this index.js (rebuild both): its wire format lacks ${missing.join(', ')}`);
@@ -228,14 +228,8 @@ function checkWeld(fn, weld) {
 }
 
 // The core's messages name options as the C++ API does (Options::field); this package names its
-// own options.
-const JS_WORDS = [
-  [/Options::allow_open/g, 'allowOpen: true'],
-  [/Options::weld/g, 'weld: true'],
-  [/Options::repair/g, 'repair: true'],
-  [/Options::max_faces \/ max_vertices/g, 'options.maxFaces / maxVertices'],
-];
-const inJsWords = (text) => JS_WORDS.reduce((t, [api, js]) => t.replace(api, js), text);
+// own options, from the module's table (kergen::option_names, in W.optionWords).
+const inJsWords = (text) => W.optionWords.reduce((t, [api, js]) => t.replaceAll(api, js), text);
 
 function checkOptions(fn, options) {
   if (options === undefined || options === null) return {};

@@ -60,6 +60,25 @@ const char* kernel_type_name(KernelType t) {
   return "UNKNOWN";
 }
 
+const std::vector<OptionName>& option_names() {
+  static const std::vector<OptionName> names = {
+      {"allow_open", "--allow-open", "allowOpen: true"},
+      {"weld_relative", "--weld-relative", "weld: { relative }"},
+      {"weld", "--weld", "weld: true"},
+      {"repair", "--repair", "repair: true"},
+      {"deepest_point", "--deepest", "deepestPoint: true"},
+      {"max_steps", "--max-steps", "maxSteps"},
+      {"cull_faces", "--no-cull-faces", "cullFaces"},
+      {"seed", "--seed", "seed"},
+      {"max_faces", nullptr, "options.maxFaces"},
+      {"max_vertices", nullptr, "options.maxVertices"},
+      {"on_step", nullptr, "onStep"},
+      {"on_progress", nullptr, "onProgress"},
+      {"from", "--from", "from"},
+  };
+  return names;
+}
+
 const char* warning_kind_name(Warning::Kind k) {
   switch (k) {
     case Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";

@@ -757,7 +757,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
   if (nf > options.max_faces || nv > options.max_vertices) {
     std::ostringstream s;
     s << "the mesh has " << nf << " faces and " << nv << " vertices; the limit is " << options.max_faces
-      << " faces and " << options.max_vertices << " vertices (Options::max_faces / max_vertices)";
+      << " faces and " << options.max_vertices << " vertices (Options::max_faces / Options::max_vertices)";
     return fail(m, Error::TooLarge, s.str());
   }
   if (!mesh.face_sizes && mesh.num_indices % 3 != 0)

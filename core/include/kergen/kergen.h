@@ -183,6 +183,16 @@ struct Options {
   bool repair = false;
 };
 
+// How each front end names an Options field, for messages that suggest one: the library's
+// messages say `Options::<field>`, and the CLI and the JS package put their own words in its
+// place (a flag, or a JS option as it would be written; nullptr: that front end has none).
+struct OptionName {
+  const char* field;  // "allow_open"
+  const char* cli;    // "--allow-open"
+  const char* js;     // "allowOpen: true"
+};
+const std::vector<OptionName>& option_names();
+
 struct Warning {
   enum class Kind : int {
     OrientationFlipped,      // faces were clockwise seen from outside; the mesh was flipped
