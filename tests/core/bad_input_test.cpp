@@ -280,6 +280,7 @@ TEST_P(BadInput, Row) {
   }
   kergen::Options o;
   if (row["options"].has("maxFaces")) o.max_faces = size_t(row["options"]["maxFaces"].num);
+  if (row["options"].has("repair")) o.repair = row["options"]["repair"].b;
   const kergen::Kernel k = kergen::compute_kernel(view, o);
   if (std::getenv("KERGEN_PRINT_MESSAGES")) std::printf("ROW %s: %s\n", row["name"].str.c_str(), k.message.c_str());
   expect_outcome(row["expect"], k.error, k.message, &k);

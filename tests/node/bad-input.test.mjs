@@ -55,6 +55,7 @@ for (const row of table.rows.filter((r) => r.mesh)) {
     const indices = m.indices; // plain numbers: the package accepts arrays
     const options = m.faceSizes ? { faceSizes: m.faceSizes } : {};
     if (row.options && row.options.maxFaces !== undefined) options.maxFaces = row.options.maxFaces;
+    if (row.options && row.options.repair !== undefined) options.repair = row.options.repair;
     check(row, row.expect, await outcome(positions, indices, options));
     // The same verdict for the cheaper entry point.
     if (row.expect.code !== 'OK' && !row.compute_kernel_only) {
