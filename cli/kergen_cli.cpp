@@ -86,6 +86,17 @@ std::string in_cli_words(std::string text) {
   return text;
 }
 
+// A whole number from 0 to `max` given to `flag`, else a usage error.
+uint64_t parse_count(const std::string& flag, const std::string& text, uint64_t max) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long n = std::strtoull(text.c_str(), &end, 10);
+  if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE || n > max)
+    usage_error(flag + " needs a non-negative integer" + (max < UINT64_MAX ? " up to " + std::to_string(max) : "") +
+                ", got '" + text + "'");
+  return n;
+}
+
 bool parse_number(const std::string& text, double& out) {
   if (text.empty()) return false;
   char* end = nullptr;
@@ -160,23 +171,11 @@ Arguments parse_arguments(int argc, char** argv) {
         if (!parse_number(parts[k], args.options.from[k])) usage_error("--from needs x,y,z, got '" + text + "'");
       args.options.has_from = true;
     } else if (arg == "--max-steps") {
-      const std::string text = value();
-      char* end = nullptr;
-      errno = 0;
-      const unsigned long long steps = std::strtoull(text.c_str(), &end, 10);
-      if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE)
-        usage_error("--max-steps needs a non-negative integer, got '" + text + "'");
-      args.options.max_steps = steps;
+      args.options.max_steps = parse_count(arg, value(), UINT64_MAX);
     } else if (arg == "--no-cull-faces") {
       args.options.cull_faces = false;
     } else if (arg == "--seed") {
-      const std::string text = value();
-      char* end = nullptr;
-      errno = 0;
-      const unsigned long long seed = std::strtoull(text.c_str(), &end, 10);
-      if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE)
-        usage_error("--seed needs a non-negative integer, got '" + text + "'");
-      args.options.seed = seed;
+      args.options.seed = parse_count(arg, value(), UINT64_MAX);
     } else if (arg == "--jobs") {
       const std::string text = value();
       char* end = nullptr;
