@@ -62,6 +62,7 @@ using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
 namespace {
 
 using kergen_bench::Baseline;
+using kergen_bench::fmt;
 using kergen_bench::median;
 using kergen_bench::now_ms;
 
@@ -283,12 +284,6 @@ std::vector<std::pair<std::string, std::string>> default_list(const Args& args) 
   for (const char* d : {"tet10", "tet20", "tet30", "voro"})
     for (const char* i : {"0", "500"}) add(std::string("polyhedra/") + d + "/" + i + ".off");
   return list;
-}
-
-std::string fmt(double v, int prec = 2) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", prec, v);
-  return buf;
 }
 
 std::string baseline_cell(const Baseline& b) {

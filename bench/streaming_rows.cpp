@@ -115,12 +115,6 @@ StreamRow stream_row(const std::string& label, const kergen::Mesh& mesh, int run
   return row;
 }
 
-std::string fmt(double v, int prec = 2) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", prec, v);
-  return buf;
-}
-
 std::string side_cell(const Side& s) {
   if (s.cut) return "> " + fmt(s.ms()) + " (cut off)";
   return fmt(s.ms()) + " (" + std::to_string(s.runs()) + (s.runs() == 1 ? " run" : " runs") +
