@@ -40,10 +40,8 @@ bool segment_meets_triangle(const double* u, const double* v, const double* a, c
   const int su = orient3d(a, b, c, u, shift), sv = orient3d(a, b, c, v, shift);
   if (su != 0 && su == sv) return false;
   if (su == 0 && sv == 0) {
-    // Coplanar: touching if an endpoint lies in the triangle or the segment crosses an edge;
-    // decided in the plane's dominant projection by exact 2D orientations on the points lifted
-    // off the plane by the triangle's normal direction is complex; count it as a contact when
-    // the bounding boxes overlap (conservative: such shells at least touch or nearly so).
+    // Coplanar segment and triangle: counted as a contact as soon as their bounding boxes
+    // overlap (conservative: pieces with coplanar faces that close are refused, never passed).
     for (int k = 0; k < 3; ++k) {
       const double lo = std::min({a[k], b[k], c[k]}), hi = std::max({a[k], b[k], c[k]});
       if (std::max(u[k], v[k]) < lo || std::min(u[k], v[k]) > hi) return false;
