@@ -18,19 +18,6 @@ void snap(double p[3]) {
   for (int k = 0; k < 3; ++k) p[k] = std::ldexp(std::nearbyint(std::ldexp(p[k], 80)), -80);
 }
 
-// The kernel's facet planes (planes holding three or more of its edges).
-std::vector<uint32_t> facet_planes(const TraceResult& kernel) {
-  std::vector<uint32_t> planes;
-  for (const TracedEdge& e : kernel.edges) planes.insert(planes.end(), e.planes.begin(), e.planes.end());
-  std::sort(planes.begin(), planes.end());
-  std::vector<uint32_t> facets;
-  for (size_t i = 0, j; i < planes.size(); i = j) {
-    for (j = i; j < planes.size() && planes[j] == planes[i]; ++j) {}
-    if (j - i >= 3) facets.push_back(planes[i]);
-  }
-  return facets;
-}
-
 // Whether p lies strictly inside every facet plane, hence in the kernel's interior (and then
 // strictly inside every plane of the mesh, which all hold the kernel).
 bool strictly_inside(const PlaneSet& ps, const std::vector<uint32_t>& facets, const double p[3]) {

@@ -192,12 +192,10 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
   for (size_t i = 0; i < m.warnings.size(); ++i)
     if (m.warnings[i].kind == Warning::Kind::UnusedVertices) {
       const size_t unused = m.warnings[i].count - std::min(m.warnings[i].count, w.merged_vertices);
-      if (unused == 0) {
+      if (unused == 0)
         m.warnings.erase(m.warnings.begin() + long(i));
-      } else {
-        m.warnings[i].count = unused;
-        m.warnings[i].message = std::to_string(unused) + " vertices are not used by any face";
-      }
+      else
+        m.warnings[i] = unused_vertices_warning(unused);
       break;
     }
   std::vector<Warning> done;
@@ -420,19 +418,8 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
       for (uint32_t p : v.tight)
         if (s.is_box[p]) out.type = KernelType::Unbounded;
     if (options.deepest_point && out.type == KernelType::Polyhedron && out.complete) {
-      std::vector<uint32_t> facets;
-      for (const auto& e : tr.edges)
-        for (uint32_t h : e.planes) facets.push_back(h);
-      std::sort(facets.begin(), facets.end());
-      std::vector<uint32_t> counted;
-      for (size_t i = 0; i < facets.size();) {
-        size_t j = i;
-        while (j < facets.size() && facets[j] == facets[i]) ++j;
-        if (j - i >= 3) counted.push_back(facets[i]);
-        i = j;
-      }
       double p[3] = {0, 0, 0}, r = 0;
-      if (deepest_point(*s.planes, counted, s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
+      if (deepest_point(*s.planes, facet_planes(tr), s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
         out.has_deepest_point = true;
         for (int k = 0; k < 3; ++k) out.deepest_point[k] = std::ldexp(p[k], unscale_exp);
         out.inscribed_radius = std::ldexp(r, unscale_exp);

@@ -743,6 +743,10 @@ void magnitude_extrema(const double* x, size_t n, uint64_t& top_bits, int64_t& l
 
 }  // namespace
 
+Warning unused_vertices_warning(size_t count) {
+  return {Warning::Kind::UnusedVertices, count, std::to_string(count) + " vertices are not used by any face"};
+}
+
 PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells) {
   PreparedMesh m;
   const size_t nv = mesh.num_vertices;
@@ -1144,9 +1148,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
   double lo3[3], hi3[3];  // bounding box of the used vertices, taken with the check below
   {
     const size_t unused = nv - size_t(std::count(used.begin(), used.end(), 1));
-    if (unused)
-      m.warnings.push_back(
-          {Warning::Kind::UnusedVertices, unused, std::to_string(unused) + " vertices are not used by any face"});
+    if (unused) m.warnings.push_back(unused_vertices_warning(unused));
     // Two distinct vertices of a closed surface at one position: the surface touches itself
     // there (it is not embedded), and the intersection of its face half-spaces is then not its
     // kernel — refused rather than answered wrongly.

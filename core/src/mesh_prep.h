@@ -49,6 +49,9 @@ struct PreparedMesh {
   }
 };
 
+// The warning for `count` vertices no face uses (prepare_mesh's; the weld reports it anew).
+Warning unused_vertices_warning(size_t count);
+
 // `allow_shells`: a closed mesh of several pieces is prepared (PreparedMesh::shells counts them)
 // instead of refused with Error::MultipleComponents.
 PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells = false);

@@ -684,4 +684,16 @@ TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>&
   return t.run_update(prev, added);
 }
 
+std::vector<uint32_t> facet_planes(const TraceResult& trace) {
+  std::vector<uint32_t> planes;
+  for (const TracedEdge& e : trace.edges) planes.insert(planes.end(), e.planes.begin(), e.planes.end());
+  std::sort(planes.begin(), planes.end());
+  std::vector<uint32_t> facets;
+  for (size_t i = 0, j; i < planes.size(); i = j) {
+    for (j = i; j < planes.size() && planes[j] == planes[i]; ++j) {}
+    if (j - i >= 3) facets.push_back(planes[i]);
+  }
+  return facets;
+}
+
 }  // namespace kergen

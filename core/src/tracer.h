@@ -56,6 +56,10 @@ TraceResult trace_kernel_edges(const PlaneSet& ps, const std::vector<uint32_t>& 
 TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceResult& prev,
                                 const std::vector<uint32_t>& added, const TraceOptions& options);
 
+// The facet planes of a traced polytope (planes holding three or more of its edges: a supporting
+// plane through two non-collinear edges touches a 2D face), increasing.
+std::vector<uint32_t> facet_planes(const TraceResult& trace);
+
 // The complete tight set of `w` over `active` (planes in `known_tight` are not re-evaluated), or
 // the first violated plane. Returns kNoPlane when w is a kernel point.
 uint32_t certify_vertex(const PlaneSet& ps, const std::vector<uint32_t>& active, const VertexGeom& w,

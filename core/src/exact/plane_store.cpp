@@ -27,14 +27,7 @@ void PlaneSet::add_from_triangles(const std::array<uint32_t, 3>* tri, const uint
     const PlaneCoef<Approx> p = plane_from_points<Approx>(point(t[0]), point(t[1]), point(t[2]));
     const size_t i = first + k;
     rep_[i] = t;
-    nx_[i] = p.n[0].v;
-    enx_[i] = p.n[0].e;
-    ny_[i] = p.n[1].v;
-    eny_[i] = p.n[1].e;
-    nz_[i] = p.n[2].v;
-    enz_[i] = p.n[2].e;
-    d_[i] = p.d.v;
-    ed_[i] = p.d.e;
+    store(i, p);
     opposite_[i] = kNoPlane;
   }
 }

@@ -61,17 +61,7 @@ class PlaneSet {
   // keep_staged(tri, which, n) keeps candidates which[0] < which[1] < ... as planes size(),
   // size() + 1, ... of triangles tri[which[k]].
   void stage(size_t n);
-  void put(size_t j, const PlaneCoef<Approx>& c) {
-    const size_t i = size() + j;
-    nx_[i] = c.n[0].v;
-    enx_[i] = c.n[0].e;
-    ny_[i] = c.n[1].v;
-    eny_[i] = c.n[1].e;
-    nz_[i] = c.n[2].v;
-    enz_[i] = c.n[2].e;
-    d_[i] = c.d.v;
-    ed_[i] = c.d.e;
-  }
+  void put(size_t j, const PlaneCoef<Approx>& c) { store(size() + j, c); }
   void keep_staged(const std::array<uint32_t, 3>* tri, const uint32_t* which, size_t n);
   uint32_t add_explicit(double nx, double ny, double nz, double d);
   void pop_last();  // removes the most recently added plane
@@ -135,6 +125,17 @@ class PlaneSet {
 
  private:
   void resize(size_t n);  // new entries uninitialised
+  // The filtered coefficients of plane slot i (staged or kept), structure of arrays.
+  void store(size_t i, const PlaneCoef<Approx>& c) {
+    nx_[i] = c.n[0].v;
+    enx_[i] = c.n[0].e;
+    ny_[i] = c.n[1].v;
+    eny_[i] = c.n[1].e;
+    nz_[i] = c.n[2].v;
+    enz_[i] = c.n[2].e;
+    d_[i] = c.d.v;
+    ed_[i] = c.d.e;
+  }
 
   const std::vector<double>* points_;
   int exact_shift_ = 0;
