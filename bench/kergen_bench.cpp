@@ -246,24 +246,21 @@ Row bench_mesh(const std::string& path, const std::string& label, const Args& ar
   bool flip = false;
   for (const auto& w : k.warnings) flip |= w.kind == kergen::Warning::Kind::OrientationFlipped;
 
-  if (!args.epick)
-    row.epick.skipped = "skipped (--no-epick)";
-  else if (row.faces > args.epick_max_faces)
-    row.epick.skipped = "skipped (> --epick-max-faces)";
-  else
-    row.epick = run_baseline<Epick>(rr.mesh, flip, c, args);
-  if (!args.epeck)
-    row.epeck.skipped = "skipped (--no-epeck)";
-  else if (row.faces > args.epeck_max_faces)
-    row.epeck.skipped = "skipped (> --epeck-max-faces)";
-  else
-    row.epeck = run_baseline<Epeck>(rr.mesh, flip, c, args);
-  if (!args.qhull)
-    row.qhull.skipped = "skipped (--no-qhull)";
-  else if (row.faces > args.qhull_max_faces)
-    row.qhull.skipped = "skipped (> --qhull-max-faces)";
-  else
-    row.qhull = kergen_bench::run_qhull(rr.mesh, flip, c, k.volume, args.runs, args.baseline_budget_ms);
+  // Each baseline runs unless switched off or over its face limit (the cell then says which).
+  auto baseline = [&](Baseline& out, bool on, size_t max_faces, const char* name, auto&& run) {
+    if (!on)
+      out.skipped = std::string("skipped (--no-") + name + ")";
+    else if (row.faces > max_faces)
+      out.skipped = std::string("skipped (> --") + name + "-max-faces)";
+    else
+      out = run();
+  };
+  baseline(row.epick, args.epick, args.epick_max_faces, "epick",
+           [&] { return run_baseline<Epick>(rr.mesh, flip, c, args); });
+  baseline(row.epeck, args.epeck, args.epeck_max_faces, "epeck",
+           [&] { return run_baseline<Epeck>(rr.mesh, flip, c, args); });
+  baseline(row.qhull, args.qhull, args.qhull_max_faces, "qhull",
+           [&] { return kergen_bench::run_qhull(rr.mesh, flip, c, k.volume, args.runs, args.baseline_budget_ms); });
   return row;
 }
 
