@@ -5,7 +5,8 @@
 // largest normal axis: a fan would fold over a non-convex face), and optionally the faces' edges.
 import { Earcut } from 'three/src/extras/Earcut.js';
 
-// Returns { center, radius } of the finite positions' bounding box.
+// Returns { center, radius, maxAbs } of the finite positions' bounding box (maxAbs: the largest
+// coordinate magnitude, which places the package's clip box; see unbounded.js).
 function bounds(positions) {
   const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < positions.length; i += 3) {
@@ -18,10 +19,11 @@ function bounds(positions) {
     if (z < lo[2]) lo[2] = z;
     if (z > hi[2]) hi[2] = z;
   }
-  if (!(lo[0] <= hi[0])) return { center: [0, 0, 0], radius: 1 };
+  if (!(lo[0] <= hi[0])) return { center: [0, 0, 0], radius: 1, maxAbs: 0 };
   const center = [0, 1, 2].map((c) => (lo[c] + hi[c]) / 2);
   const radius = Math.max(1e-30, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
-  return { center, radius };
+  const maxAbs = Math.max(...lo.map(Math.abs), ...hi.map(Math.abs));
+  return { center, radius, maxAbs };
 }
 
 // One polygon (k > 3 vertex ids in `loop`) as triangles appended to `out`.
@@ -152,17 +154,18 @@ export function simplify(pos, triangles, target) {
 
 /**
  * mesh: { positions (xyz), indices, faceSizes (null: triangles) }. Returns { center, radius,
- * positions: Float32Array (centred), triangles: Uint32Array, edges: Uint32Array | null, faces,
- * drawable } — drawable is false when a face refers to a missing vertex (the package reports it).
+ * maxAbs, positions: Float32Array (centred), triangles: Uint32Array, edges: Uint32Array | null,
+ * faces, drawable } — drawable is false when a face refers to a missing vertex (the package
+ * reports it).
  */
 export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } = {}) {
   const { positions, indices, faceSizes } = mesh;
   const nv = positions.length / 3;
-  const { center, radius } = bounds(positions);
+  const { center, radius, maxAbs } = bounds(positions);
   const faces = faceSizes ? faceSizes.length : indices.length / 3;
   let drawable = nv > 0;
   for (let i = 0; i < indices.length && drawable; i++) if (!(indices[i] < nv)) drawable = false;
-  if (!drawable) return { center, radius, faces, drawable, positions: new Float32Array(0), triangles: new Uint32Array(0), edges: null };
+  if (!drawable) return { center, radius, maxAbs, faces, drawable, positions: new Float32Array(0), triangles: new Uint32Array(0), edges: null };
   const pos = new Float32Array(3 * nv);
   for (let i = 0; i < 3 * nv; i += 3) {
     pos[i] = positions[i] - center[0];
@@ -173,13 +176,94 @@ export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } 
   if (triangles.length / 3 > maxTriangles) {
     // Drawn simplified; `edges` then are the drawn triangles' edges.
     const s = simplify(pos, triangles, maxTriangles);
-    return { center, radius, faces, drawable, simplified: true, positions: s.positions, triangles: s.triangles,
+    return { center, radius, maxAbs, faces, drawable, simplified: true, positions: s.positions, triangles: s.triangles,
       edges: edges ? faceEdges(s.triangles, null, s.positions.length / 3) : null };
   }
-  return { center, radius, faces, drawable, simplified: false, positions: pos, triangles, edges: edges ? faceEdges(indices, faceSizes, nv) : null };
+  return { center, radius, maxAbs, faces, drawable, simplified: false, positions: pos, triangles, edges: edges ? faceEdges(indices, faceSizes, nv) : null };
 }
 
 /** The buffers of a prepareDrawing() result, for a transfer list. */
 export function drawingBuffers(d) {
   return [...new Set([d.positions.buffer, d.triangles.buffer, d.edges?.buffer].filter((b) => b && b.byteLength > 0))];
+}
+
+// The edges used by one face only (a hole's rim), as vertex-id pairs: the same sorted keys as
+// faceEdges(), kept where a key occurs once. (An edge used by three or more faces is a
+// non-manifold edge, not an open one: the package reports it as NON_MANIFOLD_EDGE.)
+export function boundaryEdges(indices, faceSizes, nv) {
+  const nFaces = faceSizes ? faceSizes.length : indices.length / 3;
+  const keys = new Float64Array(indices.length);
+  let n = 0;
+  for (let f = 0, at = 0; f < nFaces; f++) {
+    const k = faceSizes ? faceSizes[f] : 3;
+    for (let j = 0; j < k; j++) {
+      const a = indices[at + j], b = indices[at + ((j + 1) % k)];
+      if (a !== b) keys[n++] = a < b ? a * nv + b : b * nv + a;
+    }
+    at += k;
+  }
+  const sorted = keys.subarray(0, n).sort();
+  const pairs = [];
+  for (let i = 0; i < n; ) {
+    let j = i + 1;
+    while (j < n && sorted[j] === sorted[i]) j++;
+    if (j - i === 1) pairs.push(Math.floor(sorted[i] / nv), sorted[i] % nv);
+    i = j;
+  }
+  return Uint32Array.from(pairs);
+}
+
+// Line-segment positions (float32, relative to `center`) of vertex-id pairs.
+function segmentPositions(positions, pairs, center) {
+  const out = new Float32Array(3 * pairs.length);
+  for (let i = 0; i < pairs.length; i++) {
+    for (let c = 0; c < 3; c++) out[3 * i + c] = positions[3 * pairs[i] + c] - center[c];
+  }
+  return out;
+}
+
+// Each vertex's first vertex at exactly the same position: a triangle soup (a glTF scene, which
+// the package welds before computing) has every corner on its own, and all its edges would count
+// as open.
+function samePositionIds(positions) {
+  const first = new Map();
+  const ids = new Uint32Array(positions.length / 3);
+  for (let v = 0; v < ids.length; v++) {
+    const key = `${positions[3 * v]},${positions[3 * v + 1]},${positions[3 * v + 2]}`;
+    let id = first.get(key);
+    if (id === undefined) first.set(key, (id = v));
+    ids[v] = id;
+  }
+  return ids;
+}
+
+/** The open edges of a mesh, ready to draw: { count, lines (float32 segment ends, centred) }. */
+export function openEdgeLines(mesh, center) {
+  const ids = samePositionIds(mesh.positions);
+  const pairs = boundaryEdges(mesh.indices.map((v) => ids[v]), mesh.faceSizes, mesh.positions.length / 3);
+  return { count: pairs.length / 2, lines: segmentPositions(mesh.positions, pairs, center) };
+}
+
+/**
+ * Some input faces (by input index) ready to draw: { triangles, lines } as float32 positions
+ * relative to `center` — triangles (polygons split as the input's drawing splits them) and the
+ * faces' outlines. Indices past the mesh's faces are skipped.
+ */
+export function faceHighlight(mesh, faceIds, center) {
+  const { positions, indices, faceSizes } = mesh;
+  const nFaces = faceSizes ? faceSizes.length : indices.length / 3;
+  const starts = new Map();
+  const wanted = new Set(Array.from(faceIds).filter((f) => f < nFaces));
+  for (let f = 0, at = 0; f < nFaces && starts.size < wanted.size; at += faceSizes ? faceSizes[f] : 3, f++) {
+    if (wanted.has(f)) starts.set(f, at);
+  }
+  const tri = [], outline = [];
+  for (const [f, at] of starts) {
+    const k = faceSizes ? faceSizes[f] : 3;
+    const loop = indices.subarray(at, at + k);
+    if (k === 3) tri.push(...loop);
+    else splitPolygon(positions, loop, tri);
+    for (let j = 0; j < k; j++) outline.push(loop[j], loop[(j + 1) % k]);
+  }
+  return { triangles: segmentPositions(positions, tri, center), lines: segmentPositions(positions, outline, center) };
 }

@@ -1,13 +1,18 @@
-// kergen-wasm demo: load a mesh (file, drop or generated sample), compute its kernel in a worker
-// (the package's KernelWorker), and animate the kernel's growth from the stream of step events.
-// Nothing heavy runs on this thread: a file's bytes go to the worker untouched (it parses them
-// with the package's reader), the input is prepared for drawing in a second worker
-// (draw-worker.js), and the replay only moves draw ranges.
+// kergen-wasm demo: load a mesh (file, drop, link or generated sample), compute its kernel in a
+// worker (the package's KernelWorker), and animate the kernel's growth from the stream of step
+// events. Nothing heavy runs on this thread: a file's bytes go to the worker untouched (it parses
+// them with the package's reader; GLB/glTF, a scene format, is read by three.js's loader), the
+// input is prepared for drawing in a second worker (draw-worker.js), and the replay only moves
+// draw ranges.
 
 import { KernelWorker } from 'kergen-wasm/worker';
 import { Viewer } from './viewer.js';
 import { SAMPLES, sampleById } from './samples.js';
-import { prepareDrawing } from './draw-prep.js';
+import { prepareDrawing, openEdgeLines, faceHighlight } from './draw-prep.js';
+import { boxFacets } from './unbounded.js';
+import { readGltf, isGltfName } from './gltf.js';
+import { viewFromParams, shareUrl } from './share.js';
+import { ROWS, REPAIRABLE, describeError, describeResult, sentence } from './outcome.js';
 
 // Above this many faces the input is prepared in the drawing worker, and its face edges are off
 // by default (a dense wireframe hides the kernel and costs every frame).
@@ -20,7 +25,8 @@ const REPLAY_SECONDS = 10;
 const MIN_STEPS_PER_S = 40;
 // ?stream=0: compute without step events (the replay is then built from the result); for
 // measuring what streaming costs (bench/browser_bench.mjs).
-const STREAM = new URLSearchParams(location.search).get('stream') !== '0';
+const PARAMS = new URLSearchParams(location.search);
+const STREAM = PARAMS.get('stream') !== '0';
 
 const $ = (id) => document.getElementById(id);
 const ui = {
@@ -30,7 +36,11 @@ const ui = {
   animV: $('anim-vertices'), animE: $('anim-edges'), animF: $('anim-faces'), status: $('status'),
   message: $('message'), exportObj: $('export-obj'), exportStl: $('export-stl'), exportOff: $('export-off'),
   fit: $('fit-view'), fitKernel: $('fit-kernel'), opacity: $('opacity'), opacityLabel: $('opacity-label'),
-  showEdges: $('show-edges'), edgesNote: $('edges-note'),
+  showEdges: $('show-edges'), edgesNote: $('edges-note'), openFile: $('open-file'), showInput: $('show-input'),
+  showBall: $('show-ball'), sectionOn: $('section-on'), sectionAxis: $('section-axis'), sectionKernel: $('section-kernel'),
+  sectionPos: $('section-pos'), sectionLabel: $('section-label'), shareUrl: $('share-url'), copyLink: $('copy-link'),
+  shareNote: $('share-note'), actions: $('actions'), retryOpen: $('retry-open'), retryRepair: $('retry-repair'),
+  playbar: $('playbar'),
 };
 
 const viewer = new Viewer(ui.viewport);
@@ -52,6 +62,13 @@ const state = {
   pending: [],
   faces: 0,
   edgesReady: false,
+  // What is open, kept so that it can be computed again with other options (see open()).
+  source: null,
+  runOptions: { allowOpen: PARAMS.get('allowOpen') === '1', repair: PARAMS.get('repair') === '1' },
+  view: viewFromParams(PARAMS),
+  mesh: null, // the parsed input when it is drawn on this thread (small); else the drawing worker has it
+  drawing: null, // { center, maxAbs } of the drawn input
+  openEdges: 0,
 };
 
 // ------------------------------------------------------------------------------------------
@@ -70,17 +87,27 @@ function setStat(id, text, value = text) {
 }
 
 function clearStats() {
-  for (const id of ['stat-input-faces', 'stat-planes', 'stat-status', 'stat-vertices', 'stat-edges', 'stat-faces',
-    'stat-volume', 'stat-area', 'stat-ratio', 'stat-kernel-point', 'stat-time', 'stat-wall']) setStat(id, '—', '');
+  for (const id of ['stat-input-faces', 'stat-open-edges', 'stat-planes', 'stat-status', 'stat-vertices', 'stat-edges', 'stat-faces',
+    'stat-volume', 'stat-area', 'stat-ratio', 'stat-kernel-point', 'stat-deepest', 'stat-time', 'stat-wall']) setStat(id, '—', '');
 }
 
-function setStatus(stateName, text, value = '') {
+// Shows the rows of the stats table that apply (the others are hidden, not shown as 0).
+function showRows(rows) {
+  for (const id of ROWS) $(`row-${id}`).hidden = !rows.includes(id);
+}
+
+// `stateName`: idle, reading, computing, cancelled, error, done; `outcome` (done only): star,
+// empty, flat, open. The canvas's label says the same in words.
+function setStatus(stateName, text, value = '', outcome = '') {
   ui.status.dataset.state = stateName;
   ui.status.dataset.value = value;
+  ui.status.dataset.outcome = outcome;
   ui.status.textContent = text;
+  viewer.renderer.domElement.setAttribute('aria-label', `3D view${state.name ? ` of ${state.name}` : ''}: ${text}`);
 }
 
-function showMessage(kind, title, detail = '', code = '') {
+// The message box: a title and paragraphs, each its own sentence(s).
+function showMessage(kind, title, paragraphs = [], code = '') {
   ui.message.hidden = false;
   ui.message.dataset.kind = kind;
   ui.message.dataset.code = code;
@@ -88,7 +115,13 @@ function showMessage(kind, title, detail = '', code = '') {
   const b = document.createElement('b');
   b.textContent = title;
   ui.message.append(b);
-  if (detail) ui.message.append(document.createTextNode(detail));
+  for (const text of [paragraphs].flat().filter(Boolean)) addParagraph(text);
+}
+
+function addParagraph(text) {
+  const p = document.createElement('p');
+  p.textContent = text;
+  ui.message.append(p);
 }
 
 function hideMessage() {
@@ -103,33 +136,17 @@ function setBusy(text) {
   if (text) ui.busyText.textContent = text;
 }
 
-const ERROR_TITLES = {
-  PARSE_ERROR: 'Could not read the file',
-  OPEN_MESH: 'The mesh is open',
-  NON_MANIFOLD_EDGE: 'The mesh is not manifold',
-  INCONSISTENT_ORIENTATION: 'Inconsistent face orientation',
-  MULTIPLE_COMPONENTS: 'The mesh has several separate pieces',
-  DEGENERATE_INPUT: 'The mesh encloses no volume',
-  NON_FINITE_COORDINATE: 'Invalid coordinates',
-  INDEX_OUT_OF_RANGE: 'A face refers to a vertex that does not exist',
-  EMPTY_INPUT: 'The mesh is empty',
-  FACE_TOO_SMALL: 'A face has fewer than 3 vertices',
-  TOO_LARGE: 'The mesh is too large',
-  COORDINATE_RANGE: 'Coordinates span too many orders of magnitude',
-};
-const ERROR_HINTS = {
-  OPEN_MESH: ' The kernel is defined for closed (watertight) meshes: every edge must belong to exactly two faces.',
-  NON_MANIFOLD_EDGE: ' Every edge must belong to exactly two faces.',
-  INCONSISTENT_ORIENTATION: ' Neighbouring faces must traverse their shared edge in opposite directions.',
-  MULTIPLE_COMPONENTS: ' Load one closed piece at a time.',
-};
-
+// The error state; offers what can get an answer from the same mesh (repair, allowOpen).
 function showError(err) {
-  const code = err?.code || 'ERROR';
-  const title = ERROR_TITLES[code] ?? 'Error';
-  showMessage('error', `${title} (${code})`, `${err?.message ?? err}${ERROR_HINTS[code] ?? ''}`, code);
-  setStatus('error', `${title}.`, 'ERROR');
-  setStat('stat-status', code, 'ERROR');
+  const d = describeError(err, { openEdges: state.openEdges });
+  showMessage('error', d.title, d.paragraphs, d.code);
+  setStatus('error', d.status, 'ERROR');
+  setStat('stat-status', d.code, 'ERROR');
+  showRows(d.rows);
+  const reopenable = !!state.source && state.inputShown;
+  ui.retryOpen.hidden = !(reopenable && d.code === 'OPEN_MESH' && !state.runOptions.allowOpen);
+  ui.retryRepair.hidden = !(reopenable && REPAIRABLE.has(d.code) && !state.runOptions.repair);
+  ui.actions.hidden = ui.retryOpen.hidden && ui.retryRepair.hidden;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -182,12 +199,21 @@ function beginRun(name) {
   state.pending = [];
   state.timing = {};
   state.phases = [];
+  state.mesh = null;
+  state.openEdges = 0;
   ui.busy.dataset.phases = '';
   viewer.kernel.reset();
   viewer.setKernelPoint(null);
+  viewer.setBall(null);
+  viewer.setBoxFacets(null);
+  viewer.setWitnessFaces(null);
+  viewer.setOpenEdges(null);
+  viewer.setKernelClosed(false);
   hideMessage();
+  ui.actions.hidden = ui.retryOpen.hidden = ui.retryRepair.hidden = true;
   clearStats();
   setStat('stat-name', name);
+  showRows(['name', 'input-faces']);
   ui.cancel.disabled = false;
   setExportEnabled(false);
   setPlayButton();
@@ -198,6 +224,13 @@ function endRun() {
   state.computing = false;
   ui.cancel.disabled = true;
   setBusy('');
+}
+
+// A run that ends without a kernel (error or cancel): nothing to play.
+function stopPlayback() {
+  state.playing = false;
+  state.stickToEnd = false;
+  setPlayButton();
 }
 
 function pushEvent(ev) {
@@ -215,25 +248,30 @@ function showDrawing(d) {
   const t = performance.now();
   state.faces = d.faces;
   state.edgesReady = !!d.edges;
-  ui.showEdges.checked = d.faces <= EDGE_FACES;
+  state.drawing = { center: d.center, maxAbs: d.maxAbs };
+  ui.showEdges.checked = state.view.edges ?? d.faces <= EDGE_FACES;
   ui.edgesNote.textContent = d.faces > EDGE_FACES ? `(${fmtCount(d.faces)} faces: off by default)` : '';
   if (d.simplified) ui.edgesNote.textContent += ` The view draws a simplified copy of the shape (${fmtCount(d.triangles.length / 3)} triangles); the kernel is computed on the real one.`;
   viewer.edgesVisible = ui.showEdges.checked;
   viewer.setInputDrawing(d);
+  applySection();
+  if (ui.showEdges.checked && !d.edges) ui.showEdges.dispatchEvent(new Event('change'));
   state.inputShown = true;
   for (const ev of state.pending) pushEvent(ev);
   state.pending = [];
   state.timing.view = (state.timing.view ?? 0) + performance.now() - t;
 }
 
-// Prepares a parsed mesh for drawing: here when small, in the drawing worker when big.
+// Prepares a parsed mesh for drawing: here when small (and kept here, for the open edges and
+// witness faces), in the drawing worker when big (which keeps it).
 async function showMesh(mesh, token) {
   const faces = mesh.faceSizes ? mesh.faceSizes.length : mesh.indices.length / 3;
   setStat('stat-input-faces', `${fmtCount(faces)} ${mesh.faceSizes ? 'faces' : 'triangles'} (${fmtCount(mesh.positions.length / 3)} vertices)`, faces);
-  const edges = faces <= EDGE_FACES;
+  const edges = (state.view.edges ?? faces <= EDGE_FACES) && faces <= EDGE_FACES;
   if (faces <= INLINE_FACES) {
     const t = performance.now();
     const d = prepareDrawing(mesh, { edges });
+    state.mesh = mesh;
     state.timing.view = performance.now() - t;
     showDrawing(d);
     return;
@@ -281,15 +319,7 @@ async function runKernel(token, start) {
       },
     });
   } catch (err) {
-    if (token !== state.token) return;
-    endRun();
-    if (err?.code === 'CANCELLED') {
-      showMessage('info', 'Cancelled.', ' The computation was stopped; the steps found so far are still shown.', 'CANCELLED');
-      setStatus('cancelled', 'Cancelled.', 'CANCELLED');
-    } else {
-      if (!state.inputShown) viewer.clearInput();
-      showError(err);
-    }
+    if (token === state.token) await failRun(err, token);
     return;
   }
   if (token !== state.token) return;
@@ -307,6 +337,40 @@ async function runKernel(token, start) {
   await finish(result, token);
 }
 
+// A run that ended without a kernel: cancelled (by the button) or refused.
+async function failRun(err, token) {
+  endRun();
+  stopPlayback();
+  if (err?.code === 'CANCELLED') {
+    showCancelled();
+    return;
+  }
+  if (err?.code === 'OPEN_MESH' && state.inputPromise) await state.inputPromise.catch(() => {});
+  if (token !== state.token) return;
+  if (!state.inputShown) viewer.clearInput();
+  if (err?.code === 'OPEN_MESH' && state.inputShown) await showOpenEdges(token);
+  if (token === state.token) showError(err);
+}
+
+function showCancelled() {
+  const steps = viewer.kernel.length;
+  showMessage('info', 'Cancelled.', steps > 0
+    ? `The computation was stopped; the ${fmtCount(steps)} steps that had arrived (part of the kernel's boundary) are still shown.`
+    : 'The computation was stopped before any part of the kernel had arrived; nothing of it is shown.', 'CANCELLED');
+  setStatus('cancelled', 'Cancelled.', 'CANCELLED');
+  showRows(['name', 'input-faces']);
+}
+
+// The input's open edges, drawn in red and counted (from the indices: edges used by one face).
+async function showOpenEdges(token) {
+  const center = state.drawing?.center ?? [0, 0, 0];
+  const open = state.mesh ? openEdgeLines(state.mesh, center) : await drawRequest({ type: 'open-edges' });
+  if (token !== state.token || !open?.lines) return;
+  state.openEdges = open.count;
+  viewer.setOpenEdges(open.lines);
+  setStat('stat-open-edges', `${fmtCount(open.count)} (red)`, open.count);
+}
+
 async function finish(result, token) {
   state.result = result;
   const wall = performance.now() - state.t0;
@@ -315,8 +379,31 @@ async function finish(result, token) {
   if (state.seen.vertex.size !== V || state.seen.edge.size !== E || state.seen.face.size !== F) {
     if (!(await addMissingEvents(result, V, E, F, token))) return;
   }
+  const extra = {};
+  if (result.status === 'UNBOUNDED') {
+    await showOpenEdges(token);
+    if (token !== state.token) return;
+    const ids = boxFacets(result, state.drawing?.maxAbs ?? 0);
+    viewer.setBoxFacets(result, ids);
+    Object.assign(extra, { boxFacets: ids.length, openEdges: state.openEdges });
+    // The clipped kernel reaches the box, far beyond the mesh: show all of it, box facets included.
+    viewer.fit(true);
+  }
+  const witness = result.status === 'EMPTY' ? result.witnessFaces : null;
+  if (witness?.length) {
+    await showWitnessFaces(witness, token);
+    if (token !== state.token) return;
+    extra.witness = witness.length;
+  }
   showStats(result, wall, V, E, F);
-  showOutcome(result, V, E, F);
+  showOutcome(result, V, E, F, extra);
+}
+
+// The faces of an empty kernel's certificate (input indices), highlighted.
+async function showWitnessFaces(ids, token) {
+  const center = state.drawing?.center ?? [0, 0, 0];
+  const faces = state.mesh ? faceHighlight(state.mesh, ids, center) : await drawRequest({ type: 'faces', faces: Array.from(ids) });
+  if (token === state.token && faces?.triangles) viewer.setWitnessFaces(faces);
 }
 
 // Without a stream (?stream=0) a kernel's million events are added here: in slices, one task
@@ -350,65 +437,33 @@ function showStats(result, wall, V, E, F) {
   setStat('stat-vertices', String(V), V);
   setStat('stat-edges', String(E), E);
   setStat('stat-faces', String(F), F);
-  if (result.status === 'POLYHEDRON') {
-    setStat('stat-volume', fmt(result.volume, 10), result.volume);
-    setStat('stat-ratio', `${fmt(100 * result.volumeRatio, 4)} %`, result.volumeRatio);
-  } else if (result.status === 'POLYGON') {
-    setStat('stat-volume', `0 (flat; area ${fmt(result.area)})`, result.volume);
-    setStat('stat-ratio', '0 %', result.volumeRatio);
-  } else {
-    setStat('stat-volume', result.status === 'EMPTY' ? '— (empty)' : String(result.volume), result.volume);
-    setStat('stat-ratio', result.status === 'EMPTY' ? '0 %' : '—', result.volumeRatio);
-  }
-  setStat('stat-area', result.status === 'POLYHEDRON' || result.status === 'POLYGON' ? fmt(result.area, 10) : '—', result.area);
+  setStat('stat-volume', fmt(result.volume, 10), result.volume);
+  setStat('stat-ratio', `${fmt(100 * result.volumeRatio, 4)} %`, result.volumeRatio);
+  setStat('stat-area', fmt(result.area, 10), result.area);
   const kp = result.kernelPoint;
   setStat('stat-kernel-point', kp ? `(${kp.map((x) => fmt(x, 7)).join(', ')})` : 'none', kp ? kp.join(',') : '');
+  const dp = result.deepestPoint;
+  setStat('stat-deepest', dp ? `(${dp.map((x) => fmt(x, 7)).join(', ')}), inscribed ball radius ${fmt(result.inscribedRadius, 6)}` : '—',
+    dp ? [...dp, result.inscribedRadius].join(',') : '');
   setStat('stat-time', s.msTotal != null ? `${fmtMs(s.msTotal)} (LP ${fmtMs(s.msLp ?? 0)}, trace ${fmtMs(s.msTrace ?? 0)})` : '—', s.msTotal);
   const tm = state.timing;
   const parts = [tm.read != null && `read ${fmtMs(tm.read)}`, `worker round trip ${fmtMs(tm.worker)}`,
     tm.view != null && `view ${fmtMs(tm.view)}`].filter(Boolean);
   setStat('stat-wall', `${fmtMs(wall)} (${parts.join(', ')})`, wall);
   viewer.setKernelPoint(kp);
+  viewer.setBall(dp, result.inscribedRadius);
+  viewer.setKernelClosed(result.status === 'POLYHEDRON' || result.status === 'UNBOUNDED');
 }
 
-function showOutcome(result, V, E, F) {
-  const kp = result.kernelPoint;
-  const counts = `${V} vertices, ${E} edges, ${F} faces`;
-  switch (result.status) {
-    case 'POLYHEDRON':
-      setStatus('done', `Star-shaped: the kernel is a polyhedron (${counts}).`, result.status);
-      break;
-    case 'EMPTY':
-      setStatus('done', 'Not star-shaped: the kernel is empty.', result.status);
-      showMessage('empty', 'Not star-shaped — the kernel is empty.',
-        ' No point inside this shape sees all of it: the inner half-spaces of its face planes have no common point.', 'EMPTY');
-      break;
-    case 'POINT':
-      setStatus('done', 'Star-shaped from a single point.', result.status);
-      showMessage('flat', 'Flat kernel: a single point.',
-        ` The shape is star-shaped, but only one point (${kp?.map((x) => fmt(x)).join(', ')}) sees all of it.`, 'POINT');
-      break;
-    case 'SEGMENT':
-      setStatus('done', 'Star-shaped from a segment.', result.status);
-      showMessage('flat', 'Flat kernel: a line segment.',
-        ' The shape is star-shaped, but only from the points of one segment; the kernel has no volume.', 'SEGMENT');
-      break;
-    case 'POLYGON':
-      setStatus('done', `Star-shaped from a flat polygon (${V} vertices).`, result.status);
-      showMessage('flat', 'Flat kernel: a polygon.',
-        ` The kernel is a flat convex polygon (area ${fmt(result.area)}); it has no volume.`, 'POLYGON');
-      break;
-    case 'UNBOUNDED':
-      setStatus('done', 'The kernel is unbounded.', result.status);
-      showMessage('warning', 'Unbounded kernel.', ' The face planes do not enclose a bounded region (an open mesh?).', 'UNBOUNDED');
-      break;
-    default:
-      setStatus('done', String(result.status), result.status);
-  }
+function showOutcome(result, V, E, F, extra) {
+  const d = describeResult(result, V, E, F, extra);
+  setStatus('done', d.status, result.status, d.outcome);
+  showRows(d.rows);
+  if (d.kind) showMessage(d.kind, d.title, d.paragraphs, result.status);
   if (result.warnings?.length) {
-    const text = result.warnings.map((w) => w.message || `${w.kind} (${w.count})`).join(' · ');
-    if (ui.message.hidden) showMessage('info', 'Note', ` ${text}`, 'WARNINGS');
-    else ui.message.append(document.createTextNode(` Note: ${text}`));
+    const text = result.warnings.map((w) => sentence(w.message || `${w.kind} (${w.count})`)).join(' ');
+    if (ui.message.hidden) showMessage('info', 'Note', [text], 'WARNINGS');
+    else addParagraph(`Note: ${text}`);
   }
   setExportEnabled(result.triangles?.length > 0);
 }
@@ -417,25 +472,57 @@ function setExportEnabled(on) {
   ui.exportObj.disabled = ui.exportStl.disabled = ui.exportOff.disabled = !on;
 }
 
-// A file: its bytes go to the worker as they are (transferred), which parses, validates and
-// computes there and sends the parsed mesh back early to be drawn meanwhile.
-async function loadFile(file, t0 = performance.now()) {
-  selectSample(null);
-  const token = beginRun(file.name);
+// ------------------------------------------------------------------------------------------
+// Sources: a sample, a file (picked or dropped), a link (?url=), each kept in state.source so
+// that it can be computed again with other options.
+
+const kernelOptions = () => ({
+  // The inscribed ball costs little next to the kernel (docs/demo.md has the numbers): always on.
+  deepestPoint: true,
+  ...(state.runOptions.allowOpen ? { allowOpen: true } : {}),
+  ...(state.runOptions.repair ? { repair: true } : {}),
+});
+
+/**
+ * Opens `source` ({ kind: 'sample', id } | { kind: 'file', file } | { kind: 'url', url, file })
+ * and computes its kernel with `options` ({ allowOpen, repair }).
+ */
+async function openSource(source, options = { allowOpen: false, repair: false }, t0 = performance.now()) {
+  state.source = source;
+  state.runOptions = options;
+  selectSample(source.kind === 'sample' ? source.id : null);
+  const name = source.kind === 'sample' ? sampleById(source.id).name : source.file.name;
+  const token = beginRun(name);
   state.t0 = t0;
+  updateShareUrl();
+  state.inputPromise = null;
+  if (source.kind === 'sample') {
+    const mesh = sampleById(source.id).build();
+    showMesh(mesh, token); // samples are small: drawn right here
+    // The worker copies the arrays: the drawn input keeps its own.
+    await runKernel(token, (callbacks) => worker().compute(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes, ...kernelOptions(), ...callbacks }));
+    return;
+  }
+  const file = source.file;
   viewer.clearInput(); // nothing stale to render while the file is read
   setStatus('reading', `Reading ${file.name}…`, 'READING');
   setBusy(`Reading ${file.name} (${fmtBytes(file.size)})…`);
   const bytes = await file.arrayBuffer();
   if (token !== state.token) return;
   state.timing.read = performance.now() - t0;
-  state.inputPromise = null;
-  // The page keeps no use for the file's bytes: move them to the worker instead of copying.
-  await runKernel(token, (callbacks) => worker().computeFile(bytes, {
-    name: file.name,
+  if (isGltfName(file.name)) await computeGltf(bytes, file.name, token);
+  else await computeFileBytes(bytes, file.name, token);
+}
+
+// A mesh file: its bytes go to the worker as they are (transferred), which parses, validates and
+// computes there and sends the parsed mesh back early to be drawn meanwhile.
+function computeFileBytes(bytes, name, token) {
+  return runKernel(token, (callbacks) => worker().computeFile(bytes, {
+    name,
     transfer: true,
     // STL stores each triangle's corners on their own: welded, as the CLI does.
-    weld: /\.stl$/i.test(file.name) ? true : undefined,
+    ...(/\.stl$/i.test(name) ? { weld: true } : {}),
+    ...kernelOptions(),
     ...callbacks,
     onMesh: (mesh) => {
       if (token === state.token) state.inputPromise = showMesh(mesh, token);
@@ -443,38 +530,84 @@ async function loadFile(file, t0 = performance.now()) {
   }).then(({ result }) => result));
 }
 
-function loadSample(id) {
-  const sample = sampleById(id);
-  if (!sample) return;
-  selectSample(id);
-  const t0 = performance.now();
-  const token = beginRun(sample.name);
-  state.t0 = t0;
-  const url = new URL(location.href);
-  url.searchParams.set('sample', id);
-  history.replaceState(null, '', url);
-  const mesh = sample.build();
-  state.inputPromise = null;
-  showMesh(mesh, token); // samples are small: drawn right here
-  // The worker copies the arrays: the drawn input keeps its own.
-  runKernel(token, (callbacks) => worker().compute(mesh.positions, mesh.indices, {
-    faceSizes: mesh.faceSizes, ...callbacks,
-  }));
+// GLB / glTF: read here by three.js's loader (all meshes merged in world space), then welded by
+// the package, as an STL is.
+async function computeGltf(bytes, name, token) {
+  setBusy(`Reading ${name} (glTF)…`);
+  let mesh;
+  try {
+    mesh = await readGltf(bytes, name);
+  } catch (err) {
+    if (token !== state.token) return;
+    endRun();
+    stopPlayback();
+    showError({ code: 'PARSE_ERROR', message: err.message });
+    return;
+  }
+  if (token !== state.token) return;
+  state.inputPromise = showMesh(mesh, token);
+  await runKernel(token, (callbacks) => worker().compute(mesh.positions, mesh.indices, { weld: true, ...kernelOptions(), ...callbacks }));
 }
 
+// ?url=: fetched here (the server must allow this page's origin: CORS), then opened as a file.
+async function openUrl(text, options) {
+  let url = null;
+  try {
+    url = new URL(text, location.href);
+  } catch {
+    // reported below
+  }
+  const name = url ? decodeURIComponent(url.pathname.split('/').pop() || 'mesh') : String(text);
+  const fail = (message) => {
+    state.source = { kind: 'url', url: url?.href ?? String(text) };
+    beginRun(name);
+    endRun();
+    stopPlayback();
+    showError({ code: 'URL_ERROR', message });
+  };
+  if (!url || !/^https?:$/.test(url.protocol)) return fail(`?url= must be an http or https address; got "${text}"`);
+  const t0 = performance.now();
+  const token = beginRun(name);
+  setStatus('reading', `Fetching ${url.href}…`, 'READING');
+  setBusy(`Fetching ${name}…`);
+  let response;
+  try {
+    response = await fetch(url.href, { mode: 'cors' });
+  } catch {
+    if (token === state.token) fail(`could not fetch ${url.href}: the server did not answer, or it does not allow this page to read it (no CORS header Access-Control-Allow-Origin)`);
+    return;
+  }
+  if (token !== state.token) return;
+  if (!response.ok) return fail(`could not fetch ${url.href}: HTTP ${response.status} ${response.statusText}`.trim());
+  const blob = await response.blob();
+  if (token !== state.token) return;
+  await openSource({ kind: 'url', url: url.href, file: new File([blob], name) }, options, t0);
+}
+
+// The same input again with other options (the retry buttons).
+function reopen(options) {
+  const source = state.source;
+  if (!source) return;
+  openSource(source, { ...state.runOptions, ...options });
+}
+ui.retryOpen.addEventListener('click', () => reopen({ allowOpen: true }));
+ui.retryRepair.addEventListener('click', () => reopen({ repair: true }));
+
 function selectSample(id) {
-  for (const b of ui.samples.querySelectorAll('button')) b.classList.toggle('active', b.dataset.sample === id);
-  if (!id && location.search) history.replaceState(null, '', location.pathname);
+  for (const b of ui.samples.querySelectorAll('button')) {
+    b.classList.toggle('active', b.dataset.sample === id);
+    b.setAttribute('aria-pressed', String(b.dataset.sample === id));
+  }
 }
 
 ui.cancel.addEventListener('click', () => {
   if (state.computing && state.worker) {
-    state.worker.cancel(); // compute() rejects with CANCELLED → message shown by computeKernel
+    state.worker.cancel(); // compute() rejects with CANCELLED → message shown by failRun
   } else if (!ui.cancel.disabled) {
     state.token++; // still reading the file: drop the run
     endRun();
-    showMessage('info', 'Cancelled.', '', 'CANCELLED');
-    setStatus('cancelled', 'Cancelled.', 'CANCELLED');
+    stopPlayback();
+    showCancelled();
   }
 });
 
@@ -544,6 +677,8 @@ function frame(now) {
   const key = `${k}/${total}/${c.vertices}/${c.edges}/${c.faces}/${state.computing}`;
   if (key !== lastUi) {
     lastUi = key;
+    // Nothing to play (before the first step, after an error, an empty kernel): no controls that do nothing.
+    ui.play.disabled = ui.jumpEnd.disabled = ui.scrubber.disabled = total === 0;
     ui.scrubber.max = String(total);
     ui.scrubber.value = String(k);
     ui.stepLabel.textContent = `${k} / ${total}${state.computing ? '+' : ''}`;
@@ -589,15 +724,30 @@ ui.exportStl.addEventListener('click', () => exportKernel('stl', 'model/stl'));
 ui.exportOff.addEventListener('click', () => exportKernel('off', 'text/plain'));
 
 // ------------------------------------------------------------------------------------------
-// View controls
+// View controls. Each writes state.view, which the shareable URL carries.
 
 function opacityFromSlider() {
   const x = Number(ui.opacity.value);
+  state.view.opacity = x;
   viewer.setOpacity(x);
   ui.opacityLabel.textContent = `${Math.round(100 * x)} %`;
 }
-ui.opacity.addEventListener('input', opacityFromSlider);
-opacityFromSlider();
+ui.opacity.addEventListener('input', () => {
+  opacityFromSlider();
+  updateShareUrl();
+});
+
+ui.showInput.addEventListener('change', () => {
+  state.view.shape = ui.showInput.checked;
+  viewer.setInputVisible(ui.showInput.checked);
+  updateShareUrl();
+});
+
+ui.showBall.addEventListener('change', () => {
+  state.view.ball = ui.showBall.checked;
+  viewer.setBallVisible(ui.showBall.checked);
+  updateShareUrl();
+});
 
 ui.showEdges.addEventListener('change', async () => {
   const on = ui.showEdges.checked;
@@ -610,26 +760,107 @@ ui.showEdges.addEventListener('change', async () => {
     if (token === state.token && edges) viewer.setInputEdges(edges);
   }
 });
+ui.showEdges.addEventListener('input', () => {
+  state.view.edges = ui.showEdges.checked;
+  updateShareUrl();
+});
 
-ui.fit.addEventListener('click', () => viewer.fit());
-ui.fitKernel.addEventListener('click', () => viewer.fit(true));
-window.addEventListener('keydown', (e) => {
-  if (e.target instanceof HTMLInputElement || e.target instanceof HTMLButtonElement) return;
-  if (e.key === 'f' || e.key === 'F') viewer.fit();
-  if (e.key === 'k' || e.key === 'K') viewer.fit(true);
-  if (e.key === ' ') {
-    e.preventDefault();
-    ui.play.click();
+function applySection() {
+  const v = state.view;
+  viewer.setSection({ on: v.section, axis: 'xyz'.indexOf(v.axis), at: v.pos, clipKernel: v.clipKernel });
+  ui.sectionLabel.textContent = `${Math.round(100 * v.pos)} %`;
+  for (const el of [ui.sectionAxis, ui.sectionPos, ui.sectionKernel]) el.disabled = !v.section;
+}
+function sectionFromControls() {
+  Object.assign(state.view, {
+    section: ui.sectionOn.checked, axis: ui.sectionAxis.value, pos: Number(ui.sectionPos.value), clipKernel: ui.sectionKernel.checked,
+  });
+  applySection();
+  updateShareUrl();
+}
+for (const el of [ui.sectionOn, ui.sectionAxis, ui.sectionKernel]) el.addEventListener('change', sectionFromControls);
+ui.sectionPos.addEventListener('input', sectionFromControls);
+
+// The controls as state.view says (from the URL at start).
+function viewToControls() {
+  const v = state.view;
+  ui.opacity.value = String(v.opacity);
+  ui.showInput.checked = v.shape;
+  ui.showBall.checked = v.ball;
+  ui.sectionOn.checked = v.section;
+  ui.sectionAxis.value = v.axis;
+  ui.sectionPos.value = String(v.pos);
+  ui.sectionKernel.checked = v.clipKernel;
+  opacityFromSlider();
+  viewer.setInputVisible(v.shape);
+  viewer.setBallVisible(v.ball);
+  applySection();
+}
+
+// The page's URL always reopens what is shown (a sample or a link, with the view options); a
+// file from this computer cannot be reopened by a link.
+function updateShareUrl() {
+  const url = shareUrl(location.href, state.source, state.runOptions, state.view);
+  if (url) history.replaceState(null, '', url);
+  else if (location.search) history.replaceState(null, '', location.pathname);
+  ui.shareUrl.value = url ?? '';
+  ui.copyLink.disabled = !url;
+  ui.shareNote.textContent = url ? '' : 'A file opened from this computer cannot be reopened by a link; samples and meshes opened with ?url= can.';
+}
+
+ui.copyLink.addEventListener('click', async () => {
+  try {
+    await navigator.clipboard.writeText(ui.shareUrl.value);
+    ui.shareNote.textContent = 'Link copied.';
+  } catch {
+    // No clipboard permission: select the link for the user to copy.
+    ui.shareUrl.focus();
+    ui.shareUrl.select();
+    ui.shareNote.textContent = 'The clipboard is not available here: the link is selected, copy it with Ctrl+C.';
   }
 });
 
-// ------------------------------------------------------------------------------------------
-// Input: file picker, drag & drop, samples
+// The play bar covers the bottom of the view: fitting uses the area above it.
+new ResizeObserver(() => {
+  const view = ui.viewport.getBoundingClientRect(), bar = ui.playbar.getBoundingClientRect();
+  viewer.setInsetBottom(Math.max(0, view.bottom - bar.top));
+}).observe(ui.playbar);
 
+ui.fit.addEventListener('click', () => viewer.fit());
+ui.fitKernel.addEventListener('click', () => viewer.fit(true));
+
+// Shortcuts work wherever the focus is, except where a key types text or picks an option.
+const typesText = (el) => el instanceof HTMLTextAreaElement || el instanceof HTMLSelectElement || el?.isContentEditable ||
+  (el instanceof HTMLInputElement && !['checkbox', 'radio', 'range', 'button', 'submit', 'reset', 'file', 'color'].includes(el.type));
+const SHORTCUTS = {
+  f: () => viewer.fit(),
+  k: () => viewer.fit(true),
+  h: () => ui.showInput.click(),
+  s: () => ui.sectionOn.click(),
+  ' ': () => ui.play.click(),
+};
+window.addEventListener('keydown', (e) => {
+  if (e.ctrlKey || e.metaKey || e.altKey || typesText(e.target)) return;
+  const action = SHORTCUTS[e.key.toLowerCase()];
+  if (!action) return;
+  // Space would also press the focused button or tick the focused box: play/pause instead.
+  e.preventDefault();
+  if (!e.repeat) action();
+});
+window.addEventListener('keyup', (e) => {
+  if (e.key === ' ' && !typesText(e.target)) e.preventDefault();
+});
+
+// ------------------------------------------------------------------------------------------
+// Input: file picker, drag & drop, samples, ?sample= / ?url=
+
+const openFile = (file, t0) => openSource({ kind: 'file', file }, { allowOpen: false, repair: false }, t0);
+
+ui.openFile.addEventListener('click', () => ui.fileInput.click());
 ui.fileInput.addEventListener('change', () => {
   const t0 = performance.now();
   const file = ui.fileInput.files?.[0];
-  if (file) loadFile(file, t0);
+  if (file) openFile(file, t0);
   ui.fileInput.value = '';
 });
 
@@ -650,7 +881,7 @@ window.addEventListener('drop', (e) => {
   dragDepth = 0;
   ui.overlay.hidden = true;
   const file = e.dataTransfer?.files?.[0];
-  if (file) loadFile(file, t0);
+  if (file) openFile(file, t0);
 });
 
 for (const s of SAMPLES) {
@@ -660,12 +891,27 @@ for (const s of SAMPLES) {
   b.title = s.description;
   b.dataset.sample = s.id;
   b.dataset.testid = `sample-${s.id}`;
-  b.addEventListener('click', () => loadSample(s.id));
+  b.setAttribute('aria-pressed', 'false');
+  b.addEventListener('click', () => openSource({ kind: 'sample', id: s.id }));
   ui.samples.append(b);
 }
+
+// For the browser tests: the view (camera, scene) and the page's state, read-only by convention.
+window.kergenDemo = { viewer, state };
+
+const canvas = viewer.renderer.domElement;
+canvas.setAttribute('role', 'img');
+canvas.tabIndex = 0; // focusable: the view's label is read, and the keys work from there too
+setStatus('idle', 'No mesh loaded.');
+showRows(['name']);
+viewToControls();
 
 // Start the drawing worker now, not when the first big file arrives.
 drawRequest({ type: 'noop' });
 
-const initial = new URLSearchParams(location.search).get('sample') ?? 'star-prism';
-if (initial !== 'none') loadSample(initial);
+if (PARAMS.has('url')) openUrl(PARAMS.get('url'), state.runOptions);
+else {
+  const initial = PARAMS.get('sample') ?? 'star-prism';
+  if (sampleById(initial)) openSource({ kind: 'sample', id: initial }, state.runOptions);
+  else updateShareUrl();
+}

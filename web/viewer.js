@@ -6,10 +6,17 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { prepareDrawing } from './draw-prep.js';
+import { SectionPlane } from './section.js';
 
 export const KERNEL_BLUE = 0x1e6fff;
 const KERNEL_EDGE = 0x0a2f80;
 const FRONT_COLOR = 0xffb000;
+const BALL_GREEN = 0x17a34a;
+const OPEN_EDGE_RED = 0xe8141c;
+const WITNESS_MAGENTA = 0xd4168f;
+const BOX_FACET_GREY = 0xa9adb8;
+// Vertical field of view of the whole canvas (the visible area above the play bar gets its share).
+const FOV = 40;
 
 function cssColor(name, fallback) {
   const v = getComputedStyle(document.documentElement).getPropertyValue(name).trim();
@@ -215,6 +222,27 @@ export class KernelView {
   }
 }
 
+// The bounding box of float xyz positions ({ lo, hi }), at least `minSize` across.
+function boxOf(positions, minSize) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < positions.length; i += 3) {
+    for (let c = 0; c < 3; c++) {
+      const x = positions[i + c];
+      if (x < lo[c]) lo[c] = x;
+      if (x > hi[c]) hi[c] = x;
+    }
+  }
+  if (!(lo[0] <= hi[0])) return { lo: [-minSize, -minSize, -minSize], hi: [minSize, minSize, minSize] };
+  for (let c = 0; c < 3; c++) {
+    if (hi[c] - lo[c] < minSize) {
+      const m = (lo[c] + hi[c]) / 2;
+      lo[c] = m - minSize / 2;
+      hi[c] = m + minSize / 2;
+    }
+  }
+  return { lo, hi };
+}
+
 function isSoftwareGL() {
   try {
     const gl = document.createElement('canvas').getContext('webgl2');
@@ -234,7 +262,9 @@ export class Viewer {
     // Software GL (SwiftShader, llvmpipe) renders on the CPU cores the kernel worker needs: no
     // MSAA there, and fewer frames while a computation runs (see render()).
     this.softwareGL = isSoftwareGL();
-    this.renderer = new THREE.WebGLRenderer({ antialias: !this.softwareGL });
+    // The stencil buffer closes the section plane's cuts (section.js).
+    this.renderer = new THREE.WebGLRenderer({ antialias: !this.softwareGL, stencil: true });
+    this.renderer.localClippingEnabled = true;
     // With a software compositor the page's thread waits for every frame to be rasterized: half
     // the resolution (a quarter of the pixels) keeps a frame under 100 ms while the kernel worker
     // takes a core (3/4 gave frames of 85-150 ms on a loaded 2-core machine).
@@ -244,7 +274,8 @@ export class Viewer {
     container.appendChild(this.renderer.domElement);
     this.renderer.domElement.id = 'viewport-canvas';
     this.scene = new THREE.Scene();
-    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
+    this.camera = new THREE.PerspectiveCamera(FOV, 1, 0.01, 100);
+    this.insetBottom = 0; // pixels at the bottom of the canvas covered by the play bar
     this.camera.up.set(0, 0, 1);
     this.scene.add(this.camera);
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x667080, 1.6));
@@ -267,9 +298,14 @@ export class Viewer {
     this.kernelPoint.frustumCulled = false;
     this.kernelPoint.visible = false;
     this.scene.add(this.kernelPoint);
+    this.makeInsideMarkers();
+    this.section = new SectionPlane(this.scene);
+    this.kernelClosed = false;
 
     this.radius = 1;
+    this.box = { lo: [-1, -1, -1], hi: [1, 1, 1] }; // the drawn input's bounding box (centred frame)
     this.opacity = 0.22;
+    this.inputVisible = true;
     this.edgesVisible = true;
     this.makeInputMaterials();
     this.applyTheme();
@@ -328,9 +364,35 @@ export class Viewer {
   resize() {
     const w = Math.max(1, this.container.clientWidth), h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h, false);
-    this.camera.aspect = w / h;
+    this.updateProjection();
+  }
+
+  /** The canvas's bottom `px` pixels are covered (by the play bar): views are centred above them. */
+  setInsetBottom(px) {
+    if (Math.abs(px - this.insetBottom) < 1) return;
+    this.insetBottom = px;
+    this.updateProjection();
+  }
+
+  // The centre of projection is put in the middle of the visible band (above the play bar), with
+  // the same scale (pixels per radian) as a plain camera of FOV over the whole canvas: the camera
+  // renders the window [0, h) of a taller image, 2h - hv high, whose centre is hv / 2 down.
+  updateProjection() {
+    const w = Math.max(1, this.container.clientWidth), h = Math.max(1, this.container.clientHeight);
+    const hv = this.visibleHeight();
+    const full = 2 * h - hv;
+    const t = Math.tan(THREE.MathUtils.degToRad(FOV / 2));
+    this.camera.fov = 2 * THREE.MathUtils.radToDeg(Math.atan((t * full) / h));
+    this.camera.aspect = w / full;
+    if (hv < h) this.camera.setViewOffset(w, full, 0, h - hv, w, h);
+    else this.camera.clearViewOffset();
     this.camera.updateProjectionMatrix();
     this.dirty = true;
+  }
+
+  visibleHeight() {
+    const h = Math.max(1, this.container.clientHeight);
+    return Math.max(h * 0.4, h - this.insetBottom);
   }
 
   clearInput() {
@@ -340,6 +402,9 @@ export class Viewer {
       this.inputGroup.remove(o);
     }
     this.inputMesh = this.inputWire = null;
+    this.section.inputCap.setGeometry(null);
+    this.setOpenEdges(null);
+    this.setWitnessFaces(null);
   }
 
   /** The input shape's opacity, 0 (hidden) to 1 (opaque). */
@@ -350,15 +415,26 @@ export class Viewer {
     this.inputMaterial.transparent = x < 1;
     this.inputMaterial.depthWrite = x >= 1;
     this.inputMaterial.needsUpdate = true;
-    if (this.inputMesh) this.inputMesh.visible = x > 0;
+    this.updateInputVisibility();
+  }
+
+  /** Shows or hides the input (its faces, face edges and section cap) whatever its opacity. */
+  setInputVisible(on) {
+    this.inputVisible = on;
+    this.updateInputVisibility();
+  }
+
+  updateInputVisibility() {
+    if (this.inputMesh) this.inputMesh.visible = this.inputVisible && this.opacity > 0;
+    if (this.inputWire) this.inputWire.visible = this.inputVisible && this.edgesVisible;
+    this.section.updateVisibility(this.inputVisible, this.kernelClosed);
     this.dirty = true;
   }
 
   /** Shows or hides the input's face edges (set with setInputEdges). */
   setEdgesVisible(on) {
     this.edgesVisible = on;
-    if (this.inputWire) this.inputWire.visible = on;
-    this.dirty = true;
+    this.updateInputVisibility();
   }
 
   // Shows a small input mesh prepared here (samples); big ones come prepared by the draw worker.
@@ -370,9 +446,12 @@ export class Viewer {
   setInputDrawing(d) {
     this.clearInput();
     this.radius = d.radius;
+    this.box = boxOf(d.positions, d.radius);
     this.kernel.offset.set(d.center[0], d.center[1], d.center[2]);
     this.kernel.reset();
     this.kernelPoint.visible = false;
+    this.setBall(null);
+    this.setBoxFacets(null);
     if (d.drawable) {
       const geo = new THREE.BufferGeometry();
       geo.setAttribute('position', new THREE.BufferAttribute(d.positions, 3));
@@ -380,10 +459,11 @@ export class Viewer {
       this.inputMesh = new THREE.Mesh(geo, this.inputMaterial);
       this.inputMesh.renderOrder = 2;
       this.inputMesh.frustumCulled = false; // no bounding sphere to compute over every vertex
-      this.inputMesh.visible = this.opacity > 0;
       this.inputGroup.add(this.inputMesh);
+      this.section.inputCap.setGeometry(geo);
       if (d.edges) this.setInputEdges(d.edges);
     }
+    this.updateInputVisibility();
     this.camera.far = this.radius * 100;
     this.fit();
   }
@@ -401,8 +481,8 @@ export class Viewer {
     this.inputWire = new THREE.LineSegments(geo, this.wireMaterial);
     this.inputWire.renderOrder = 3;
     this.inputWire.frustumCulled = false;
-    this.inputWire.visible = this.edgesVisible;
     this.inputGroup.add(this.inputWire);
+    this.updateInputVisibility();
     this.dirty = true;
   }
 
@@ -419,27 +499,164 @@ export class Viewer {
     this.dirty = true;
   }
 
-  // Fits the input mesh (or, with kernel = true, the kernel shown so far) into the view.
+  // Fits the input mesh (or, with kernel = true, the kernel shown so far) into the visible area
+  // above the play bar: the camera keeps its direction and moves back until all 8 corners of the
+  // bounding box are inside both the horizontal and the vertical field of view (the box holds
+  // the shape, so the shape fits; tall and wide shapes alike).
   fit(kernel = false) {
-    const center = new THREE.Vector3();
-    let r = this.radius;
-    if (kernel && this.kernel.pointBuf.count > 0) {
-      const sphere = new THREE.Sphere().setFromPoints(
-        Array.from({ length: this.kernel.pointBuf.count }, (_, i) => new THREE.Vector3().fromArray(this.kernel.pointBuf.attr.array, 3 * i)));
-      center.copy(sphere.center);
-      r = Math.max(sphere.radius, this.radius * 1e-4);
-    }
-    // The bounding-box sphere overestimates most shapes: 0.9 of the sphere-fitting distance.
-    const dist = (r / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2))) * 0.9;
+    let box = this.box;
+    if (kernel && this.kernel.pointBuf.count > 0) box = boxOf(this.kernel.pointBuf.attr.array.subarray(0, 3 * this.kernel.pointBuf.count), this.radius * 1e-4);
+    const center = new THREE.Vector3().fromArray(box.lo).add(new THREE.Vector3().fromArray(box.hi)).multiplyScalar(0.5);
     const dir = this.camera.position.clone().sub(this.controls.target);
     if (!kernel || dir.lengthSq() === 0) dir.set(1.0, -1.35, 0.9);
     dir.normalize();
+    const up = Math.abs(dir.z) > 0.999 ? new THREE.Vector3(0, 1, 0) : new THREE.Vector3(0, 0, 1);
+    const right = new THREE.Vector3().crossVectors(up, dir).normalize();
+    const upv = new THREE.Vector3().crossVectors(dir, right);
+    const t = Math.tan(THREE.MathUtils.degToRad(FOV / 2));
+    const h = Math.max(1, this.container.clientHeight), w = Math.max(1, this.container.clientWidth);
+    const tanV = (t * this.visibleHeight()) / h, tanH = (t * w) / h;
+    let dist = 0, extent = 0;
+    const p = new THREE.Vector3();
+    for (let i = 0; i < 8; i++) {
+      p.set(i & 1 ? box.hi[0] : box.lo[0], i & 2 ? box.hi[1] : box.lo[1], i & 4 ? box.hi[2] : box.lo[2]).sub(center);
+      const z = p.dot(dir);
+      dist = Math.max(dist, z + Math.abs(p.dot(right)) / tanH, z + Math.abs(p.dot(upv)) / tanV);
+      extent = Math.max(extent, p.length());
+    }
+    dist = Math.max(dist * 1.04, extent * 1.05); // a small margin; never inside the box
     this.controls.target.copy(center);
     this.camera.position.copy(center).addScaledVector(dir, dist);
-    this.camera.near = Math.max(r / 100, this.radius * 1e-5);
+    this.camera.near = Math.max(extent / 100, this.radius * 1e-5);
     this.camera.updateProjectionMatrix();
     this.camera.lookAt(center);
     this.controls.update();
+    this.dirty = true;
+  }
+
+  // The deepest point (a dot) and the largest inscribed ball (translucent, drawn over the kernel
+  // that contains it: it is always inside, and an opaque kernel would hide it).
+  makeInsideMarkers() {
+    this.ball = new THREE.Mesh(new THREE.SphereGeometry(1, 32, 16), new THREE.MeshLambertMaterial({
+      color: BALL_GREEN, transparent: true, opacity: 0.75, depthTest: false, depthWrite: false,
+    }));
+    this.ball.renderOrder = 20;
+    const dotGeo = new THREE.BufferGeometry();
+    dotGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3), 3));
+    this.deepestDot = new THREE.Points(dotGeo, new THREE.PointsMaterial({ color: 0x0b5a28, size: 9, sizeAttenuation: false, depthTest: false }));
+    this.deepestDot.renderOrder = 21;
+    this.insideGroup = new THREE.Group();
+    this.insideGroup.add(this.ball, this.deepestDot);
+    for (const o of [this.ball, this.deepestDot]) o.frustumCulled = false;
+    this.insideGroup.visible = false;
+    this.ballVisible = true;
+    this.scene.add(this.insideGroup);
+    // Overlays in the input's frame: open edges, the witness faces of an empty kernel, the box
+    // facets of an unbounded one. Drawn over everything: they are what the message is about.
+    const overlay = (color, opacity) => ({ color, transparent: true, opacity, depthTest: false, depthWrite: false, side: THREE.DoubleSide });
+    this.openEdges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(overlay(OPEN_EDGE_RED, 1)));
+    this.witnessFill = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial(overlay(WITNESS_MAGENTA, 0.55)));
+    this.witnessLines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(overlay(WITNESS_MAGENTA, 1)));
+    this.boxFacets = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial({
+      color: BOX_FACET_GREY, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4,
+    }));
+    for (const o of [this.openEdges, this.witnessFill, this.witnessLines, this.boxFacets]) {
+      o.frustumCulled = false;
+      o.visible = false;
+      o.renderOrder = o === this.boxFacets ? 1 : 15;
+      this.scene.add(o);
+    }
+  }
+
+  /** The deepest point and the inscribed ball's radius (null: none). */
+  setBall(center, radius = 0) {
+    this.insideGroup.visible = !!center && this.ballVisible;
+    this.hasBall = !!center;
+    if (center) {
+      const o = this.kernel.offset;
+      const c = [center[0] - o.x, center[1] - o.y, center[2] - o.z];
+      this.ball.position.fromArray(c);
+      this.ball.scale.setScalar(Math.max(radius, 1e-12));
+      this.ball.visible = radius > 0;
+      const pos = this.deepestDot.geometry.getAttribute('position');
+      pos.array.set([0, 0, 0]);
+      pos.needsUpdate = true;
+      this.deepestDot.position.fromArray(c);
+    }
+    this.dirty = true;
+  }
+
+  setBallVisible(on) {
+    this.ballVisible = on;
+    this.insideGroup.visible = on && !!this.hasBall;
+    this.dirty = true;
+  }
+
+  static setLines(object, positions) {
+    object.geometry.dispose();
+    object.geometry = new THREE.BufferGeometry();
+    if (positions?.length) object.geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    object.visible = !!positions?.length;
+  }
+
+  /** The input's open edges (float32 segment ends in the drawn frame; null: none). */
+  setOpenEdges(lines) {
+    Viewer.setLines(this.openEdges, lines);
+    // Caps need a closed surface (section.js).
+    this.section.capsAllowed = !lines?.length;
+    this.section.updateVisibility(this.inputVisible, this.kernelClosed);
+    this.dirty = true;
+  }
+
+  /** Input faces to highlight ({ triangles, lines } from draw-prep faceHighlight; null: none). */
+  setWitnessFaces(faces) {
+    Viewer.setLines(this.witnessFill, faces?.triangles);
+    Viewer.setLines(this.witnessLines, faces?.lines);
+    this.dirty = true;
+  }
+
+  /** Kernel facets that are the clip box's (vertex-id loops of `result`; null: none). */
+  setBoxFacets(result, facetIds = []) {
+    const out = [];
+    const o = this.kernel.offset, v = result?.vertices;
+    for (const f of facetIds) {
+      const loop = result.faces[f];
+      for (let k = 1; k + 1 < loop.length; k++) {
+        for (const id of [loop[0], loop[k], loop[k + 1]]) out.push(v[3 * id] - o.x, v[3 * id + 1] - o.y, v[3 * id + 2] - o.z);
+      }
+    }
+    Viewer.setLines(this.boxFacets, out.length ? Float32Array.from(out) : null);
+    this.dirty = true;
+  }
+
+  /**
+   * The section plane: `on`, normal `axis` (0, 1, 2), position `at` from 0 (the input box's low
+   * side) to 1 (its high side), `clipKernel` whether the kernel is cut too. The part of the
+   * scene below the plane is kept.
+   */
+  setSection({ on, axis, at, clipKernel }) {
+    const s = this.section;
+    s.enabled = on;
+    s.clipKernel = clipKernel;
+    const lo = this.box.lo[axis], hi = this.box.hi[axis];
+    // A hair beyond the box at either end: 0 and 1 cut nothing and everything.
+    const span = hi - lo || this.radius;
+    s.set(axis, lo - 1e-3 * span + at * (1 + 2e-3) * span, this.radius * 1.5);
+    this.inputMaterial.clippingPlanes = this.wireMaterial.clippingPlanes = s.planesFor(false);
+    for (const m of [this.kernel.faces.material, this.kernel.lines.material, this.kernel.points.material, this.boxFacets.material]) {
+      m.clippingPlanes = s.planesFor(true);
+      m.needsUpdate = true;
+    }
+    this.inputMaterial.needsUpdate = this.wireMaterial.needsUpdate = true;
+    s.updateVisibility(this.inputVisible, this.kernelClosed);
+    this.dirty = true;
+  }
+
+  /** Whether the kernel drawn is a closed solid (its section can be capped). */
+  setKernelClosed(closed) {
+    this.kernelClosed = closed;
+    this.section.kernelCap.setGeometry(closed ? this.kernel.facesGeo : null);
+    this.section.updateVisibility(this.inputVisible, this.kernelClosed);
     this.dirty = true;
   }
 

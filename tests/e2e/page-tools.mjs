@@ -14,9 +14,10 @@ const MIME = {
 
 /**
  * Serves `root` on a free port of 127.0.0.1. `files` maps URL paths ('/__files/x.stl') to local
- * files served from disk as they are (big test meshes never go through the page's code).
+ * files served from disk as they are (big test meshes never go through the page's code). With
+ * `cors`, every answer allows any origin to read it (Access-Control-Allow-Origin: *).
  */
-export function serve(root, files = new Map()) {
+export function serve(root, files = new Map(), { cors = false } = {}) {
   const server = http.createServer((req, res) => {
     const url = new URL(req.url, 'http://127.0.0.1');
     const pathname = decodeURIComponent(url.pathname);
@@ -30,7 +31,10 @@ export function serve(root, files = new Map()) {
       res.writeHead(404).end('not found');
       return;
     }
-    res.writeHead(200, { 'Content-Type': MIME[path.extname(file)] ?? 'application/octet-stream', 'Cache-Control': 'no-store' });
+    res.writeHead(200, {
+      'Content-Type': MIME[path.extname(file)] ?? 'application/octet-stream', 'Cache-Control': 'no-store',
+      ...(cors ? { 'Access-Control-Allow-Origin': '*' } : {}),
+    });
     fs.createReadStream(file).pipe(res);
   });
   return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));

@@ -23,6 +23,7 @@ import { checkSamples, expectedKernel } from './samples-check.mjs';
 import { serve, writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 import { writeThreeApp, writeReadmeApp, runThreeApp, plusPrism } from './three-app.mjs';
+import { demoFeatureTests } from './demo-features.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -700,6 +701,7 @@ async function cancelTest(page, tmp) {
         requestAnimationFrame(frame);
       }));
       const before = await readState(page);
+      if (before.state === 'computing') await page.screenshot({ path: path.join(artifacts, 'state-computing.png') });
       if (before.state !== 'computing') {
         console.log(`     ${2 * nlat * nlon} triangles finished before cancel (${before.state} ${before.status}); trying a bigger sphere`);
         continue;
@@ -718,6 +720,12 @@ async function cancelTest(page, tmp) {
       }
       const s = await waitFinished(page, 10000);
       assert(s.state === 'cancelled' && s.message?.code === 'CANCELLED', `after cancel: ${s.state} ${JSON.stringify(s.message)}`);
+      // The controls and the message say what is shown: the steps that had arrived, or none.
+      const play = await page.evaluate(() => ({ text: document.getElementById('play').textContent, disabled: document.getElementById('play').disabled }));
+      assert(play.text === 'Play', `after cancel the play button reads "${play.text}"`);
+      assert(s.steps > 0 ? s.message.text.includes(`the ${s.steps.toLocaleString('en-US')} steps that had arrived`) && !play.disabled
+        : /nothing of it is shown/.test(s.message.text) && play.disabled, `cancel with ${s.steps} steps shown: "${s.message.text}", play ${JSON.stringify(play)}`);
+      await page.screenshot({ path: path.join(artifacts, 'state-cancelled.png') });
       // A computation on the main thread would block the whole 1.5 s window. With software GL
       // the first frame of the new mesh alone can take ~0.3 s, so: the event loop must run
       // freely (≥ 50 of ~250 possible 5 ms timer ticks) and never stall for 1 s.
@@ -926,6 +934,9 @@ async function main() {
     await realMeshesAndMessages(page, tmp);
     await exportAndDrop(page, tmp);
     await cancelTest(page, tmp);
+    await demoFeatureTests(page, context, base, tmp, {
+      test, skip, assert, assertClose, loadSample, loadFile, waitFinished, markPending, jumpToEnd, artifacts, sharedMeshes, served,
+    });
     await themeAndBigFile(page, tmp, served);
     await threeAppTest(context, tmp);
 
