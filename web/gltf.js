@@ -7,21 +7,36 @@ import { Vector3 } from 'three';
 
 export const isGltfName = (name) => /\.(glb|gltf)$/i.test(name);
 
+// The buffer and image URIs of a JSON glTF that are not embedded (data:): the loader would fetch
+// them relative to the page, which cannot work for a file opened from disk. (GLB: none checked;
+// its buffer is in the file.)
+function externalUris(bytes) {
+  const head = new Uint8Array(bytes, 0, Math.min(4, bytes.byteLength));
+  if (String.fromCharCode(...head) === 'glTF') return [];
+  let json;
+  try {
+    json = JSON.parse(new TextDecoder().decode(bytes));
+  } catch {
+    return []; // the loader says what is wrong
+  }
+  return [...(json.buffers ?? []), ...(json.images ?? [])].map((b) => b?.uri).filter((u) => typeof u === 'string' && !u.startsWith('data:'));
+}
+
 /**
  * Parses GLB or glTF bytes; returns { positions: Float64Array, indices: Uint32Array, meshes }.
  * Rejects with a message that says what is wrong: unreadable data, external files a single
  * .gltf cannot bring along, or no triangles at all.
  */
 export async function readGltf(bytes, name) {
+  const external = externalUris(bytes);
+  if (external.length) {
+    throw new Error(`${name}: the glTF file refers to files beside it (${external.slice(0, 3).join(', ')}), which a single opened file does not bring along; use a .glb or a .gltf with embedded data`);
+  }
   let gltf;
   try {
     gltf = await new GLTFLoader().parseAsync(bytes, '');
   } catch (err) {
-    const why = String(err?.message ?? err);
-    const external = /fetch|load|404|Failed to/i.test(why) && /\.gltf$/i.test(name);
-    throw new Error(external
-      ? `${name}: the glTF file refers to files beside it (buffers or images), which a single dropped file does not bring along; use a .glb or a .gltf with embedded data (${why})`
-      : `${name}: not a readable glTF/GLB file (${why})`);
+    throw new Error(`${name}: not a readable glTF/GLB file (${err?.message ?? err})`);
   }
   const scene = gltf.scene ?? gltf.scenes?.[0];
   if (!scene) throw new Error(`${name}: the file has no scene`);

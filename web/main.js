@@ -854,7 +854,11 @@ window.addEventListener('keyup', (e) => {
 // ------------------------------------------------------------------------------------------
 // Input: file picker, drag & drop, samples, ?sample= / ?url=
 
-const openFile = (file, t0) => openSource({ kind: 'file', file }, { allowOpen: false, repair: false }, t0);
+// A new input from the user: the face-edge toggle goes back to its default for the mesh's size.
+function openFile(file, t0) {
+  state.view.edges = null;
+  openSource({ kind: 'file', file }, { allowOpen: false, repair: false }, t0);
+}
 
 ui.openFile.addEventListener('click', () => ui.fileInput.click());
 ui.fileInput.addEventListener('change', () => {
@@ -892,7 +896,10 @@ for (const s of SAMPLES) {
   b.dataset.sample = s.id;
   b.dataset.testid = `sample-${s.id}`;
   b.setAttribute('aria-pressed', 'false');
-  b.addEventListener('click', () => openSource({ kind: 'sample', id: s.id }));
+  b.addEventListener('click', () => {
+    state.view.edges = null;
+    openSource({ kind: 'sample', id: s.id });
+  });
   ui.samples.append(b);
 }
 

@@ -9,7 +9,8 @@ const plural = (n, one, many = `${one}s`) => `${n} ${n === 1 ? one : many}`;
 export function sentence(text) {
   const t = String(text ?? '').trim();
   if (!t) return '';
-  const capital = t[0].toUpperCase() + t.slice(1);
+  // A plain first word is capitalized; a file name ("bad.off:16: ...") is kept as it is.
+  const capital = /^[a-z]+[ ,]/.test(t) ? t[0].toUpperCase() + t.slice(1) : t;
   return /[.!?]$/.test(capital) ? capital : `${capital}.`;
 }
 

@@ -537,9 +537,15 @@ export class Viewer {
   // The deepest point (a dot) and the largest inscribed ball (translucent, drawn over the kernel
   // that contains it: it is always inside, and an opaque kernel would hide it).
   makeInsideMarkers() {
-    this.ball = new THREE.Mesh(new THREE.SphereGeometry(1, 32, 16), new THREE.MeshLambertMaterial({
-      color: BALL_GREEN, transparent: true, opacity: 0.75, depthTest: false, depthWrite: false,
+    // The ball is drawn over the kernel that contains it (an opaque kernel would hide it), faint
+    // with green meridians and parallels: a small kernel stays visible through it.
+    const sphere = new THREE.SphereGeometry(1, 24, 12);
+    this.ball = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({
+      color: BALL_GREEN, transparent: true, opacity: 0.25, depthTest: false, depthWrite: false,
     }));
+    this.ball.add(new THREE.LineSegments(new THREE.WireframeGeometry(new THREE.SphereGeometry(1, 16, 8)),
+      new THREE.LineBasicMaterial({ color: BALL_GREEN, depthTest: false, transparent: true, opacity: 0.9 })));
+    this.ball.children[0].renderOrder = 20;
     this.ball.renderOrder = 20;
     const dotGeo = new THREE.BufferGeometry();
     dotGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3), 3));
@@ -643,7 +649,10 @@ export class Viewer {
     const span = hi - lo || this.radius;
     s.set(axis, lo - 1e-3 * span + at * (1 + 2e-3) * span, this.radius * 1.5);
     this.inputMaterial.clippingPlanes = this.wireMaterial.clippingPlanes = s.planesFor(false);
-    for (const m of [this.kernel.faces.material, this.kernel.lines.material, this.kernel.points.material, this.boxFacets.material]) {
+    // What lies inside the kernel (ball, deepest point, kernel point) is cut with it.
+    const kernelMaterials = [this.kernel.faces.material, this.kernel.lines.material, this.kernel.points.material, this.boxFacets.material,
+      this.ball.material, this.ball.children[0].material, this.deepestDot.material, this.kernelPoint.material];
+    for (const m of kernelMaterials) {
       m.clippingPlanes = s.planesFor(true);
       m.needsUpdate = true;
     }

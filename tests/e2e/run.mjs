@@ -563,8 +563,12 @@ async function realMeshesAndMessages(page, tmp) {
         skip('princeton/350.off volume vs native CLI', `${nativeCli} not built (npm run build:native)`);
       }
       await jumpToEnd(page);
+      // The kernel is tiny next to the shape (0.02 % of its volume): without the inscribed ball
+      // drawn over it, and with the whole shape fitted above the play bar.
+      await page.click('#show-ball');
       const px = await shoot(page, 'princeton-350-kernel.png');
-      assert(px.blue > 100, `only ${px.blue} kernel-blue pixels in the view`);
+      await page.click('#show-ball');
+      assert(px.blue > 10, `only ${px.blue} kernel-blue pixels in the view`);
       await page.click('#fit-kernel');
       await page.waitForTimeout(300);
       const zoomed = await shoot(page, 'princeton-350-kernel-zoom.png');
