@@ -614,9 +614,11 @@ ui.cancel.addEventListener('click', () => {
 // ------------------------------------------------------------------------------------------
 // Playback
 
+// "Pause" only while something plays: not at step 0 of nothing (computing, error, cancel).
 function setPlayButton() {
-  ui.play.textContent = state.playing ? 'Pause' : 'Play';
-  ui.play.setAttribute('aria-pressed', String(state.playing));
+  const playing = state.playing && viewer.kernel.length > 0;
+  ui.play.textContent = playing ? 'Pause' : 'Play';
+  ui.play.setAttribute('aria-pressed', String(playing));
 }
 
 // Steps per second at speed 1×: a full replay takes at most REPLAY_SECONDS whatever the
@@ -679,6 +681,7 @@ function frame(now) {
     lastUi = key;
     // Nothing to play (before the first step, after an error, an empty kernel): no controls that do nothing.
     ui.play.disabled = ui.jumpEnd.disabled = ui.scrubber.disabled = total === 0;
+    setPlayButton();
     ui.scrubber.max = String(total);
     ui.scrubber.value = String(k);
     ui.stepLabel.textContent = `${k} / ${total}${state.computing ? '+' : ''}`;
