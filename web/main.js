@@ -545,7 +545,8 @@ async function computeGltf(bytes, name, token) {
     return;
   }
   if (token !== state.token) return;
-  state.inputPromise = showMesh(mesh, token);
+  // A big mesh's arrays are moved to the drawing worker: it gets copies, the kernel worker these.
+  state.inputPromise = showMesh({ positions: mesh.positions.slice(), indices: mesh.indices.slice() }, token);
   await runKernel(token, (callbacks) => worker().compute(mesh.positions, mesh.indices, { weld: true, ...kernelOptions(), ...callbacks }));
 }
 

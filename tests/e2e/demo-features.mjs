@@ -10,6 +10,7 @@ import { sampleById } from '../../web/samples.js';
 import { clipBoxHalfSize } from '../../web/unbounded.js';
 import { serve } from './page-tools.mjs';
 import { writeGlb, writeGltf } from './gltf-files.mjs';
+import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 
 const require = createRequire(import.meta.url);
 
@@ -435,6 +436,30 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
       assert(/vertices were merged/i.test(s.message?.text ?? ''), `weld noted: ${JSON.stringify(s.message)}`);
     });
   }
+  // Above 20,000 faces the page draws the input in its drawing worker, which then keeps the
+  // mesh: a big GLB (its arrays copied for that worker) and the open edges of a big open mesh.
+  await test('big inputs (drawn by the drawing worker): a 40k-triangle GLB; the open edges of a 40k-triangle open mesh', async () => {
+    const big = bumpySphere(200, 101); // 40,000 triangles
+    const glb = path.join(tmp, 'bumpy-40k.glb');
+    writeGlb(glb, big, 15000, { shift: 0 });
+    const s = await loadFile(page, glb);
+    const direct = await page.evaluate(() => window.kergenDemo.state.result.status);
+    assert(s.status === 'POLYHEDRON' && direct === 'POLYHEDRON' && Number(s.stats['input-faces']) === 40000, `big GLB: ${JSON.stringify(s)}`);
+    // The same sphere with the 200 triangles around its north pole removed: 200 open edges.
+    const open = path.join(tmp, 'bumpy-40k-open.off');
+    const lines = ['OFF', `${big.positions.length / 3} ${big.indices.length / 3 - 200} 0`];
+    for (let i = 0; i < big.positions.length; i += 3) lines.push(`${big.positions[i]} ${big.positions[i + 1]} ${big.positions[i + 2]}`);
+    for (let t = 0; t < big.indices.length; t += 3) {
+      const tri = big.indices.subarray(t, t + 3);
+      if (!tri.includes(0)) lines.push(`3 ${tri.join(' ')}`);
+    }
+    fs.writeFileSync(open, lines.join('\n') + '\n');
+    const o = await loadFile(page, open);
+    assert(o.message?.code === 'OPEN_MESH', JSON.stringify(o.message));
+    const count = Number(await page.getAttribute('#stat-open-edges', 'data-value'));
+    assert(count === 200, `open edges of the big mesh: ${count}`);
+  });
+
   await test('file picker: a .gltf whose buffer is a separate file says so', async () => {
     const file = path.join(tmp, 'external.gltf');
     writeGltf(file, dented, 5, { external: true });

@@ -6,8 +6,9 @@ import fs from 'node:fs';
 
 // Two meshes from one triangle mesh: the first `split` triangles and the rest. Every vertex is
 // written per triangle (a soup: the page welds it). Node 0 scales by 2 (its positions halved),
-// node 1 translates by (3, 0, 0) (its positions moved by -3): both exact in binary.
-function gltfParts({ positions, indices }, split) {
+// node 1 translates by (shift, 0, 0) (its positions moved by -shift): both exact in binary for
+// coordinates like the dented cube's (a shift of general float32 coordinates rounds: use 0).
+function gltfParts({ positions, indices }, split, shift = 3) {
   const pieces = [[0, split], [split, indices.length / 3]];
   const chunks = [];
   const accessors = [], bufferViews = [], meshes = [];
@@ -18,7 +19,7 @@ function gltfParts({ positions, indices }, split) {
       for (let c = 0; c < 3; c++) {
         const v = indices[3 * t + c];
         const p = [positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]];
-        const q = k === 0 ? p.map((x) => x / 2) : [p[0] - 3, p[1], p[2]];
+        const q = k === 0 ? p.map((x) => x / 2) : [p[0] - shift, p[1], p[2]];
         out.set(q, 9 * (t - t0) + 3 * c);
       }
     }
@@ -35,7 +36,7 @@ function gltfParts({ positions, indices }, split) {
     asset: { version: '2.0', generator: 'kergen-wasm tests/e2e/gltf-files.mjs' },
     scene: 0,
     scenes: [{ nodes: [0, 1] }],
-    nodes: [{ mesh: 0, scale: [2, 2, 2] }, { mesh: 1, translation: [3, 0, 0] }],
+    nodes: [{ mesh: 0, scale: [2, 2, 2] }, { mesh: 1, translation: [shift, 0, 0] }],
     meshes, accessors, bufferViews,
     buffers: [{ byteLength: bin.length }],
   };
@@ -45,8 +46,8 @@ function gltfParts({ positions, indices }, split) {
 const pad4 = (buf, fill) => Buffer.concat([buf, Buffer.alloc((4 - (buf.length % 4)) % 4, fill)]);
 
 /** Writes `mesh` (split after `split` triangles) as a GLB file. */
-export function writeGlb(file, mesh, split) {
-  const { json, bin } = gltfParts(mesh, split);
+export function writeGlb(file, mesh, split, { shift = 3 } = {}) {
+  const { json, bin } = gltfParts(mesh, split, shift);
   const jsonChunk = pad4(Buffer.from(JSON.stringify(json)), 0x20);
   const binChunk = pad4(bin, 0);
   const header = Buffer.alloc(12);
