@@ -245,9 +245,10 @@ export function openEdgeLines(mesh, center) {
 }
 
 /**
- * Some input faces (by input index) ready to draw: { triangles, lines } as float32 positions
- * relative to `center` — triangles (polygons split as the input's drawing splits them) and the
- * faces' outlines. Indices past the mesh's faces are skipped.
+ * Some input faces (by input index) ready to draw: { triangles, lines, centers } as float32
+ * positions relative to `center` — triangles (polygons split as the input's drawing splits them),
+ * the faces' outlines, and each face's vertex centroid (a marker: on a big mesh a face can be a
+ * few pixels). Indices past the mesh's faces are skipped.
  */
 export function faceHighlight(mesh, faceIds, center) {
   const { positions, indices, faceSizes } = mesh;
@@ -257,13 +258,14 @@ export function faceHighlight(mesh, faceIds, center) {
   for (let f = 0, at = 0; f < nFaces && starts.size < wanted.size; at += faceSizes ? faceSizes[f] : 3, f++) {
     if (wanted.has(f)) starts.set(f, at);
   }
-  const tri = [], outline = [];
+  const tri = [], outline = [], centers = [];
   for (const [f, at] of starts) {
     const k = faceSizes ? faceSizes[f] : 3;
     const loop = indices.subarray(at, at + k);
     if (k === 3) tri.push(...loop);
     else splitPolygon(positions, loop, tri);
     for (let j = 0; j < k; j++) outline.push(loop[j], loop[(j + 1) % k]);
+    for (let c = 0; c < 3; c++) centers.push(loop.reduce((sum, v) => sum + positions[3 * v + c], 0) / k - center[c]);
   }
-  return { triangles: segmentPositions(positions, tri, center), lines: segmentPositions(positions, outline, center) };
+  return { triangles: segmentPositions(positions, tri, center), lines: segmentPositions(positions, outline, center), centers: Float32Array.from(centers) };
 }

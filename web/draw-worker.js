@@ -6,7 +6,7 @@
 //
 // main → worker: { type: 'prepare', id, mesh, edges, maxTriangles } | { type: 'edges', id } |
 //                { type: 'open-edges', id } | { type: 'faces', id, faces } | { type: 'noop', id }
-// worker → main: { id, drawing } | { id, edges } | { id, count, lines } | { id, triangles, lines } | { id }
+// worker → main: { id, drawing } | { id, edges } | { id, count, lines } | { id, triangles, lines, centers } | { id }
 import { prepareDrawing, drawingBuffers, faceEdges, openEdgeLines, faceHighlight } from './draw-prep.js';
 
 let drawn = null; // the mesh whose edges can still be asked for: the drawn one (maybe simplified)
@@ -32,7 +32,8 @@ self.onmessage = ({ data }) => {
     const open = input ? openEdgeLines(input, center) : { count: 0, lines: new Float32Array(0) };
     self.postMessage({ id: data.id, ...open }, [open.lines.buffer]);
   } else if (data.type === 'faces') {
-    const faces = input ? faceHighlight(input, data.faces, center) : { triangles: new Float32Array(0), lines: new Float32Array(0) };
-    self.postMessage({ id: data.id, ...faces }, [faces.triangles.buffer, faces.lines.buffer]);
+    const none = { triangles: new Float32Array(0), lines: new Float32Array(0), centers: new Float32Array(0) };
+    const faces = input ? faceHighlight(input, data.faces, center) : none;
+    self.postMessage({ id: data.id, ...faces }, [faces.triangles.buffer, faces.lines.buffer, faces.centers.buffer]);
   }
 };

@@ -563,10 +563,13 @@ export class Viewer {
     this.openEdges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(overlay(OPEN_EDGE_RED, 1)));
     this.witnessFill = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial(overlay(WITNESS_MAGENTA, 0.55)));
     this.witnessLines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(overlay(WITNESS_MAGENTA, 1)));
+    this.witnessDots = new THREE.Points(new THREE.BufferGeometry(), new THREE.PointsMaterial({
+      color: WITNESS_MAGENTA, size: 12, sizeAttenuation: false, depthTest: false, depthWrite: false, transparent: true,
+    }));
     this.boxFacets = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial({
       color: BOX_FACET_GREY, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4,
     }));
-    for (const o of [this.openEdges, this.witnessFill, this.witnessLines, this.boxFacets]) {
+    for (const o of [this.openEdges, this.witnessFill, this.witnessLines, this.witnessDots, this.boxFacets]) {
       o.frustumCulled = false;
       o.visible = false;
       o.renderOrder = o === this.boxFacets ? 1 : 15;
@@ -614,10 +617,11 @@ export class Viewer {
     this.dirty = true;
   }
 
-  /** Input faces to highlight ({ triangles, lines } from draw-prep faceHighlight; null: none). */
+  /** Input faces to highlight ({ triangles, lines, centers } from draw-prep faceHighlight; null: none). */
   setWitnessFaces(faces) {
     Viewer.setLines(this.witnessFill, faces?.triangles);
     Viewer.setLines(this.witnessLines, faces?.lines);
+    Viewer.setLines(this.witnessDots, faces?.centers);
     this.dirty = true;
   }
 

@@ -173,6 +173,28 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
     assert(new RegExp(`no point sees all of the ${witness.length} faces? drawn in magenta`, 'i').test(text), `message "${text}"`);
   });
 
+  const p300 = path.join(sharedMeshes, 'princeton/300.off');
+  if (!fs.existsSync(p300)) skip('witness faces of princeton/300.off', `${p300} not found`);
+  else {
+    await test('princeton/300.off (not star-shaped): its witness faces highlighted, named in words', async () => {
+      const s = await loadFile(page, p300);
+      assert(s.status === 'EMPTY', JSON.stringify(s));
+      const witness = await page.evaluate(() => Array.from(window.kergenDemo.state.result.witnessFaces ?? []));
+      if (!witness.length) {
+        skip('witness faces of princeton/300.off', 'this package build returns no witnessFaces for an empty kernel');
+        return;
+      }
+      await setRange(page, 'opacity', 0.1);
+      const p = await px('state-empty-witness-300.png');
+      await setRange(page, 'opacity', 0.22);
+      const text = await page.textContent('#message');
+      console.log(`     300.off: witness faces ${witness.join(', ')}; ${p.magenta} magenta pixels`);
+      assert(witness.length <= 4 && witness.every((f) => f < Number(s.stats['input-faces'])), `witness ${witness}`);
+      assert(p.magenta > 200, `${p.magenta} magenta pixels (face markers) for ${witness.length} witness faces`);
+      assert(new RegExp(`no point sees all of the ${witness.length} faces? drawn in magenta`, 'i').test(text), `message "${text}"`);
+    });
+  }
+
   // ----------------------------------------------------------------------------- open meshes
   const openCube = path.join(tmp, 'open-box.off');
   fs.writeFileSync(openCube, ['OFF', '8 5 0', '0 0 0', '1 0 0', '1 1 0', '0 1 0', '0 0 1', '1 0 1', '1 1 1', '0 1 1',
