@@ -7,8 +7,10 @@
 // sample's kernel against its hand-derived / 2D-clipped expectation; the animation (play, scrubber,
 // partial counts, jump to end); files through the picker (OFF, binary and ascii STL, OBJ) and drag
 // & drop; princeton/350.off against the native CLI; error messages (out-of-range index, open,
-// non-manifold, unparseable); cancel on a large input with a responsive page; export; light/dark.
-// Screenshots go to tests/artifacts/. Prints `e2e: N passed, M failed`; exits 1 on failure.
+// non-manifold, unparseable); cancel on a large input with a responsive page; export; light/dark;
+// and the page's states and views (demo-features.mjs: states, inscribed ball, section plane,
+// open meshes and allowOpen, repair, witness faces, fitting, ?url= and links, GLB/glTF, keyboard,
+// axe-core). Screenshots go to tests/artifacts/. Prints `e2e: N passed, M failed`; exits 1 on failure.
 // Environment: CHROMIUM (default /usr/bin/chromium), KERGEN_CLI (default build/kergen),
 // E2E_HEADFUL=1, E2E_ONLY=<substring of test names>.
 
