@@ -249,7 +249,9 @@ struct Grid {
     n = side > 0 && mean > 0 ? uint64_t(std::clamp(side / mean, 1.0, double(1u << 20))) : 1;
     cell = side > 0 ? side / double(n) * (1 + 1e-9) : 1;
   }
-  uint64_t index(double x, int k) const { return std::min<uint64_t>(uint64_t(std::max(0.0, (x - lo[k]) / cell)), n - 1); }
+  uint64_t index(double x, int k) const {
+    return std::min<uint64_t>(uint64_t(std::max(0.0, (x - lo[k]) / cell)), n - 1);
+  }
   uint64_t key(uint64_t i, uint64_t j, uint64_t l) const { return (i * n + j) * n + l; }
 };
 
