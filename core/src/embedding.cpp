@@ -108,9 +108,10 @@ bool count_crossings(const PreparedMesh& mesh, const double p[3], const double q
 
 }  // namespace
 
-EmbeddingCheck check_embedding(const PreparedMesh& mesh, const PlaneSet& ps, const TraceResult& kernel) {
-  EmbeddingCheck out;
-  if (!interior_point(ps, kernel, out.point)) return out;
+namespace {
+
+// The degree from out.point, counted along the first ray that meets no edge or vertex.
+EmbeddingCheck degree_from(const PreparedMesh& mesh, EmbeddingCheck out) {
   // Directions with no simple relation to the axes or to each other; scaled coordinates are
   // below 1, so q = p + 4 u is outside the mesh.
   static const double kDirections[][3] = {{0.5773502691896258, 0.6123724356957945, 0.5400617248673217},
@@ -130,6 +131,23 @@ EmbeddingCheck check_embedding(const PreparedMesh& mesh, const PlaneSet& ps, con
     return out;
   }
   return out;
+}
+
+}  // namespace
+
+EmbeddingCheck check_embedding(const PreparedMesh& mesh, const PlaneSet& ps, const TraceResult& kernel) {
+  EmbeddingCheck out;
+  if (!interior_point(ps, kernel, out.point)) return out;
+  return degree_from(mesh, out);
+}
+
+EmbeddingCheck check_embedding_at(const PreparedMesh& mesh, const PlaneSet& ps, const std::vector<uint32_t>& planes,
+                                  const double p[3]) {
+  EmbeddingCheck out;
+  for (int k = 0; k < 3; ++k) out.point[k] = p[k];
+  snap(out.point);
+  if (planes.empty() || !strictly_inside(ps, planes, out.point)) return out;
+  return degree_from(mesh, out);
 }
 
 }  // namespace kergen

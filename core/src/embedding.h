@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "exact/plane_store.h"
 #include "mesh_prep.h"
@@ -33,5 +34,11 @@ struct EmbeddingCheck {
 
 // `kernel`: the complete trace of a bounded, full-dimensional kernel of `mesh`'s planes `ps`.
 EmbeddingCheck check_embedding(const PreparedMesh& mesh, const PlaneSet& ps, const TraceResult& kernel);
+
+// The same certificate from a point p (scaled units; snapped like the traced kernel's) that the
+// caller found without a trace: Undecided unless p lies strictly inside every plane of `planes`
+// (exact signs), which must then be all the kernel's planes.
+EmbeddingCheck check_embedding_at(const PreparedMesh& mesh, const PlaneSet& ps, const std::vector<uint32_t>& planes,
+                                  const double p[3]);
 
 }  // namespace kergen

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <memory>
 
 #include "deepest_point.h"
@@ -18,6 +19,7 @@
 #include "plane_culling.h"
 #include "polytope.h"
 #include "repair.h"
+#include "self_contact.h"
 #include "shells.h"
 #include "step_replay.h"
 #include "tracer.h"
@@ -90,6 +92,7 @@ const char* warning_kind_name(Warning::Kind k) {
     case Warning::Kind::CancellingFacesRemoved: return "CANCELLING_FACES_REMOVED";
     case Warning::Kind::TJunctionsSplit: return "T_JUNCTIONS_SPLIT";
     case Warning::Kind::SeparateShells: return "SEPARATE_SHELLS";
+    case Warning::Kind::CrossingsUnchecked: return "CROSSINGS_UNCHECKED";
   }
   return "UNKNOWN";
 }
@@ -294,29 +297,96 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_lp += ms_since(t);
 }
 
-// A bounded, full-dimensional kernel is answered only for a surface that does not cross itself
-// (embedding.h): false, with the error set, when it does. Flat kernels and open meshes are not
-// certified (no point of the kernel sees every face strictly from its inner side).
-bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out) {
-  if (s.mesh.boundary_edges > 0 || tr.vertices.size() < 4) return true;
-  for (const TracedVertex& v : tr.vertices)
-    for (uint32_t p : v.tight)
-      if (s.is_box[p]) return true;              // unbounded
-  const PlaneIds& tight = tr.vertices[0].tight;  // flat: a plane and its opposite hold it
-  for (uint32_t p : tight) {
-    const uint32_t o = s.planes->opposite(p);
-    if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) return true;
-  }
-  const EmbeddingCheck check = check_embedding(s.mesh, *s.planes, tr);
-  if (check.outcome != EmbeddingCheck::Outcome::CrossesItself) return true;
+// The refusal of a surface that a ray from inside its kernel crosses more than once.
+void refuse_crossing(const PreparedMesh& mesh, const EmbeddingCheck& check, Error& error, std::string& message) {
   char point[96];
-  std::snprintf(point, sizeof point, "(%.9g, %.9g, %.9g)", s.mesh.to_input(check.point[0]),
-                s.mesh.to_input(check.point[1]), s.mesh.to_input(check.point[2]));
-  out.error = Error::SelfIntersection;
-  out.message = "the surface crosses itself: a ray from " + std::string(point) +
-                ", a point every face is seen from the inside, crosses it " + std::to_string(check.crossings) +
-                " times (a closed surface that does not cross itself is crossed once)";
+  std::snprintf(point, sizeof point, "(%.9g, %.9g, %.9g)", mesh.to_input(check.point[0]), mesh.to_input(check.point[1]),
+                mesh.to_input(check.point[2]));
+  error = Error::SelfIntersection;
+  message = "the surface crosses itself: a ray from " + std::string(point) +
+            ", a point every face is seen from the inside, crosses it " + std::to_string(check.crossings) +
+            " times (a closed surface that does not cross itself is crossed once)";
+}
+
+// A surface whose kernel is not full-dimensional and bounded, or an open one, is answered only
+// when no two of its faces meet away from the vertices and edges they share (self_contact.h):
+// false, with the error set, when two do. Undecided (a polygon face that is not simple in its
+// plane) leaves a warning instead: nothing was proved either way.
+bool certify_no_contact(const PreparedMesh& mesh, Error& error, std::string& message, std::vector<Warning>& warnings) {
+  const FaceContact contact = find_face_contact(mesh);
+  if (contact.outcome == FaceContact::Outcome::None) return true;
+  if (contact.outcome == FaceContact::Outcome::Undecided) {
+    warnings.push_back({Warning::Kind::CrossingsUnchecked, 1,
+                        "a polygon face is not a simple polygon in its plane: whether the surface crosses itself "
+                        "was not checked"});
+    return true;
+  }
+  auto at = [&](uint32_t v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "(%.9g, %.9g, %.9g)", mesh.to_input(mesh.point(v)[0]),
+                  mesh.to_input(mesh.point(v)[1]), mesh.to_input(mesh.point(v)[2]));
+    return std::string(text);
+  };
+  error = Error::SelfIntersection;
+  message = "the surface crosses or touches itself: two faces, one with a corner at " + at(contact.corner_a) +
+            " and one with a corner at " + at(contact.corner_b) + ", meet away from the vertices and edges they share";
   return false;
+}
+
+// A bounded, full-dimensional kernel of a closed surface is certified by the ray degree from a
+// point inside it (embedding.h); every other answer by the exact contact test.
+bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out) {
+  bool full_dimensional = s.mesh.boundary_edges == 0 && tr.vertices.size() >= 4;
+  for (const TracedVertex& v : tr.vertices)
+    for (uint32_t p : v.tight) full_dimensional &= !s.is_box[p];  // unbounded
+  if (full_dimensional) {
+    const PlaneIds& tight = tr.vertices[0].tight;  // flat: a plane and its opposite hold it
+    for (uint32_t p : tight) {
+      const uint32_t o = s.planes->opposite(p);
+      if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) full_dimensional = false;
+    }
+  }
+  if (!full_dimensional) return certify_no_contact(s.mesh, out.error, out.message, out.warnings);
+  const EmbeddingCheck check = check_embedding(s.mesh, *s.planes, tr);
+  if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
+  if (check.outcome == EmbeddingCheck::Outcome::Undecided)
+    return certify_no_contact(s.mesh, out.error, out.message, out.warnings);
+  refuse_crossing(s.mesh, check, out.error, out.message);
+  return false;
+}
+
+// find_kernel_point's certificate, without a trace: the ray degree from the centroid of kernel
+// vertices that LPs in more directions reach (strictly inside the kernel once they span it):
+// three more, opposite the first's corner of a tetrahedron, then six along the axes; else the
+// exact contact test (flat kernels, open meshes, a centroid on a facet).
+bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
+  if (s.lp.outcome != LpResult::Outcome::Optimal || s.mesh.boundary_edges > 0)
+    return certify_no_contact(s.mesh, r.error, r.message, r.warnings);
+  static const double kDirections[][3] = {
+      {1, -1.03125, -0.96875}, {-0.96875, 1, -1.03125}, {-1.03125, -0.96875, 1},  // tetrahedron
+      {1, 0.25, 0.0625},       {-1, -0.25, -0.0625},    {0.0625, 1, 0.25},
+      {-0.0625, -1, -0.25},    {0.25, 0.0625, 1},       {-0.25, -0.0625, -1}};
+  std::vector<uint32_t> planes;
+  for (uint32_t i = 0; i < s.planes->size(); ++i)
+    if (!s.is_box[i]) planes.push_back(i);
+  double sum[3] = {s.lp.vertex.x[0].v, s.lp.vertex.x[1].v, s.lp.vertex.x[2].v};
+  int vertices = 1;
+  for (size_t i = 0; i < std::size(kDirections); ++i) {
+    const LpResult lp = solve_lp(*s.planes, s.active, kDirections[i], kLpBound, options.seed);
+    if (lp.outcome == LpResult::Outcome::Optimal) {
+      for (int k = 0; k < 3; ++k) sum[k] += lp.vertex.x[k].v;
+      ++vertices;
+    }
+    if (i != 2 && i + 1 != std::size(kDirections)) continue;
+    const double c[3] = {sum[0] / vertices, sum[1] / vertices, sum[2] / vertices};
+    const EmbeddingCheck check = check_embedding_at(s.mesh, *s.planes, planes, c);
+    if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
+    if (check.outcome == EmbeddingCheck::Outcome::CrossesItself) {
+      refuse_crossing(s.mesh, check, r.error, r.message);
+      return false;
+    }
+  }
+  return certify_no_contact(s.mesh, r.error, r.message, r.warnings);
 }
 
 }  // namespace
@@ -351,6 +421,11 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     out.type = KernelType::Empty;
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     out.type = KernelType::Unbounded;
+    if (!certify_no_contact(s.mesh, out.error, out.message, out.warnings)) {
+      out.type = KernelType::Empty;
+      out.stats.ms_total = ms_since(t_total);
+      return out;
+    }
   } else {
     out.has_kernel_point = true;
     // Rounded to nearest like the output vertices (so it is one of them, bit for bit), not the
@@ -448,6 +523,7 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
     refuse_nested_shells(s.mesh, r.error, r.message);
     return r;
   }
+  if (s.lp.outcome != LpResult::Outcome::Infeasible && !certify_kernel_point(s, options, r)) return r;
   if (s.lp.outcome == LpResult::Outcome::Optimal) {
     r.star_shaped = true;
     double hi[3], lo[3];

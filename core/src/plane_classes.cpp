@@ -17,8 +17,8 @@
 #include <cmath>
 
 #include "compiler_hints.h"
+#include "flat_map.h"
 #include "raw_vector.h"
-#include "u64_set.h"
 #include "union_find.h"
 
 namespace kergen {

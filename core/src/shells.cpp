@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_map>
 #include <vector>
 
 #include "exact/predicates.h"
+#include "flat_map.h"
 #include "union_find.h"
 
 namespace kergen {
@@ -20,14 +20,13 @@ namespace {
 std::vector<uint32_t> pieces(const PreparedMesh& m) {
   const size_t nf = m.num_faces();
   UnionFind uf(nf);
-  std::unordered_map<uint64_t, uint32_t> edge_face;
-  edge_face.reserve(2 * m.loops.size());
+  FlatMap<uint64_t, uint32_t, IdentityHash> edge_face(~uint64_t(0), m.loops.size());  // (a < b: never ~0)
   for (uint32_t f = 0; f < nf; ++f)
     for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i) {
       const uint32_t a = m.loops[i], b = m.loops[i + 1 < m.loop_offsets[f + 1] ? i + 1 : m.loop_offsets[f]];
       const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-      const auto [it, fresh] = edge_face.try_emplace(key, f);
-      if (!fresh) uf.unite(it->second, f);
+      const auto [first, fresh] = edge_face.try_emplace(key, f);
+      if (!fresh) uf.unite(*first, f);
     }
   std::vector<uint32_t> piece(nf);
   for (uint32_t f = 0; f < nf; ++f) piece[f] = uf.find(f);
@@ -55,7 +54,7 @@ bool segment_meets_triangle(const double* u, const double* v, const double* a, c
 struct Grid {
   double lo[3], cell;
   int n;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> cells;  // cell -> triangles
+  FlatMap<uint64_t, std::vector<uint32_t>, IdentityHash> cells{~uint64_t(0)};  // cell (< n^3) -> triangles
   int index(double x, int k) const { return std::clamp(int((x - lo[k]) / cell), 0, n - 1); }
   uint64_t key(int i, int j, int l) const {
     return (uint64_t(i) * uint64_t(n) + uint64_t(j)) * uint64_t(n) + uint64_t(l);
@@ -104,7 +103,7 @@ ShellContact find_shell_contact(const PreparedMesh& m) {
   for (uint32_t t = 0; t < tris.size(); ++t) {
     double bmin[3], bmax[3];
     box({tris[t].a, tris[t].b, tris[t].c}, bmin, bmax);
-    g.visit(bmin, bmax, [&](uint64_t key) { g.cells[key].push_back(t); });
+    g.visit(bmin, bmax, [&](uint64_t key) { g.cells.try_emplace(key, {}).first->push_back(t); });
   }
   std::vector<uint32_t> seen(tris.size(), UINT32_MAX);
   uint32_t stamp = 0;
@@ -115,9 +114,9 @@ ShellContact find_shell_contact(const PreparedMesh& m) {
       box({u, v}, bmin, bmax);
       g.visit(bmin, bmax, [&](uint64_t key) {
         if (out.found) return;
-        const auto it = g.cells.find(key);
-        if (it == g.cells.end()) return;
-        for (uint32_t t : it->second) {
+        const std::vector<uint32_t>* in_cell = g.cells.find(key);
+        if (!in_cell) return;
+        for (uint32_t t : *in_cell) {
           if (seen[t] == stamp || piece[tris[t].face] == piece[f]) continue;
           seen[t] = stamp;
           const Tri& x = tris[t];

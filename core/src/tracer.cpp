@@ -18,7 +18,7 @@
 #include <queue>
 
 #include "compiler_hints.h"
-#include "u64_set.h"
+#include "flat_map.h"
 #include "vertex_filter.h"
 
 namespace kergen {

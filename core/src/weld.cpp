@@ -6,9 +6,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
+#include "flat_map.h"
 #include "union_find.h"
 
 namespace kergen {
@@ -16,10 +16,10 @@ namespace kergen {
 namespace {
 
 struct CellHash {
-  size_t operator()(const std::array<int64_t, 3>& c) const {
+  uint64_t operator()(const std::array<int64_t, 3>& c) const {
     uint64_t h = 0x9e3779b97f4a7c15ull;
     for (int64_t x : c) h = (h ^ uint64_t(x)) * 0xff51afd7ed558ccdull;
-    return size_t(h ^ (h >> 29));
+    return h ^ (h >> 29);
   }
 };
 
@@ -40,8 +40,9 @@ int64_t cell_of(double x, double tolerance) {
 // The groups of vertices within `tolerance` of each other (transitively), by union-find.
 void join_close_vertices(const MeshView& mesh, double tolerance, UnionFind& groups) {
   const size_t n = mesh.num_vertices;
-  std::unordered_map<std::array<int64_t, 3>, uint32_t, CellHash> head;
-  head.reserve(n);
+  // Cells are within +-4e18 + 1, and with tolerance 0 a coordinate's bits with -0 made +0: INT64_MIN
+  // (the bits of -0) is never one.
+  FlatMap<std::array<int64_t, 3>, uint32_t, CellHash> head({INT64_MIN, INT64_MIN, INT64_MIN}, n);
   std::vector<uint32_t> next(n, UINT32_MAX);
   auto pos = [&](size_t v) { return mesh.positions + 3 * v; };
   const double t2 = tolerance * tolerance;
@@ -52,9 +53,9 @@ void join_close_vertices(const MeshView& mesh, double tolerance, UnionFind& grou
     for (int dx = -reach; dx <= reach; ++dx)
       for (int dy = -reach; dy <= reach; ++dy)
         for (int dz = -reach; dz <= reach; ++dz) {
-          const auto it = head.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (it == head.end()) continue;
-          for (uint32_t w = it->second; w != UINT32_MAX; w = next[w]) {
+          const uint32_t* first = head.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (!first) continue;
+          for (uint32_t w = *first; w != UINT32_MAX; w = next[w]) {
             const double* q = pos(w);
             const double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
             const bool close =
@@ -62,10 +63,10 @@ void join_close_vertices(const MeshView& mesh, double tolerance, UnionFind& grou
             if (close) groups.unite(v, w);
           }
         }
-    auto [it, fresh] = head.try_emplace(cell, v);
+    auto [first, fresh] = head.try_emplace(cell, v);
     if (!fresh) {
-      next[v] = it->second;
-      it->second = v;
+      next[v] = *first;
+      *first = v;
     }
   }
 }

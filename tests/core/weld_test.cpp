@@ -40,9 +40,17 @@ TEST(Weld, SoupOfAnIndexedMeshGivesItsKernel) {
     if (!m.face_sizes.empty()) {
       tri.indices.clear();
       tri.face_sizes.clear();
-      for (size_t f = 0, at = 0; f < m.face_sizes.size(); at += m.face_sizes[f++])
-        for (uint32_t i = 1; i + 1 < m.face_sizes[f]; ++i)
-          tri.indices.insert(tri.indices.end(), {m.indices[at], m.indices[at + i], m.indices[at + i + 1]});
+      for (size_t f = 0, at = 0; f < m.face_sizes.size(); at += m.face_sizes[f++]) {
+        // The fan's apex must see the whole polygon, or its triangles fold over each other (a
+        // surface that overlaps itself): the L's reflex corner (1, 1) for its caps.
+        const uint32_t n = m.face_sizes[f];
+        uint32_t apex = 0;
+        for (uint32_t i = 0; i < n; ++i)
+          if (m.positions[3 * m.indices[at + i]] == 1 && m.positions[3 * m.indices[at + i] + 1] == 1) apex = i;
+        auto corner = [&](uint32_t i) { return m.indices[at + (apex + i) % n]; };
+        for (uint32_t i = 1; i + 1 < n; ++i)
+          tri.indices.insert(tri.indices.end(), {corner(0), corner(i), corner(i + 1)});
+      }
     }
     const kergen::Kernel reference = kergen::compute_kernel(tri.view());
     ASSERT_TRUE(reference.ok()) << reference.message;

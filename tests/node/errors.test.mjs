@@ -101,6 +101,30 @@ test('two separate boxes → EMPTY with SEPARATE_SHELLS; crossing ones → SELF_
   await expectCode('SELF_INTERSECTION', () => K.computeKernel(crossing.positions, crossing.indices));
 });
 
+// A bipyramid over a polygon of n corners that winds `turns` times around the z axis (n odd):
+// every face is seen from inside at the origin, so only the embedding certificates refuse it.
+function woundBipyramid(n, turns) {
+  const positions = [0, 0, 1, 0, 0, -1];
+  const indices = [];
+  for (let i = 0; i < n; i++) {
+    const a = (2 * Math.PI * turns * i) / n;
+    positions.push(Math.cos(a), Math.sin(a), 0);
+  }
+  for (let i = 0; i < n; i++) {
+    const v = 2 + i, w = 2 + ((i + 1) % n);
+    indices.push(0, v, w, 1, w, v);
+  }
+  return { positions, indices };
+}
+
+test('a surface wound twice → SELF_INTERSECTION from computeKernel and findKernelPoint alike', async () => {
+  const once = woundBipyramid(7, 1);
+  assert.equal((await K.findKernelPoint(once.positions, once.indices)).starShaped, true);
+  const twice = woundBipyramid(7, 2);
+  await expectCode('SELF_INTERSECTION', () => K.computeKernel(twice.positions, twice.indices));
+  await expectCode('SELF_INTERSECTION', () => K.findKernelPoint(twice.positions, twice.indices));
+});
+
 test('one flipped triangle → INCONSISTENT_ORIENTATION', async () => {
   const m = box();
   const idx = Uint32Array.from(m.indices);

@@ -53,9 +53,10 @@ enum class Error : int {
                             // evaluation in double-based arithmetic (e.g. 1 next to 1e-60)
   Internal,                 // a failure inside the library (a bug, not a verdict on the input):
                             // please report the mesh; the message says what failed
-  SelfIntersection,         // the surface crosses itself: a ray from a point strictly inside the
-                            // half-spaces' intersection crosses it more than once (compute_kernel
-                            // certifies every full-dimensional kernel; see there)
+  SelfIntersection,         // the surface crosses or touches itself: a ray from a point strictly
+                            // inside the half-spaces' intersection crosses it more than once, or
+                            // (flat or unbounded kernels, open meshes, find_kernel_point) two faces
+                            // meet away from the vertices and edges they share, by exact tests
 };
 
 // Shape of the kernel (meaningful when error == Error::Ok).
@@ -205,6 +206,9 @@ struct Warning {
     TJunctionsSplit,         // Options::repair inserted vertices lying on edges into their faces
     SeparateShells,          // a closed mesh of several pieces that neither cross nor touch (count):
                              // disjoint solids or a solid with a void, whose kernel is empty
+    CrossingsUnchecked,      // a polygon face is not a simple polygon in its plane, so the exact test
+                             // that the surface does not cross itself (where the kernel has no point
+                             // inside it, see Error::SelfIntersection) could not run: not certified
   };
   Kind kind;
   size_t count;
@@ -271,10 +275,10 @@ struct Kernel {
 // Computes the kernel. Never throws for bad input: check `error` / `message`.
 Kernel compute_kernel(const MeshView& mesh, const Options& options = {});
 
-// Emptiness test and one kernel point: validation + planes + one LP (expected O(N)). It stops
-// before compute_kernel's embedding certificate (which needs the kernel): a surface that crosses
-// itself (Error::SelfIntersection there) is answered here as the intersection of its faces'
-// half-spaces.
+// Emptiness test and one kernel point: validation + planes + one LP (expected O(N)). A yes is
+// certified like compute_kernel's answers: by an exact test that no two faces meet away from the
+// vertices and edges they share (expected O(N) too, over a grid; Error::SelfIntersection when two
+// do). A no needs no certificate: no point sees every face from its inner side.
 struct KernelPoint {
   Error error = Error::Ok;
   std::string message;

@@ -171,6 +171,15 @@ int orient3d(const double* a, const double* b, const double* c, const double* p,
   return orient3d_formula<Expansion>(sa.v, sb.v, sc.v, sp.v).sign();
 }
 
+int orient2d(const double* a, const double* b, const double* c, int axis, int shift) {
+  // orient3d(a', b', c', d') with x' = (x_i, x_j, 0) and d' = (0, 0, 1) is the 2x2 determinant of
+  // (b - a, c - a) in the (i, j) plane: every lifted coordinate is an input double, so the sign
+  // is exact. (i, j) follows the axis cyclically, so the sign is the turn seen from +axis.
+  const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+  const double pa[3] = {a[i], a[j], 0}, pb[3] = {b[i], b[j], 0}, pc[3] = {c[i], c[j], 0}, up[3] = {0, 0, 1};
+  return orient3d(pa, pb, pc, up, shift);
+}
+
 bool collinear(const double* a, const double* b, const double* c, int shift) {
   if (certainly_not_collinear(a, b, c)) return false;
   auto pa = plane_from_points<Approx>(a, b, c);

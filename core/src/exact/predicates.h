@@ -51,6 +51,10 @@ inline bool certainly_not_collinear(const double* a, const double* b, const doub
   }
   return certain;
 }
+// sign of the orientation of the input points a, b, c projected along coordinate `axis` (the
+// triangle's turn seen from +axis): for coplanar points, in-plane tests on a plane that is not
+// parallel to that axis. Exact: orient3d of the projections lifted by (0, 0, 1).
+int orient2d(const double* a, const double* b, const double* c, int axis, int shift = 0);
 // Whether the input triangle (a,b,c) has exactly collinear vertices.
 bool collinear(const double* a, const double* b, const double* c, int shift = 0);
 // sign of dir . (n_h x n_s) where dir = n_p x n_q (edge orientation in facet h).
