@@ -94,7 +94,7 @@ function writeTJunctionCube(file) {
 }
 
 export async function demoFeatureTests(page, context, base, tmp, h) {
-  const { test, skip, assert, assertClose, loadSample, loadFile, waitFinished, markPending, jumpToEnd, artifacts, sharedMeshes, served } = h;
+  const { test, skip, skipTest, assert, assertClose, loadSample, loadFile, waitFinished, markPending, jumpToEnd, artifacts, sharedMeshes, served } = h;
   const px = (name) => viewPixels(page, artifacts, name);
 
   // ---------------------------------------------------------------------------------- states
@@ -164,8 +164,7 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
     await loadSample(page, 'u-prism');
     const witness = await page.evaluate(() => Array.from(window.kergenDemo.state.result.witnessFaces ?? []));
     if (!witness.length) {
-      skip('witness faces highlight', 'this package build returns no witnessFaces for an empty kernel');
-      return;
+      skipTest('this package build returns no witnessFaces for an empty kernel');
     }
     const p = await px('state-empty-witness.png');
     const text = await page.textContent('#message');
@@ -181,8 +180,7 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
       assert(s.status === 'EMPTY', JSON.stringify(s));
       const witness = await page.evaluate(() => Array.from(window.kergenDemo.state.result.witnessFaces ?? []));
       if (!witness.length) {
-        skip('witness faces of princeton/300.off', 'this package build returns no witnessFaces for an empty kernel');
-        return;
+        skipTest('this package build returns no witnessFaces for an empty kernel');
       }
       await setRange(page, 'opacity', 0.1);
       const p = await px('state-empty-witness-300.png');
@@ -249,8 +247,7 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
     await page.click('#retry-repair');
     const r = await waitFinished(page);
     if (r.state === 'error' && /repair/.test(r.message?.text ?? '')) {
-      skip('repair through the worker', `this package's KernelWorker does not pass repair to the module (${r.message.code} again)`);
-      return;
+      skipTest(`this package's KernelWorker does not pass repair to the module (${r.message.code} again)`);
     }
     assert(r.status === 'POLYHEDRON', JSON.stringify(r));
     assertClose(Number(r.stats.volume), 1, 1e-12, 'repaired kernel volume');
