@@ -251,6 +251,8 @@ const double kConflictBound = std::ldexp(1.0, 100);
 // within the wide bounds.
 std::vector<uint32_t> minimal_conflict(PlaneSet& ps, const double direction[3], const std::vector<uint32_t>& cons,
                                        size_t failed) {
+  // (The search's exact evaluations are not counted: Stats::exact_fallbacks stays the kernel's.)
+  const size_t exact_fallbacks = ps.exact_fallbacks;
   uint32_t bounds[3];
   for (int i = 0; i < 3; ++i) {
     double n[3] = {0, 0, 0};
@@ -290,6 +292,7 @@ std::vector<uint32_t> minimal_conflict(PlaneSet& ps, const double direction[3], 
     if (done || found.size() > 4) found.clear();
   }
   for (int i = 0; i < 3; ++i) ps.pop_last();
+  ps.exact_fallbacks = exact_fallbacks;
   return found;
 }
 

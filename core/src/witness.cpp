@@ -23,7 +23,8 @@ uint32_t first_face_on_plane(const PreparedMesh& mesh, const std::array<uint32_t
     bool on = true;
     for (int k = 0; k < 3 && on; ++k) on = orient3d(a, b, c, mesh.point(r[k]), mesh.exact_shift) == 0;
     if (!on) continue;
-    const PlaneCoef<Expansion> face = exact_plane(mesh.point(r[0]), mesh.point(r[1]), mesh.point(r[2]), mesh.exact_shift);
+    const PlaneCoef<Expansion> face =
+        exact_plane(mesh.point(r[0]), mesh.point(r[1]), mesh.point(r[2]), mesh.exact_shift);
     const Expansion dot = plane.n[0] * face.n[0] + plane.n[1] * face.n[1] + plane.n[2] * face.n[2];
     if (dot.sign() > 0) return f;
   }
