@@ -247,9 +247,11 @@ std::array<StatsField, 14> stats_fields(const Stats& s);
 //   Indices are those of the faces given in the MeshView, also with Options::weld and repair
 // (the plane is then that of the welded, repaired face); a non-planar polygon split into
 // triangles (Warning::Kind::NonPlanarFacesSplit) is named for its triangles' planes, once even
-// if two of them are in the set. Empty when the kernel is not empty, and when no set of faces
-// alone shows it: with Options::allow_open, half-spaces that meet only outside the box the
-// kernel is clipped to. Computed only for an empty kernel (no cost otherwise).
+// if two of them are in the set. Separate pieces (Warning::Kind::SeparateShells) get one too.
+// Empty when the kernel is not empty, and when no set of faces alone shows it: with
+// Options::allow_open, half-spaces that meet only outside the box the kernel is clipped to (and,
+// in theory, faces whose planes meet only beyond ~2^100 times the mesh's size). Computed only for
+// an empty kernel (no cost otherwise).
 
 struct Kernel {
   Error error = Error::Ok;
