@@ -4,9 +4,10 @@
 // margin): no point of a large box lies inside all of them (every vertex of the box cut by the
 // planes is enumerated, and a non-empty bounded polytope has one), and without any one face the
 // others' half-spaces do meet in the box. The same faces come from every path: sync, async,
-// findKernelPoint, the worker.
+// findKernelPoint, the worker (compute and computeFile).
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
+import fs from 'node:fs';
 import path from 'node:path';
 import { assertBuilt, offFiles, sharedMeshesMissing, sharedMeshes } from './lib/env.mjs';
 import { installWorkerShim } from './lib/web-worker-shim.mjs';
@@ -116,7 +117,7 @@ test('a star-shaped mesh has no witness (an empty Uint32Array), sync and findKer
   assert.equal(p.witnessFaces.length, 0);
 });
 
-test('shared non-star meshes: the same witness from sync, async, findKernelPoint (both) and the worker', { timeout: 600000 }, async (t) => {
+test('shared non-star meshes: the same witness from sync, async, findKernelPoint (both) and the worker (compute, computeFile)', { timeout: 600000 }, async (t) => {
   const missing = sharedMeshesMissing();
   if (missing) return t.skip(missing);
   const files = [...offFiles('princeton'), ...offFiles('fixtures')];
@@ -157,6 +158,8 @@ test('shared non-star meshes: the same witness from sync, async, findKernelPoint
     const w = await kw.compute(mesh.positions, mesh.indices, options);
     assert.ok(w.witnessFaces instanceof Uint32Array, `${name}: worker witnessFaces is a Uint32Array`);
     assert.deepEqual(Array.from(w.witnessFaces), expected, `${name}: KernelWorker.compute`);
+    const { result } = await kw.computeFile(fs.readFileSync(file), { name: path.basename(file), transfer: true });
+    assert.deepEqual(Array.from(result.witnessFaces), expected, `${name}: KernelWorker.computeFile`);
     checked++;
   }
   t.diagnostic(`${checked} non-star shared meshes, the same witness on every path; ${checked - nonPlanar} checked here (${nonPlanar} with a non-planar witness face)`);
