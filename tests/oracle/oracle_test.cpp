@@ -509,27 +509,33 @@ kergen::Mesh read_or_fail(const fs::path& file) {
   return rr.mesh;
 }
 
-// Mostly non-star meshes: a UV sphere stretched along z (length 6, radius 1) and bent into an
-// arc of 4.2 to 5.8 radians (about 240 to 330 degrees; the ends then hide from each other),
-// twisted about its axis, with every vertex moved by a random vector of up to `jitter` in each
-// coordinate (the surface may then cross itself; the witness is about the faces' half-spaces
-// only). (A sphere whose vertices move along their radius only stays star-shaped: its centre
-// sees every face; so do peanuts, and arcs below ~4.5 radians of this one.)
+// A UV sphere (each ring of vertices turned by `twist` from the one before) stretched along z to
+// length 6, radius 1, and bent into an arc of `theta` radians. Below ~4.7 radians it is
+// star-shaped; above, its ends hide from each other. (A sphere whose vertices move along their
+// radius only stays star-shaped: its centre sees every face; so do peanuts.)
+kergen::Mesh arc_capsule(int nu, int nv, double twist, double theta) {
+  const double R = 6 / theta;  // the arc's radius: the axis, of length 6, spans theta
+  kergen::Mesh m = kergen_test::uv_sphere(nu, nv, twist);
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    double* p = &m.positions[3 * v];
+    const double phi = 3 * p[2] / R, r = R + p[0];
+    p[0] = r * std::cos(phi) - R;
+    p[2] = r * std::sin(phi);
+  }
+  return m;
+}
+
+// Mostly non-star meshes: arcs of 4.2 to 5.8 radians (about 240 to 330 degrees) with random
+// twists, and every vertex moved by a random vector of up to `jitter` in each coordinate (the
+// surface may then cross itself; the witness is about the faces' half-spaces only).
 kergen::Mesh bent_capsule(uint32_t seed, int nu, int nv) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(0, 1);
   const double theta = 4.2 + 1.6 * U(rng);
   const double twist = 2 * U(rng);
   const double jitter = 0.05 * U(rng);
-  const double R = 6 / theta;  // the arc's radius: the axis, of length 6, spans theta
-  kergen::Mesh m = kergen_test::uv_sphere(nu, nv, twist);
-  for (size_t v = 0; v < m.num_vertices(); ++v) {
-    double* p = &m.positions[3 * v];
-    const double phi = 3 * p[2] / R, r = R + p[0];
-    p[0] = r * std::cos(phi) - R + jitter * (2 * U(rng) - 1);
-    p[1] += jitter * (2 * U(rng) - 1);
-    p[2] = r * std::sin(phi) + jitter * (2 * U(rng) - 1);
-  }
+  kergen::Mesh m = arc_capsule(nu, nv, twist, theta);
+  for (double& x : m.positions) x += jitter * (2 * U(rng) - 1);
   return m;
 }
 
@@ -578,6 +584,29 @@ TEST(OracleWitness, GeneratedShapes) {
   }
   rep.print();
   EXPECT_GT(rep.empty, 150u);
+}
+
+// Large capsules bent to about the arc where they stop being star-shaped (~4.7 radians): the
+// face-sample LP then often finds a point and the LP of the kept planes decides; without face
+// culling the LP runs on all ~9,400 planes, in Clarkson's rounds on subsets.
+TEST(OracleWitness, GeneratedNearTheThreshold) {
+  WitnessReport rep{"near the threshold"};
+  size_t late = 0;
+  for (int i = 0; i < 12; ++i) {
+    const double theta = 4.64 + 0.01 * i;
+    const kergen::Mesh m = arc_capsule(80, 60, 0, theta);
+    for (const bool cull : {true, false}) {
+      kergen::Options o;
+      o.cull_faces = cull;
+      rep.check("arc_capsule(" + std::to_string(theta) + (cull ? ")" : ", no culling)"), m, o);
+      const kergen::Kernel k = kergen::compute_kernel(m.view(), o);
+      late += k.type == kergen::KernelType::Empty && k.stats.distinct_planes > 0;  // (0: the sample's LP decided)
+    }
+  }
+  rep.print();
+  std::printf("  %zu empty kernels decided by the LP of the mesh's planes (not the face sample's)\n", late);
+  EXPECT_GT(rep.empty, 0u);
+  EXPECT_GT(late, 0u);
 }
 
 // Witness faces are the input's: faces dropped (fewer than three distinct corners), split
