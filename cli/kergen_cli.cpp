@@ -294,6 +294,9 @@ std::string json_line(const MeshOutcome& m) {
   s += ",\"kernel_point\":" + json_point(computed && k.has_kernel_point, k.kernel_point);
   s += ",\"deepest_point\":" + json_point(computed && k.has_deepest_point, k.deepest_point);
   s += ",\"inscribed_radius\":" + (computed && k.has_deepest_point ? json_number(k.inscribed_radius) : "null");
+  s += ",\"witness_faces\":[";
+  for (size_t i = 0; i < k.witness_faces.size(); ++i) s += (i ? "," : "") + std::to_string(k.witness_faces[i]);
+  s += "]";
   s += ",\"warnings\":[";
   for (size_t i = 0; i < k.warnings.size(); ++i) {
     const kergen::Warning& w = k.warnings[i];
@@ -348,6 +351,11 @@ void append_human(std::string& out, const MeshOutcome& m) {
   appendf(out, "  area        %.10g\n", k.area);
   if (k.has_kernel_point)
     appendf(out, "  point       %.10g %.10g %.10g\n", k.kernel_point[0], k.kernel_point[1], k.kernel_point[2]);
+  if (!k.witness_faces.empty()) {
+    appendf(out, "  witness     faces");
+    for (uint32_t f : k.witness_faces) appendf(out, " %u", f);
+    appendf(out, " (no point sees all of them from the inside)\n");
+  }
   if (k.has_deepest_point)
     appendf(out, "  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],
             k.deepest_point[2], k.inscribed_radius);

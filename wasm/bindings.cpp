@@ -63,14 +63,14 @@ enum Option : uint32_t {
 };
 
 // Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[numWarnings]],
-// f64 vertices, u32 edges, face indices, face sizes, triangles, u8 bytes (writeMesh's file), then
+// f64 vertices, u32 edges, face indices, face sizes, triangles, witness faces, u8 bytes (writeMesh's file), then
 // the text: NUL-terminated UTF-8 strings: name (kernel status, "" for findPoint, or the error
 // code), message ("" unless error), then kind and message of each warning.
 // clang-format off
 #define KERGEN_HEAD_WORDS(X) \
   X(ok) X(complete) X(hasKernelPoint) X(hasDeepestPoint) X(starShaped) X(numWarnings) X(textBytes) \
   X(numVertexValues) X(numEdgeValues) X(numFaceIndices) X(numFaces) X(numTriangleValues) \
-  X(numBytes) X(padding)
+  X(numWitnessFaces) X(numBytes)
 // clang-format on
 enum Head : uint32_t {
 #define KERGEN_ENUM(name) kHead_##name,
@@ -130,6 +130,7 @@ struct Out {
   const std::vector<uint32_t>* face_indices = nullptr;
   const std::vector<uint32_t>* face_sizes = nullptr;
   const std::vector<uint32_t>* triangles = nullptr;
+  const std::vector<uint32_t>* witness_faces = nullptr;
   const std::string* bytes = nullptr;
 
   void set_kernel(const kergen::Kernel& k) {
@@ -138,6 +139,7 @@ struct Out {
     face_indices = &k.face_indices;
     face_sizes = &k.face_sizes;
     triangles = &k.triangles;
+    witness_faces = &k.witness_faces;
   }
 };
 
@@ -159,6 +161,7 @@ uintptr_t pack(Out& o) {
   const std::vector<uint32_t>& face_indices = o.face_indices ? *o.face_indices : kNoIndices;
   const std::vector<uint32_t>& face_sizes = o.face_sizes ? *o.face_sizes : kNoIndices;
   const std::vector<uint32_t>& triangles = o.triangles ? *o.triangles : kNoIndices;
+  const std::vector<uint32_t>& witness_faces = o.witness_faces ? *o.witness_faces : kNoIndices;
   const std::string& bytes_out = o.bytes ? *o.bytes : kNoBytes;
 
   std::string text = o.name;
@@ -180,11 +183,13 @@ uintptr_t pack(Out& o) {
   o.head[kHead_numFaceIndices] = static_cast<uint32_t>(face_indices.size());
   o.head[kHead_numFaces] = static_cast<uint32_t>(face_sizes.size());
   o.head[kHead_numTriangleValues] = static_cast<uint32_t>(triangles.size());
+  o.head[kHead_numWitnessFaces] = static_cast<uint32_t>(witness_faces.size());
   o.head[kHead_numBytes] = static_cast<uint32_t>(bytes_out.size());
 
-  const size_t bytes = sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
-                       4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size()) +
-                       bytes_out.size() + text.size();
+  const size_t bytes =
+      sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
+      4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size() + witness_faces.size()) +
+      bytes_out.size() + text.size();
   char* block = static_cast<char*>(std::malloc(bytes));
   if (!block) return 0;
   char* at = put(block, o.head, kHeadWords);
@@ -195,6 +200,7 @@ uintptr_t pack(Out& o) {
   at = put(at, face_indices.data(), face_indices.size());
   at = put(at, face_sizes.data(), face_sizes.size());
   at = put(at, triangles.data(), triangles.size());
+  at = put(at, witness_faces.data(), witness_faces.size());
   at = put(at, bytes_out.data(), bytes_out.size());
   put(at, text.data(), text.size());
   return reinterpret_cast<uintptr_t>(block);
@@ -305,7 +311,7 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
 }
 
 // findPoint(request, numPositionValues, numIndices, numFaceSizes) → result block address
-// (starShaped, the point in the kernel point slots, warnings).
+// (starShaped, the point in the kernel point slots, witness faces, warnings).
 uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   try {
     const kergen::KernelPoint p =
@@ -316,6 +322,7 @@ uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indice
     o.head[kHead_starShaped] = p.star_shaped;
     o.head[kHead_hasKernelPoint] = p.star_shaped;
     put_xyz(p.point, o.scalars + kScalar_kernelPoint);
+    o.witness_faces = &p.witness_faces;
     o.warnings = &p.warnings;
     return pack(o);
   } catch (const std::bad_alloc&) {

@@ -178,8 +178,8 @@ export interface KernelStats {
 }
 
 /**
- * A computed kernel. Its five typed arrays (`vertices`, `edges`, `faceIndices`, `faceSizes`,
- * `triangles`) are copies out of the wasm heap into one fresh ArrayBuffer, which they share as
+ * A computed kernel. Its six typed arrays (`vertices`, `edges`, `faceIndices`, `faceSizes`,
+ * `triangles`, `witnessFaces`) are copies out of the wasm heap into one fresh ArrayBuffer, which they share as
  * views (use `.slice()` for an array with a buffer of its own, e.g. before transferring only it).
  */
 export interface KernelResult {
@@ -206,6 +206,17 @@ export interface KernelResult {
   shapeVolume: number;
   /** volume / shapeVolume. */
   volumeRatio: number;
+  /**
+   * Why the kernel is 'EMPTY': at most four input faces (indices of the faces given, in
+   * increasing order; with `weld` or `repair` too) whose inner half-spaces have no common point,
+   * so no point sees all of them from the inside (Helly's theorem: four suffice in 3D). Minimal,
+   * one face per plane (the lowest-indexed one), checked with exact arithmetic before it is
+   * returned. A non-planar polygon split into triangles is named for its triangles' planes.
+   * Empty when the kernel is not empty, and when no set of faces alone shows it (with
+   * `allowOpen`: half-spaces that meet only outside the clipping box). Computed only for an
+   * empty kernel.
+   */
+  witnessFaces: Uint32Array;
   /** A kernel vertex (null when 'EMPTY'). */
   kernelPoint: Vec3 | null;
   /** Centre of the largest inscribed ball (with options.deepestPoint and a full-dimensional kernel). */
@@ -220,6 +231,8 @@ export interface KernelPointResult {
   starShaped: boolean;
   /** A kernel vertex, or null when not star-shaped. */
   point: Vec3 | null;
+  /** When not star-shaped: why (see KernelResult.witnessFaces); empty otherwise. */
+  witnessFaces: Uint32Array;
   warnings: KernelWarning[];
 }
 

@@ -129,7 +129,7 @@ const WIRE_NAMES = {
   option: ['fromX', 'fromY', 'fromZ', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed',
     'weld', 'weldRelative', 'repair', 'slots'],
   head: ['ok', 'complete', 'hasKernelPoint', 'hasDeepestPoint', 'starShaped', 'numWarnings', 'textBytes', 'numVertexValues',
-    'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numBytes', 'words'],
+    'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numWitnessFaces', 'numBytes', 'words'],
   scalar: ['volume', 'area', 'shapeVolume', 'volumeRatio', 'kernelPoint', 'deepestPoint', 'inscribedRadius', 'stats', 'count'],
   step: ['kind', 'id', 'a', 'b', 'loop', 'loopSize', 'position'],
 };
@@ -398,7 +398,7 @@ function readResult(m, ptr) {
     const s = (ptr + 4 * H.words) / 8; // scalars
     const counts = s + S.count; // warning counts
     const v = counts + numWarnings;
-    // The five arrays lie back to back in the block (the vertices' f64 values, then the u32
+    // The six arrays lie back to back in the block (the vertices' f64 values, then the u32
     // arrays): one copy into one fresh buffer, then views of it. (Each fresh typed array of more
     // than a few values costs about a microsecond in V8, most of a tiny mesh's overhead here.)
     const numVertexValues = u32[h + H.numVertexValues];
@@ -406,8 +406,9 @@ function readResult(m, ptr) {
     const numFaceIndices = u32[h + H.numFaceIndices];
     const numFaces = u32[h + H.numFaces];
     const numTriangleValues = u32[h + H.numTriangleValues];
+    const numWitnessFaces = u32[h + H.numWitnessFaces];
     const arraysStart = v * 8;
-    const u32Values = numEdgeValues + numFaceIndices + numFaces + numTriangleValues;
+    const u32Values = numEdgeValues + numFaceIndices + numFaces + numTriangleValues + numWitnessFaces;
     const arrays = m.HEAPU8.slice(arraysStart, arraysStart + 8 * numVertexValues + 4 * u32Values).buffer;
     const vertices = new Float64Array(arrays, 0, numVertexValues);
     let at = 8 * numVertexValues;
@@ -415,6 +416,7 @@ function readResult(m, ptr) {
     const faceIndices = new Uint32Array(arrays, (at += 4 * numEdgeValues), numFaceIndices);
     const faceSizes = new Uint32Array(arrays, (at += 4 * numFaceIndices), numFaces);
     const triangles = new Uint32Array(arrays, (at += 4 * numFaces), numTriangleValues);
+    const witnessFaces = new Uint32Array(arrays, (at += 4 * numTriangleValues), numWitnessFaces);
     const bytesStart = (v * 2 + 2 * numVertexValues + u32Values) * 4;
     const numBytes = u32[h + H.numBytes];
     const textStart = bytesStart + numBytes;
@@ -434,6 +436,7 @@ function readResult(m, ptr) {
       faceIndices,
       faceSizes,
       triangles,
+      witnessFaces,
       bytes: numBytes ? m.HEAPU8.slice(bytesStart, textStart) : null,
       volume: f64[s + S.volume],
       area: f64[s + S.area],
@@ -468,6 +471,7 @@ function shapeResult(raw) {
     faceIndices,
     faceSizes,
     triangles: raw.triangles,
+    witnessFaces: raw.witnessFaces,
     volume: raw.volume,
     area: raw.area,
     shapeVolume: raw.shapeVolume,
@@ -562,7 +566,7 @@ export function findKernelPointSync(positions, indices, options = {}) {
     return readResult(m, block);
   });
   throwIfError(raw);
-  return { starShaped: raw.starShaped, point: raw.kernelPoint, warnings: raw.warnings };
+  return { starShaped: raw.starShaped, point: raw.kernelPoint, witnessFaces: raw.witnessFaces, warnings: raw.warnings };
 }
 
 /** Async variant of findKernelPointSync (loads the module on first use). */

@@ -42,7 +42,8 @@ function packageFunction(name) {
 const now = typeof performance !== 'undefined' ? () => performance.now() : () => Date.now();
 
 function resultTransferables(result) {
-  const list = [result.vertices.buffer, result.edges.buffer, result.triangles.buffer, result.faceIndices.buffer, result.faceSizes.buffer];
+  const list = [result.vertices.buffer, result.edges.buffer, result.triangles.buffer, result.faceIndices.buffer, result.faceSizes.buffer,
+    result.witnessFaces.buffer];
   return list.filter((b) => b.byteLength > 0); // may repeat a buffer: see unique()
 }
 

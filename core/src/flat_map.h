@@ -68,7 +68,6 @@ class FlatMap {
     }
   }
 
-
   size_t size() const { return size_; }
 
  private:

@@ -24,6 +24,7 @@
 #include "step_replay.h"
 #include "tracer.h"
 #include "weld.h"
+#include "witness.h"
 
 namespace kergen {
 
@@ -187,8 +188,15 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
   if ((!weld && !options.repair) || !weldable(mesh)) return judge_shells(prepare_mesh(mesh, options, true));
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
   RepairCounts repaired;
-  if (options.repair) repaired = repair_mesh(w.mesh);
+  std::vector<uint32_t> repair_kept;
+  if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
   PreparedMesh m = judge_shells(prepare_mesh(w.mesh.view(), options, true));
+  // Faces are named by their index in the input (the witness): through the repair, then the weld.
+  m.welded_source = std::move(w.source_face);
+  if (options.repair) {
+    for (uint32_t& f : repair_kept) f = m.welded_source[f];
+    m.welded_source = std::move(repair_kept);
+  }
   m.input_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   m.dropped_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   // The merged vertices are no face's any more: only the input's own unused ones are reported.
@@ -295,6 +303,15 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   }
   s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
   stats.ms_lp += ms_since(t);
+}
+
+// The witness of an empty kernel (witness.h) as input face indices, increasing and distinct (the
+// triangles of a split polygon are named by the polygon).
+std::vector<uint32_t> input_witness(const Setup& s) {
+  std::vector<uint32_t> faces = witness_faces(s.mesh, s.lp.conflict);
+  for (uint32_t& f : faces) f = s.mesh.input_face(f);
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
 }
 
 // The refusal of a surface that a ray from inside its kernel crosses more than once.
@@ -407,6 +424,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   out.shape_volume = std::ldexp(s.mesh.volume, 3 * unscale_exp);
   if (s.rejected_early) {
     out.type = KernelType::Empty;
+    out.witness_faces = input_witness(s);
     out.stats.ms_total = ms_since(t_total);
     return out;
   }
@@ -419,6 +437,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   }
   if (s.lp.outcome == LpResult::Outcome::Infeasible) {
     out.type = KernelType::Empty;
+    out.witness_faces = input_witness(s);
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     out.type = KernelType::Unbounded;
     if (!certify_no_contact(s.mesh, out.error, out.message, out.warnings)) {
@@ -531,6 +550,8 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
     for (int k = 0; k < 3; ++k) r.point[k] = s.mesh.to_input(hi[k]);
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     r.star_shaped = true;  // non-empty but unbounded (open input)
+  } else {
+    r.witness_faces = input_witness(s);
   }
   return r;
 }

@@ -879,6 +879,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
   // bucket[b + 1]: size of bucket b, then its end, then (after the fill) its start.
   std::vector<uint32_t> bucket(2 * nv + 2, 0);
   size_t cf = 0;  // clean faces
+  // The input face of each clean face, from the first face dropped on (before it: the identity).
+  std::vector<uint32_t> clean_source;
+  bool clean_renumbered = false;
   {
     const uint32_t* in = mesh.indices;
     uint32_t* cl = clean.data();
@@ -917,6 +920,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
         n += 3;
         in += 3;
         off[++cf] = uint32_t(n);
+        if (clean_renumbered) clean_source.push_back(uint32_t(f));
         us[a] = us[b] = us[c] = 1;
         count_use(a, b);
         count_use(b, c);
@@ -930,9 +934,15 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
       if (n - begin < 3) {
         n = begin;
         ++dropped;
+        if (!clean_renumbered) {
+          clean_renumbered = true;
+          clean_source.resize(cf);
+          std::iota(clean_source.begin(), clean_source.end(), 0u);
+        }
         continue;
       }
       off[++cf] = uint32_t(n);
+      if (clean_renumbered) clean_source.push_back(uint32_t(f));
       for (size_t i = begin; i < n; ++i) {
         const uint32_t u = cl[i], v = cl[i + 1 < n ? i + 1 : begin];
         us[u] = 1;
@@ -1274,19 +1284,23 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
   double split_abs = 0;  // sum of |terms| of the split polygons' volume corrections
   bool renumbered = false;
   std::vector<uint32_t> face_of_clean;  // used once renumbered
-  auto renumber = [&](size_t f) {       // faces before f were kept whole
+  auto input_of_clean = [&](size_t f) { return clean_renumbered ? clean_source[f] : uint32_t(f); };
+  auto renumber = [&](size_t f) {  // faces before f were kept whole
     if (renumbered) return;
     renumbered = true;
     m.loops.assign(clean.begin(), clean.begin() + clean_offsets[f]);
     m.loop_offsets.assign(clean_offsets.begin(), clean_offsets.begin() + f + 1);
     face_of_clean.assign(cf, 0xffffffffu);
     std::iota(face_of_clean.begin(), face_of_clean.begin() + f, 0u);
+    m.source_face.resize(f);
+    for (size_t g = 0; g < f; ++g) m.source_face[g] = input_of_clean(g);
   };
   auto keep_whole = [&](size_t f, std::array<uint32_t, 3> rep) {
     if (renumbered) {
       face_of_clean[f] = uint32_t(m.rep.size());
       m.loops.insert(m.loops.end(), clean.begin() + clean_offsets[f], clean.begin() + clean_offsets[f + 1]);
       m.loop_offsets.push_back(uint32_t(m.loops.size()));
+      m.source_face.push_back(input_of_clean(f));
     }
     m.rep.push_back(rep);
   };
@@ -1399,6 +1413,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
       m.loops.insert(m.loops.end(), tri.begin(), tri.end());
       m.loop_offsets.push_back(uint32_t(m.loops.size()));
       m.rep.push_back(tri);
+      m.source_face.push_back(input_of_clean(f));
       any = true;
     }
     if (any)
@@ -1456,6 +1471,7 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
     return std::move(m);
   };
   if (!renumbered) {
+    if (clean_renumbered) m.source_face = std::move(clean_source);
     m.loops = std::move(clean);
     m.loop_offsets = std::move(clean_offsets);
     m.adjacent = std::move(face_pairs);

@@ -83,9 +83,12 @@ async function main(): Promise<void> {
     const [x, y, z] = kp.point;
     void (x + y + z);
   }
+  // Why a shape is not star-shaped: input face indices (empty unless the kernel is empty).
+  const why: Uint32Array = kp.starShaped ? new Uint32Array(0) : kp.witnessFaces;
+  const whyToo: Uint32Array = sync.witnessFaces;
   const star: boolean = await isStarShaped(positions, indices);
   const heap: number = memoryStats().heapUsed + memoryStats().heapSize;
-  void [complete, star, heap];
+  void [complete, why, whyToo, star, heap];
 
   try {
     await computeKernel([NaN], [0]);

@@ -228,7 +228,8 @@ struct Stats {
       0;  // after merging the other faces' coplanar planes (a plane used from both sides counts twice)
   size_t active_planes = 0;  // planes left after culling (those that can touch the kernel)
   size_t traced_lines = 0;
-  size_t exact_fallbacks = 0;  // predicate evaluations the floating-point filter could not decide
+  size_t exact_fallbacks = 0;  // predicate evaluations the floating-point filter could not decide (the
+                               // search for an empty kernel's witness not counted)
   double ms_validate = 0, ms_planes = 0, ms_lp = 0, ms_trace = 0, ms_assemble = 0, ms_total = 0;
 };
 
@@ -239,6 +240,22 @@ struct StatsField {
   double value;
 };
 std::array<StatsField, 14> stats_fields(const Stats& s);
+
+// The witness of an empty kernel (Kernel::witness_faces, KernelPoint::witness_faces): at most
+// four faces whose inner half-spaces have no common point, so that no point sees all of them
+// from the inside. By Helly's theorem four suffice in 3D; the set is minimal (each face is
+// needed), found from the LP's infeasible constraints and checked with exact arithmetic before it
+// is given (Farkas weights: a positive combination of the faces' plane equations that is
+// positive everywhere). One face per plane: the lowest-indexed face lying in it with the same
+// inner side.
+//   Indices are those of the faces given in the MeshView, also with Options::weld and repair
+// (the plane is then that of the welded, repaired face); a non-planar polygon split into
+// triangles (Warning::Kind::NonPlanarFacesSplit) is named for its triangles' planes, once even
+// if two of them are in the set. Separate pieces (Warning::Kind::SeparateShells) get one too.
+// Empty when the kernel is not empty, and when no set of faces alone shows it: with
+// Options::allow_open, half-spaces that meet only outside the box the kernel is clipped to (and,
+// in theory, faces whose planes meet only beyond ~2^100 times the mesh's size). Computed only for
+// an empty kernel (no cost otherwise).
 
 struct Kernel {
   Error error = Error::Ok;
@@ -256,6 +273,9 @@ struct Kernel {
   double area = 0;          // kernel surface area (Polygon: the polygon's area)
   double shape_volume = 0;  // volume enclosed by the input mesh
   double volume_ratio = 0;  // volume / shape_volume
+
+  // Why the kernel is Empty (see the witness above): input face indices, increasing.
+  std::vector<uint32_t> witness_faces;
 
   bool has_kernel_point = false;  // the LP vertex (a kernel vertex); false when Empty
   std::array<double, 3> kernel_point{};
@@ -282,8 +302,9 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options = {});
 struct KernelPoint {
   Error error = Error::Ok;
   std::string message;
-  bool star_shaped = false;       // kernel non-empty
-  std::array<double, 3> point{};  // a kernel vertex (when star_shaped)
+  bool star_shaped = false;             // kernel non-empty
+  std::array<double, 3> point{};        // a kernel vertex (when star_shaped)
+  std::vector<uint32_t> witness_faces;  // when not star_shaped: why (the witness above)
   std::vector<Warning> warnings;
 };
 KernelPoint find_kernel_point(const MeshView& mesh, const Options& options = {});
