@@ -244,7 +244,7 @@ export class KernelWorker {
     if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onStep must be a function`));
     if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onProgress must be a function`));
     const plain = {};
-    for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'weld']) if (rest[key] !== undefined) plain[key] = rest[key];
+    for (const key of ['from', 'maxSteps', 'allowOpen', 'open', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'weld', 'repair']) if (rest[key] !== undefined) plain[key] = rest[key];
     if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
 
     const transfer = [];

@@ -14,6 +14,7 @@
 #include "face_culling.h"
 #include "lp.h"
 #include "mesh_prep.h"
+#include "open_boundary.h"
 #include "plane_classes.h"
 #include "plane_culling.h"
 #include "polytope.h"
@@ -63,6 +64,7 @@ const char* kernel_type_name(KernelType t) {
 const std::vector<OptionName>& option_names() {
   static const std::vector<OptionName> names = {
       {"allow_open", "--allow-open", "allowOpen: true"},
+      {"open_boundary", "--open perpendicular", "open: 'perpendicular'"},
       {"weld_relative", "--weld-relative", "weld: { relative }"},
       {"weld", "--weld", "weld: true"},
       {"repair", "--repair", "repair: true"},
@@ -77,6 +79,14 @@ const std::vector<OptionName>& option_names() {
       {"from", "--from", "from"},
   };
   return names;
+}
+
+const char* open_boundary_name(OpenBoundary o) {
+  switch (o) {
+    case OpenBoundary::Clip: return "clip";
+    case OpenBoundary::Perpendicular: return "perpendicular";
+  }
+  return "unknown";
 }
 
 const char* warning_kind_name(Warning::Kind k) {
@@ -176,16 +186,43 @@ void refuse_nested_shells(const PreparedMesh& m, Error& error, std::string& mess
             "inside the first, not a void)";
 }
 
+// An open mesh refused: the message also names the other way of accepting it.
+PreparedMesh mention_open_boundary(PreparedMesh m) {
+  if (m.error == Error::OpenMesh)
+    m.message += "; Options::open_boundary bounds such a surface's kernel by walls at its boundary edges";
+  return m;
+}
+
+// A copy of the arrays `m` views (what Mesh::view would give back).
+Mesh copy_of(const MeshView& m) {
+  Mesh out;
+  out.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
+  out.indices.assign(m.indices, m.indices + m.num_indices);
+  if (m.face_sizes) out.face_sizes.assign(m.face_sizes, m.face_sizes + m.num_faces);
+  return out;
+}
+
 // prepare_mesh after Options::weld and Options::repair: the prepared mesh of the welded (and
 // repaired) input, what was done reported first among its warnings and the dropped faces
-// counted with the input's.
-PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
+// counted with the input's. `validated`, when given, receives the mesh prepare_mesh judged (the
+// welded and repaired one, or a copy of the input; left empty for malformed input, which
+// validation refuses). OpenBoundary::Perpendicular accepts open meshes as allow_open does.
+PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated = nullptr) {
+  if (options.open_boundary == OpenBoundary::Perpendicular && !options.allow_open) {
+    Options accepting = options;
+    accepting.allow_open = true;
+    return prepare_input(mesh, accepting, validated);
+  }
   const bool weld = options.weld >= 0;
-  if ((!weld && !options.repair) || !weldable(mesh)) return judge_shells(prepare_mesh(mesh, options, true));
+  const bool can_weld = weldable(mesh);
+  if ((!weld && !options.repair) || !can_weld) {
+    if (validated && can_weld) *validated = copy_of(mesh);
+    return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true)));
+  }
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
   RepairCounts repaired;
   if (options.repair) repaired = repair_mesh(w.mesh);
-  PreparedMesh m = judge_shells(prepare_mesh(w.mesh.view(), options, true));
+  PreparedMesh m = mention_open_boundary(judge_shells(prepare_mesh(w.mesh.view(), options, true)));
   m.input_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   m.dropped_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   // The merged vertices are no face's any more: only the input's own unused ones are reported.
@@ -218,7 +255,24 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
                     std::to_string(repaired.t_junctions) +
                         " vertices lying on the edge of another face were inserted into it (T-junctions split)"});
   m.warnings.insert(m.warnings.begin(), done.begin(), done.end());
+  if (validated) *validated = std::move(w.mesh);
   return m;
+}
+
+// `mesh` without the vertices no face uses, the others renumbered in their order.
+Mesh without_unused_vertices(Mesh mesh) {
+  const size_t nv = mesh.num_vertices();
+  std::vector<uint32_t> new_id(nv, 0);
+  for (uint32_t v : mesh.indices) new_id[v] = 1;
+  uint32_t kept = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    if (!new_id[v]) continue;
+    for (int k = 0; k < 3; ++k) mesh.positions[3 * size_t(kept) + k] = mesh.positions[3 * v + k];
+    new_id[v] = kept++;
+  }
+  mesh.positions.resize(3 * size_t(kept));
+  for (uint32_t& v : mesh.indices) v = new_id[v];
+  return mesh;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -239,7 +293,10 @@ struct Setup {
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
   report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
-  s.mesh = prepare_input(mesh, options);
+  const bool walls = options.open_boundary == OpenBoundary::Perpendicular;
+  Mesh validated;
+  s.mesh = prepare_input(mesh, options, walls ? &validated : nullptr);
+  if (walls && s.mesh.error == Error::Ok && s.mesh.boundary_edges > 0) add_boundary_walls(s.mesh, validated.view());
   stats.input_vertices = mesh.num_vertices;
   stats.input_faces = s.mesh.input_faces;
   stats.dropped_faces = s.mesh.dropped_faces;
@@ -456,6 +513,17 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     r.star_shaped = true;  // non-empty but unbounded (open input)
   }
+  return r;
+}
+
+RepairedMesh repair_mesh(const MeshView& mesh, const Options& options) {
+  RepairedMesh r;
+  Mesh validated;
+  const PreparedMesh m = prepare_input(mesh, options, &validated);
+  r.error = m.error;
+  r.message = m.message;
+  r.warnings = m.warnings;
+  r.mesh = without_unused_vertices(std::move(validated));
   return r;
 }
 
