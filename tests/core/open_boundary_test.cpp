@@ -244,12 +244,48 @@ TEST(OpenBoundary, OpenMeshMessageNamesTheOption) {
 }
 
 TEST(OpenBoundary, FindKernelPointAgrees) {
-  for (const Mesh& m : {kergen_test::bowl(16, 6), kergen_test::hill(6), kergen_test::flipped(kergen_test::bowl(16, 6))}) {
+  for (const Mesh& m :
+       {kergen_test::bowl(16, 6), kergen_test::hill(6), kergen_test::flipped(kergen_test::bowl(16, 6))}) {
     const kergen::Kernel k = kergen::compute_kernel(m.view(), perpendicular());
     const kergen::KernelPoint p = kergen::find_kernel_point(m.view(), perpendicular());
     ASSERT_TRUE(k.ok() && p.error == kergen::Error::Ok);
     EXPECT_EQ(p.star_shaped, k.type != KernelType::Empty);
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Powers of two scale every step exactly (the mesh is scaled to below 1 first): the walls, and so
+// the kernel's vertices, scale bit for bit, down to 2^-900 and up to 2^900.
+TEST(OpenBoundary, PowerOfTwoScalesGiveTheSameKernelScaled) {
+  const Mesh base = kergen_test::hill(6);
+  const kergen::Kernel k = kergen::compute_kernel(base.view(), perpendicular());
+  ASSERT_TRUE(k.ok()) << k.message;
+  for (int e : {-900, -40, 40, 900}) {
+    Mesh m = base;
+    for (double& x : m.positions) x = std::ldexp(x, e);
+    const kergen::Kernel s = kergen::compute_kernel(m.view(), perpendicular());
+    ASSERT_TRUE(s.ok()) << e << ": " << s.message;
+    EXPECT_EQ(s.type, k.type) << e;
+    auto scaled = sorted_vertices(k);
+    for (auto& v : scaled)
+      for (double& x : v) x = std::ldexp(x, e);
+    EXPECT_EQ(sorted_vertices(s), scaled) << e;
+  }
+}
+
+// Moved far from the origin (1e6, where the coordinates keep ~1e-10 of the hill's size), the hill's
+// kernel keeps its volume to the rounding of the moved coordinates.
+TEST(OpenBoundary, TranslationKeepsTheKernel) {
+  const Mesh base = kergen_test::hill(6);
+  const kergen::Kernel k = kergen::compute_kernel(base.view(), perpendicular());
+  const kergen::Kernel t =
+      kergen::compute_kernel(kergen_test::transformed(base, 1, 1e6, -1e6, 1e6).view(), perpendicular());
+  ASSERT_TRUE(k.ok() && t.ok()) << t.message;
+  EXPECT_EQ(t.type, KernelType::Polyhedron);
+  EXPECT_NEAR(t.volume, k.volume, 1e-6 * k.volume);
 }
 
 }  // namespace
