@@ -150,7 +150,7 @@ export class KernelWorker {
         break;
       case 'result':
         this._jobs.delete(job.id);
-        if (job.kind === 'writeMesh') job.resolve(msg.result);
+        if (job.kind === 'writeMesh' || job.kind === 'repairMesh') job.resolve(msg.result);
         else if (job.kind === 'computeFile') job.resolve({ mesh: msg.mesh, result: rebuildResult(msg.result) });
         else job.resolve(rebuildResult(msg.result));
         break;
@@ -191,6 +191,25 @@ export class KernelWorker {
     options = options || {};
     const { faceSizes } = options;
     return this._submit(fn, 'compute', options, (transfer) => {
+      const move = wantsTransfer(fn, options);
+      return {
+        positions: toTransferable(fn, 'positions', positions, move, transfer),
+        indices: toTransferable(fn, 'indices', indices, move, transfer),
+        faceSizes: toTransferable(fn, 'faceSizes', faceSizes, move, transfer),
+      };
+    });
+  }
+
+  /**
+   * The mesh after weld and repair (the package's repairMesh), in the worker. Options: weld,
+   * repair, allowOpen, open, faceSizes, maxFaces, maxVertices, and transfer (as compute's).
+   * Resolves to { positions, indices, faceSizes, warnings, error, message }.
+   */
+  repairMesh(positions, indices, options = {}) {
+    const fn = 'repairMesh';
+    options = options || {};
+    const { faceSizes } = options;
+    return this._submit(fn, 'repairMesh', options, (transfer) => {
       const move = wantsTransfer(fn, options);
       return {
         positions: toTransferable(fn, 'positions', positions, move, transfer),

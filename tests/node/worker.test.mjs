@@ -286,3 +286,17 @@ test('the worker forwards open and repair', async () => {
   const repaired = await kw.compute(t.positions, t.indices, { copy: true, faceSizes: t.faceSizes, repair: true });
   assert.equal(repaired.volume, 2);
 });
+
+test('repairMesh in the worker equals repairMeshSync', async () => {
+  const t = {
+    positions: Float64Array.from([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]),
+    indices: Uint32Array.from([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]),
+    faceSizes: Uint32Array.from([4, 4, 4, 4, 4, 4, 4]),
+  };
+  const expected = K.repairMeshSync(t.positions, t.indices, { faceSizes: t.faceSizes, repair: true });
+  const kw = newWorker();
+  const r = await kw.repairMesh(t.positions, t.indices, { faceSizes: t.faceSizes, repair: true });
+  assert.deepEqual(r, expected);
+  assert.equal(r.error, null);
+  await assert.rejects(kw.repairMesh(t.positions, Uint32Array.from([0, 1, 99]), {}), (e) => e.code === 'INDEX_OUT_OF_RANGE');
+});

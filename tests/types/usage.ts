@@ -123,6 +123,8 @@ async function main(): Promise<void> {
   const positions64: Float64Array = mesh.positions;
   void [positions64, fileKernel.volume];
   const stlBytes: Uint8Array = await worker.writeMesh(fileKernel, 'stl');
+  const inWorker: RepairedMesh = await worker.repairMesh(positions, indices, { repair: true, transfer: false });
+  void inWorker.error;
   void stlBytes;
   worker.cancel();
   worker.dispose();
