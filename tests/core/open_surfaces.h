@@ -5,12 +5,12 @@
 
 #include <array>
 #include <cmath>
-#include <vector>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "fixtures.h"
-#include "mesh_prep.h"      // (core/src: the walls as the library builds them)
+#include "mesh_prep.h"  // (core/src: the walls as the library builds them)
 #include "open_boundary.h"
 
 namespace kergen_test {
@@ -69,7 +69,9 @@ inline Mesh terrain(int n, const std::function<double(double, double)>& height) 
 
 // A hill: concave, highest in the middle, a little bumpy.
 inline Mesh hill(int n) {
-  return terrain(n, [](double x, double y) { return 0.5 * (1 - 0.5 * (x * x + y * y)) + 0.02 * std::sin(3 * x) * std::cos(2 * y); });
+  return terrain(n, [](double x, double y) {
+    return 0.5 * (1 - 0.5 * (x * x + y * y)) + 0.02 * std::sin(3 * x) * std::cos(2 * y);
+  });
 }
 // A valley: lowest in the middle.
 inline Mesh valley(int n) {

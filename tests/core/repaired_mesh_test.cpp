@@ -77,8 +77,8 @@ TEST(RepairMesh, RoundTripThroughTheWriters) {
     EXPECT_EQ(back.mesh.face_sizes, r.mesh.face_sizes);
   }
   // Binary STL triangulates and stores floats (exact here): the same solid.
-  const kergen::ReadResult stl = kergen::read_mesh(kergen::write_mesh(r.mesh, kergen::MeshFormat::Stl),
-                                                   kergen::MeshFormat::Stl);
+  const kergen::ReadResult stl =
+      kergen::read_mesh(kergen::write_mesh(r.mesh, kergen::MeshFormat::Stl), kergen::MeshFormat::Stl);
   ASSERT_TRUE(stl.ok()) << stl.message;
   const kergen::Kernel k = kergen::compute_kernel(stl.mesh.view());
   ASSERT_TRUE(k.ok()) << k.message;
