@@ -91,7 +91,9 @@ enum class OpenBoundary : int {
   // the mesh lies within [-1, 1]^3); c is rounded to double. The wall thus holds the edge exactly
   // and is within 2e-14 radians of the exact perpendicular (c - a is within 4e-16 of n, of length
   // at least 1/32), and every predicate on it is exact, as on the faces' planes. A boundary edge
-  // whose face has no area (dropped: Warning::Kind::DegenerateFacesDropped) gets no wall.
+  // whose face has no area (dropped: Warning::Kind::DegenerateFacesDropped) gets no wall. The
+  // walls count as planes in Stats (distinct_planes, active_planes), not as input faces. Like any
+  // open mesh, the surface is not certified against crossing itself (compute_kernel).
   Perpendicular = 1,
 };
 const char* open_boundary_name(OpenBoundary o);  // "clip", "perpendicular" (CLI --open, JS `open`)
