@@ -53,7 +53,7 @@ namespace {
 // clang-format off
 #define KERGEN_OPTION_SLOTS(X) \
   X(fromX) X(fromY) X(fromZ) X(maxSteps) X(allowOpen) X(deepestPoint) X(maxFaces) X(maxVertices) \
-  X(cullFaces) X(seed) X(weld) X(weldRelative) X(repair)
+  X(cullFaces) X(seed) X(weld) X(weldRelative) X(repair) X(openBoundary)
 // clang-format on
 enum Option : uint32_t {
 #define KERGEN_ENUM(name) kOpt_##name,
@@ -246,6 +246,9 @@ kergen::Options read_options(uintptr_t request) {
   if (!std::isnan(slot[kOpt_weld])) o.weld = slot[kOpt_weld];
   if (!std::isnan(slot[kOpt_weldRelative])) o.weld_relative = slot[kOpt_weldRelative] != 0;
   if (!std::isnan(slot[kOpt_repair])) o.repair = slot[kOpt_repair] != 0;
+  // (index.js sends a code of wireFormat().openBoundaries, the enum's values in order)
+  if (!std::isnan(slot[kOpt_openBoundary]))
+    o.open_boundary = static_cast<kergen::OpenBoundary>(static_cast<int>(slot[kOpt_openBoundary]));
   return o;
 }
 
@@ -388,6 +391,31 @@ uintptr_t write_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indice
   }
 }
 
+// repair(request, numPositionValues, numIndices, numFaceSizes) → result block address: the mesh
+// kergen::repair_mesh returns as vertices (positions), face indices and face sizes, with its
+// warnings; the name slot holds validation's verdict on it (error_name: "OK", "OPEN_MESH", ...) and
+// the message slot its message. An error block when the input is malformed (no mesh to return).
+uintptr_t repair(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
+  try {
+    const kergen::RepairedMesh r =
+        kergen::repair_mesh(mesh_view(request, num_values, num_indices, num_face_sizes), read_options(request));
+    if (r.mesh.num_faces() == 0) return error_block(kergen::error_name(r.error), r.message);
+    Out o;
+    o.head[kHead_ok] = 1;
+    o.name = kergen::error_name(r.error);
+    o.message = r.message;
+    o.warnings = &r.warnings;
+    o.vertices = &r.mesh.positions;
+    o.face_indices = &r.mesh.indices;
+    o.face_sizes = &r.mesh.face_sizes;
+    return pack(o);
+  } catch (const std::bad_alloc&) {
+    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
+  } catch (const std::exception& e) {
+    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
+  }
+}
+
 // Heap figures for leak tests and diagnostics: { heapSize: bytes of wasm memory,
 // heapUsed: bytes currently allocated by malloc }.
 val memory_stats() {
@@ -445,6 +473,10 @@ val wire_format() {
   for (int t = 0; t <= static_cast<int>(kergen::KernelType::Unbounded); ++t)
     statuses.call<void>("push", std::string(kergen::kernel_type_name(static_cast<kergen::KernelType>(t))));
   w.set("statuses", statuses);
+  val open_boundaries = val::array();  // the codes of the openBoundary slot
+  for (int o = 0; o <= static_cast<int>(kergen::OpenBoundary::Perpendicular); ++o)
+    open_boundaries.call<void>("push", std::string(kergen::open_boundary_name(static_cast<kergen::OpenBoundary>(o))));
+  w.set("openBoundaries", open_boundaries);
   return w;
 }
 
@@ -455,6 +487,7 @@ EMSCRIPTEN_BINDINGS(kergen) {
   emscripten::function("findPoint", &find_point);
   emscripten::function("readMesh", &read_mesh);
   emscripten::function("writeMesh", &write_mesh);
+  emscripten::function("repair", &repair);
   emscripten::function("memoryStats", &memory_stats);
   emscripten::function("wireFormat", &wire_format);
 }

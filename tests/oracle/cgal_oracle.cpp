@@ -258,7 +258,7 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
     }
 
   // ---- topology: every directed edge once, its reverse once; one connected piece -----------
-  {
+  if (!options.half_spaces_only) {
     std::unordered_map<uint64_t, uint32_t> directed;
     std::vector<uint32_t> parent(nv);
     for (uint32_t v = 0; v < nv; ++v) parent[v] = v;
@@ -340,11 +340,11 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
       non_planar.emplace_back(loop, loop + k);
     }
   }
-  if (CGAL::is_zero(vol6)) {
+  if (CGAL::is_zero(vol6) && !options.half_spaces_only) {
     r.message = "the mesh encloses no volume";
     return r;
   }
-  r.flipped = CGAL::is_negative(vol6);
+  r.flipped = CGAL::is_negative(vol6) && !options.half_spaces_only;
   r.shape_volume = std::abs(CGAL::to_double(vol6)) / 6.0;
   if (r.flipped)
     for (Plane& p : planes) {

@@ -32,6 +32,11 @@ const char* verdict_name(Verdict v);
 
 struct OracleOptions {
   bool build_polyhedron = true;  // false: LP verdict only (no halfspace_intersection_3)
+  // The faces as given are only half-spaces (each face's plane, inner side behind its
+  // counter-clockwise front): no topology check and no orientation flip, so an open surface and
+  // extra planes (boundary walls given as triangles) can be given. Non-planar polygons are split
+  // as given.
+  bool half_spaces_only = false;
 };
 
 struct OracleResult {
