@@ -21,12 +21,13 @@
 #include <limits>
 #include <new>
 #include <stdexcept>
-#include <unordered_map>
 #if defined(__has_include)
 #if __has_include(<version>)
 #include <version>
 #endif
 #endif
+
+#include "point_table.h"
 
 // libstdc++ (g++ >= 11) has a correctly rounded, locale-independent std::from_chars for double.
 // Emscripten's libc++ deletes that overload; there we use strtod, which in its musl-based libc
@@ -531,44 +532,40 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
 // STL.
 
 // Welds vertices that have exactly the same coordinates (an STL stores every triangle's corners
-// separately). -0.0 and 0.0 are the same point.
+// separately), numbered in the order they are first met. -0.0 and 0.0 are the same point.
 class VertexWelder {
  public:
-  explicit VertexWelder(std::vector<double>& positions, size_t expected_vertices) : positions_(positions) {
-    index_of_.reserve(expected_vertices);
+  explicit VertexWelder(std::vector<double>& positions, size_t expected_vertices)
+      : positions_(positions), table_(expected_vertices) {}
+  // A corner, its coordinates with -0.0 turned into +0.0 (adding +0.0 does it, round-to-nearest),
+  // and its hash: what add() needs, computed ahead of it by binary STL's blocks.
+  struct Corner {
+    double xyz[3];
+    uint64_t hash;
+  };
+  static Corner corner(double x, double y, double z) {
+    Corner c{{x + 0.0, y + 0.0, z + 0.0}, 0};
+    c.hash = PointTable::hash(c.xyz);
+    return c;
   }
-  uint32_t add(double x, double y, double z) {
-    Point key{x + 0.0, y + 0.0, z + 0.0};  // adding +0.0 turns -0.0 into +0.0 (round-to-nearest)
-    auto inserted = index_of_.emplace(key, static_cast<uint32_t>(positions_.size() / 3));
-    if (inserted.second) {
-      if (positions_.size() / 3 >= std::numeric_limits<uint32_t>::max())
-        fail(Error::TooLarge, "more than 4294967295 distinct vertices");
-      positions_.insert(positions_.end(), {key.x, key.y, key.z});
+  void prefetch(const Corner& c) const { table_.prefetch_slot(c.hash); }
+  void prefetch_held(const Corner& c) const { table_.prefetch_held(positions_.data(), c.hash); }
+  uint32_t add(double x, double y, double z) { return add(corner(x, y, z)); }
+  uint32_t add(const Corner& c) {
+    const size_t count = positions_.size() / 3;
+    if (count >= std::numeric_limits<uint32_t>::max()) {
+      const uint32_t found = table_.find(positions_.data(), c.xyz, c.hash);
+      if (found != PointTable::kEmpty) return found;
+      fail(Error::TooLarge, "more than 4294967295 distinct vertices");
     }
-    return inserted.first->second;
+    const uint32_t id = table_.find_or_insert(positions_.data(), c.xyz, c.hash, uint32_t(count));
+    if (id == count) positions_.insert(positions_.end(), c.xyz, c.xyz + 3);
+    return id;
   }
 
  private:
-  struct Point {
-    double x, y, z;
-    bool operator==(const Point& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
-  struct PointHash {
-    static uint64_t bits(double d) {
-      uint64_t b;
-      std::memcpy(&b, &d, sizeof b);
-      return b;
-    }
-    size_t operator()(const Point& p) const {
-      uint64_t h = bits(p.x) * 0x9E3779B97F4A7C15ull;
-      h ^= (h >> 29) ^ bits(p.y) * 0xC2B2AE3D27D4EB4Full;
-      h ^= (h >> 31) ^ bits(p.z) * 0x165667B19E3779F9ull;
-      h ^= h >> 32;
-      return static_cast<size_t>(h);
-    }
-  };
   std::vector<double>& positions_;
-  std::unordered_map<Point, uint32_t, PointHash> index_of_;
+  PointTable table_;
 };
 
 uint32_t read_le32(const unsigned char* p) {
@@ -582,26 +579,41 @@ float read_le_float(const unsigned char* p) {
   return f;
 }
 
+// Triangles are read in blocks: their corners hashed and their table slots prefetched first,
+// then welded in order (the table is larger than the caches on big files).
 void parse_binary_stl(std::string_view bytes, uint32_t triangle_count, const std::string& name, Mesh& mesh) {
   if (triangle_count == 0) fail(Error::EmptyInput, name + ": no triangles");
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  VertexWelder welder(mesh.positions, std::min<size_t>(triangle_count, size_t(1) << 24));
-  mesh.indices.reserve(3 * size_t(triangle_count));
-  for (uint32_t t = 0; t < triangle_count; ++t) {
-    const size_t record = 84 + 50 * size_t(t);
-    for (int corner = 0; corner < 3; ++corner) {
-      const size_t offset = record + 12 + 12 * size_t(corner);  // after the 12-byte normal
-      double xyz[3];
-      for (int k = 0; k < 3; ++k) {
-        float value = read_le_float(data + offset + 4 * k);
-        if (!std::isfinite(value))
-          fail_at_byte(
-              name, offset + 4 * k,
-              "non-finite coordinate in triangle " + std::to_string(t) + " (vertex " + std::to_string(corner) + ")");
-        xyz[k] = static_cast<double>(value);  // exact: every float is a double
+  // A closed mesh has about half as many vertices as triangles.
+  const size_t expected_vertices = std::min<size_t>(triangle_count / 2 + 16, size_t(1) << 24);
+  VertexWelder welder(mesh.positions, expected_vertices);
+  mesh.positions.reserve(3 * expected_vertices);
+  mesh.indices.resize(3 * size_t(triangle_count));
+  uint32_t* index_out = mesh.indices.data();
+  constexpr uint32_t kBlock = 32;
+  VertexWelder::Corner corners[3 * kBlock];
+  for (uint32_t first = 0; first < triangle_count; first += kBlock) {
+    const uint32_t n = std::min(kBlock, triangle_count - first);
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t t = first + i;
+      const size_t record = 84 + 50 * size_t(t);
+      for (int corner = 0; corner < 3; ++corner) {
+        const size_t offset = record + 12 + 12 * size_t(corner);  // after the 12-byte normal
+        double xyz[3];
+        for (int k = 0; k < 3; ++k) {
+          float value = read_le_float(data + offset + 4 * k);
+          if (!std::isfinite(value))
+            fail_at_byte(
+                name, offset + 4 * k,
+                "non-finite coordinate in triangle " + std::to_string(t) + " (vertex " + std::to_string(corner) + ")");
+          xyz[k] = static_cast<double>(value);  // exact: every float is a double
+        }
+        corners[3 * i + corner] = VertexWelder::corner(xyz[0], xyz[1], xyz[2]);
+        welder.prefetch(corners[3 * i + corner]);
       }
-      mesh.indices.push_back(welder.add(xyz[0], xyz[1], xyz[2]));
     }
+    for (uint32_t c = 0; c < 3 * n; ++c) welder.prefetch_held(corners[c]);
+    for (uint32_t c = 0; c < 3 * n; ++c) *index_out++ = welder.add(corners[c]);
   }
 }
 

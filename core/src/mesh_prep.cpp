@@ -14,6 +14,7 @@
 
 #include "compiler_hints.h"
 #include "exact/predicates.h"
+#include "point_table.h"
 #include "polygon_split.h"
 #include "union_find.h"
 
@@ -82,62 +83,40 @@ int lowest_bit_exponent(double x) {
   return biased - 1075 + count_trailing_zeros(mant);  // mant != 0 for x != 0
 }
 
-// Whether two used vertices have the same position (coordinates compared with ==, so -0 and
-// +0 are one position): a hash table of the used vertices, expected linear time. The table is
-// larger than the caches for big meshes, so slots are hashed a block ahead and prefetched.
-// The same pass takes the bounding box of the used vertices, in id order (complete when the
-// answer is false).
+// Whether two used vertices have the same position (coordinates compared with ==, so -0 and +0
+// are one position): a PointTable of the used vertices, expected linear time, looked up a block
+// at a time with the slots prefetched (the table is larger than the caches for big meshes). The
+// same pass takes the bounding box of the used vertices, in id order (complete when the answer is
+// false).
 bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used, double lo3[3],
                          double hi3[3]) {
-  size_t bits = 1;
-  while ((size_t(1) << bits) < 2 * num_used) ++bits;  // load factor <= 1/2
-  const uint32_t kEmpty = 0xffffffffu;
-  std::vector<uint32_t> table_store(size_t(1) << bits, kEmpty);
-  uint32_t* table = table_store.data();
-  const size_t mask = table_store.size() - 1;
+  PointTable table(num_used);
   const double* P = pts.data();
   for (int k = 0; k < 3; ++k) {
     lo3[k] = INFINITY;
     hi3[k] = -INFINITY;
   }
-  auto home = [&](uint32_t v) {
-    const double* p = P + 3 * size_t(v);
-    uint64_t h = 0;
-    for (int k = 0; k < 3; ++k) {
-      lo3[k] = std::min(lo3[k], p[k]);
-      hi3[k] = std::max(hi3[k], p[k]);
-      const double x = p[k] + 0.0;  // -0 + 0 = +0: equal coordinates hash alike
-      uint64_t b;
-      std::memcpy(&b, &x, sizeof b);
-      h = (h ^ b ^ (b >> 29)) * 0x9e3779b97f4a7c15ull;  // the high bits depend on every input bit
-    }
-    return size_t(h >> (64 - bits));
-  };
   constexpr size_t kBlock = 16;
   uint32_t ids[kBlock];
-  size_t slots[kBlock];
+  uint64_t hashes[kBlock];
   const char* us = used.data();
   const size_t nv = used.size();
   for (size_t v0 = 0; v0 < nv;) {
     size_t n = 0;
     for (; v0 < nv && n < kBlock; ++v0) {
       if (!us[v0]) continue;
+      const double* p = P + 3 * v0;
+      for (int k = 0; k < 3; ++k) {
+        lo3[k] = std::min(lo3[k], p[k]);
+        hi3[k] = std::max(hi3[k], p[k]);
+      }
       ids[n] = uint32_t(v0);
-      slots[n] = home(uint32_t(v0));
-      prefetch(table + slots[n]);
+      hashes[n] = PointTable::hash(p);
+      table.prefetch_slot(hashes[n]);
       ++n;
     }
-    for (size_t j = 0; j < n; ++j) {
-      const double* p = P + 3 * size_t(ids[j]);
-      for (size_t slot = slots[j];; slot = (slot + 1) & mask) {
-        if (table[slot] == kEmpty) {
-          table[slot] = ids[j];
-          break;
-        }
-        const double* q = P + 3 * size_t(table[slot]);
-        if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return true;
-      }
-    }
+    for (size_t j = 0; j < n; ++j)
+      if (table.find_or_insert(P, P + 3 * size_t(ids[j]), hashes[j], ids[j]) != ids[j]) return true;
   }
   return false;
 }
