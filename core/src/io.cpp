@@ -219,7 +219,7 @@ long long leading_decimal_exponent(std::string_view mantissa, long long exponent
 
 // Strict decimal syntax: [+-] (digits [. digits] | . digits) [(e|E) [+-] digits]. "inf" and "nan"
 // spellings are recognised so they can be reported as non-finite rather than as garbage.
-NumberStatus parse_double(std::string_view token, double& out) {
+NumberStatus parse_double_checked(std::string_view token, double& out) {
   size_t i = 0, n = token.size();
   bool negative = false;
   if (i < n && (token[i] == '+' || token[i] == '-')) negative = token[i++] == '-';
@@ -293,8 +293,37 @@ NumberStatus parse_double(std::string_view token, double& out) {
   return NumberStatus::Ok;
 }
 
+// parse_double_checked, with a fast path for the usual token: without a leading '+', the strings
+// std::from_chars reads in full as a finite number are exactly those of the strict syntax above
+// (its general format is [-] (digits [. digits] | . digits) [(e|E) [+-] digits], or inf / nan
+// spellings, which are not finite), and parse_double_checked converts them with the same call.
+// Anything else (a '+', a partial read, out of range, non-finite) goes the checked way.
+inline NumberStatus parse_double(std::string_view token, double& out) {
+#if KERGEN_FROM_CHARS_DOUBLE
+  if (!token.empty() && token[0] != '+') {
+    double value;
+    const auto converted = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (converted.ec == std::errc() && converted.ptr == token.data() + token.size() && std::isfinite(value)) {
+      out = value;
+      return NumberStatus::Ok;
+    }
+  }
+#endif
+  return parse_double_checked(token, out);
+}
+
 // [+-]digits, no overflow.
 bool parse_integer(std::string_view token, long long& out) {
+  // The usual token, 1 to 9 digits, cannot overflow: read directly.
+  if (!token.empty() && token.size() <= 9) {
+    long long value = 0;
+    size_t i = 0;
+    for (; i < token.size() && token[i] >= '0' && token[i] <= '9'; ++i) value = value * 10 + (token[i] - '0');
+    if (i == token.size()) {
+      out = value;
+      return true;
+    }
+  }
   if (!token.empty() && token[0] == '+') {
     token.remove_prefix(1);
     if (!token.empty() && token[0] == '-') return false;
