@@ -114,7 +114,12 @@ ReadResult run_reader(const std::function<void(ReadResult&)>& body) {
 // ---------------------------------------------------------------------------------------------
 // Lines and tokens.
 
-inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+// ' ', '\t', '\r', '\v' or '\f' (not '\n'). Every byte above ' ' (most of a token's) is answered by
+// the first comparison.
+inline bool is_blank(char c) {
+  const unsigned char u = static_cast<unsigned char>(c);
+  return u <= ' ' && (u == ' ' || (u >= '\t' && u <= '\r' && u != '\n'));
+}
 
 class LineReader {
  public:
@@ -654,7 +659,17 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
   std::string_view line;
   // A facet line is about 200 bytes of text; a generous guess keeps rehashing rare.
   VertexWelder welder(mesh.positions, text.size() / 200 + 16);
-  uint32_t corners[3];
+  VertexWelder::Corner corners[3];
+  // Finished facets' corners are welded a block at a time, their table slots prefetched when the
+  // facet ends (binary STL's scheme). The weld's only failure, more than 2^32 - 1 distinct
+  // vertices, then shows up to kBlock facets later, which no file under ~400 GB can reach.
+  constexpr size_t kBlock = 32;
+  std::vector<VertexWelder::Corner> pending;
+  pending.reserve(3 * kBlock);
+  auto weld_pending = [&] {
+    for (const auto& c : pending) mesh.indices.push_back(welder.add(c));
+    pending.clear();
+  };
   int corner_count = 0;
   auto expect_end = [&](Tokens& tokens, std::string_view keyword) {
     std::string_view extra;
@@ -711,7 +726,7 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
           double xyz[3];
           read_coordinates(tokens, xyz, name, line_number, "vertex");
           expect_end(tokens, "vertex x y z");
-          corners[corner_count++] = welder.add(xyz[0], xyz[1], xyz[2]);
+          corners[corner_count++] = VertexWelder::corner(xyz[0], xyz[1], xyz[2]);
         } else if (equals_ignore_case(keyword, "endloop")) {
           if (corner_count != 3)
             fail_at_line(name, line_number, "facet has " + std::to_string(corner_count) + " vertices (3 needed)");
@@ -724,11 +739,16 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
       case State::AfterLoop:
         if (!equals_ignore_case(keyword, "endfacet")) unexpected("'endfacet'");
         expect_end(tokens, "endfacet");
-        mesh.indices.insert(mesh.indices.end(), corners, corners + 3);
+        for (const auto& c : corners) {
+          welder.prefetch(c);
+          pending.push_back(c);
+        }
+        if (pending.size() == 3 * kBlock) weld_pending();
         state = State::InSolid;
         break;
     }
   }
+  weld_pending();
   // A missing final "endsolid" is tolerated (common in hand-written files); a cut facet is not.
   if (state != State::OutsideSolid && state != State::InSolid)
     fail_at_line(name, lines.line_number(), "unexpected end of file inside a facet");
