@@ -96,7 +96,7 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
     lo3[k] = INFINITY;
     hi3[k] = -INFINITY;
   }
-  constexpr size_t kBlock = 16;
+  constexpr size_t kBlock = 64;
   uint32_t ids[kBlock];
   uint64_t hashes[kBlock];
   const char* us = used.data();
