@@ -384,7 +384,7 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
     if (keyword == "v") {
       double xyz[3];
       read_coordinates(tokens, xyz, name, line_number, "vertex");
-      mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+      for (double x : xyz) mesh.positions.push_back(x);
       check_vertex_count(mesh.positions.size() / 3, name, line_number);
       // Anything after x y z (a w component or vertex colours) is ignored.
     } else if (keyword == "f" || keyword == "fo") {
@@ -393,15 +393,15 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
       std::string_view token;
       while (tokens.next(token)) {
         // v, v/vt, v//vn or v/vt/vn: only the position index matters, the others must be integers.
+        // (A byte loop: the tokens are short, a memchr call per part cost more than the scan.)
         std::string_view parts[3];
         size_t part_count = 0, start = 0;
-        while (true) {
-          size_t slash = token.find('/', start);
+        for (size_t i = 0;; ++i) {
+          if (i < token.size() && token[i] != '/') continue;
           if (part_count == 3) fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
-          parts[part_count++] =
-              token.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
-          if (slash == std::string_view::npos) break;
-          start = slash + 1;
+          parts[part_count++] = token.substr(start, i - start);
+          if (i == token.size()) break;
+          start = i + 1;
         }
         long long index = 0, unused = 0;
         if (!parse_integer(parts[0], index)) fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
@@ -429,7 +429,7 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
       }
       if (face.size() < 3)
         fail_at_line(name, line_number, "face has " + std::to_string(face.size()) + " vertices (at least 3 needed)");
-      mesh.indices.insert(mesh.indices.end(), face.begin(), face.end());
+      for (uint32_t v : face) mesh.indices.push_back(v);
       mesh.face_sizes.push_back(static_cast<uint32_t>(face.size()));
     } else if (keyword == "l" || keyword == "p") {
       ++point_and_line_records;
@@ -529,7 +529,7 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
           "unexpected end of file: " + std::to_string(v) + " of " + std::to_string(vertex_count) + " vertices read");
     double xyz[3];
     read_coordinates(tokens, xyz, name, lines.line_number(), "vertex");
-    mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+    for (double x : xyz) mesh.positions.push_back(x);
   }
   for (long long f = 0; f < face_count; ++f) {
     if (!next_content_line(lines, tokens))
