@@ -651,6 +651,21 @@ void parse_binary_stl(std::string_view bytes, uint32_t triangle_count, const std
   }
 }
 
+// "normal nx ny nz" after "facet". The normal is recomputed by everyone; it only has to be three
+// numbers (some exporters write nan for degenerate facets, which is harmless here).
+void read_facet_normal(Tokens& tokens, const std::string& name, size_t line_number) {
+  std::string_view word;
+  if (!tokens.next(word) || !equals_ignore_case(word, "normal"))
+    fail_at_line(name, line_number, "expected 'facet normal nx ny nz'");
+  for (int k = 0; k < 3; ++k) {
+    std::string_view token;
+    double ignored;
+    if (!tokens.next(token)) fail_at_line(name, line_number, "facet normal needs 3 components");
+    if (parse_double(token, ignored) == NumberStatus::Invalid)
+      fail_at_line(name, line_number, "invalid number " + quoted(token));
+  }
+}
+
 void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh) {
   if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   enum class State { OutsideSolid, InSolid, InFacet, InLoop, AfterLoop };
@@ -693,18 +708,7 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
         if (equals_ignore_case(keyword, "endsolid")) {
           state = State::OutsideSolid;
         } else if (equals_ignore_case(keyword, "facet")) {
-          std::string_view word;
-          if (!tokens.next(word) || !equals_ignore_case(word, "normal"))
-            fail_at_line(name, line_number, "expected 'facet normal nx ny nz'");
-          // The normal is recomputed by everyone; it only has to be three numbers (some exporters
-          // write nan for degenerate facets, which is harmless here).
-          for (int k = 0; k < 3; ++k) {
-            std::string_view token;
-            double ignored;
-            if (!tokens.next(token)) fail_at_line(name, line_number, "facet normal needs 3 components");
-            if (parse_double(token, ignored) == NumberStatus::Invalid)
-              fail_at_line(name, line_number, "invalid number " + quoted(token));
-          }
+          read_facet_normal(tokens, name, line_number);
           expect_end(tokens, "facet normal");
           state = State::InFacet;
         } else {

@@ -1073,11 +1073,16 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
   s.nv = mesh.num_vertices;
   s.nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
   s.m.input_faces = s.nf;
-  const bool ok = check_arrays(s) && check_coordinates_and_indices(s) && scale_points(s) && clean_faces(s) &&
-                  (pair_edges(s), report_edge_faults(s)) && count_components(s) && check_shared_positions(s) &&
-                  (take_bounding_box(s), sum_fan_volume(s), orient_by_volume(s)) && build_plane_faces(s) &&
-                  check_split_volume(s) && (move_loops(s), certify_thin_volume(s));
-  (void)ok;  // (a phase that refused the mesh has set m.error and m.message)
+  // (A phase that refuses the mesh has set m.error and m.message; m is returned as it stands.)
+  if (!check_arrays(s) || !check_coordinates_and_indices(s) || !scale_points(s) || !clean_faces(s))
+    return std::move(s.m);
+  pair_edges(s);
+  if (!report_edge_faults(s) || !count_components(s) || !check_shared_positions(s)) return std::move(s.m);
+  take_bounding_box(s);
+  sum_fan_volume(s);
+  if (!orient_by_volume(s) || !build_plane_faces(s) || !check_split_volume(s)) return std::move(s.m);
+  move_loops(s);
+  certify_thin_volume(s);
   return std::move(s.m);
 }
 
