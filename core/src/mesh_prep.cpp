@@ -1,7 +1,9 @@
 // Input validation: finite coordinates, valid indices, closed 2-manifold edges with consistent
 // orientation, one connected piece, positive enclosed volume (flipped if negative). Zero-area
 // faces are detected exactly and dropped (after the topology check, which still counts them:
-// they are part of the closed surface, they only carry no plane).
+// they are part of the closed surface, they only carry no plane). prepare_mesh, at the end of the
+// file, runs the checks as named phases over one state (Prep), each refusing the mesh or leaving
+// its part of the state for the next; non-planar polygons are split in polygon_split.cpp.
 #include "mesh_prep.h"
 
 #include <algorithm>

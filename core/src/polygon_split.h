@@ -31,7 +31,7 @@ std::vector<std::array<uint32_t, 3>> triangulate_polygon(const std::vector<doubl
 // into the solid. Compared along n itself, not in a coordinate projection: a simple loop far from
 // planar may cross itself seen along a coordinate axis. The dot products are in double with an
 // error bound, so only a triangle certainly against n refuses the face. The planar counterpart
-// is the corner test in prepare_mesh.
+// is check_planar_corner in mesh_prep.cpp.
 const char* split_folds_over(const std::vector<double>& pts, const std::array<double, 3>& n,
                              const std::vector<std::array<uint32_t, 3>>& tris);
 
