@@ -1,7 +1,7 @@
 // kergen — command-line front end: computes the kernel of one or many mesh files.
 //
 //   kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open] [--deepest]
-//                  [--max-steps N] [--jobs N]
+//                  [--open clip|perpendicular] [--write-repaired FILE] [--max-steps N] [--jobs N]
 //
 // Exit code: 0 when every mesh was processed (an empty kernel is a result, not an error), 1 when
 // some mesh could not be read or was rejected by validation, 2 for a usage error.
@@ -36,6 +36,7 @@ const char* const kUsage =
     "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
     "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
     "                      [--weld [EPS]] [--weld-relative R] [--no-weld] [--repair]\n"
+    "                      [--open clip|perpendicular] [--write-repaired FILE]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -44,6 +45,9 @@ const char* const kUsage =
     "  --json          one JSON object per mesh on stdout\n"
     "  --from x,y,z    grow the kernel from the vertex nearest to this direction\n"
     "  --allow-open    accept meshes with holes (the kernel may be unbounded, then clipped)\n"
+    "  --open MODE     accept meshes with holes and bound their kernel: clip (as --allow-open)\n"
+    "                  or perpendicular (also a wall through each boundary edge, perpendicular\n"
+    "                  to its face; the kernel may still be unbounded, then clipped)\n"
     "  --deepest       also compute the centre and radius of the largest inscribed ball\n"
     "  --max-steps N   stop after N trace events (the result is then partial)\n"
     "  --jobs N        compute N meshes at a time (default: the machine's threads); the\n"
@@ -55,11 +59,14 @@ const char* const kUsage =
     "  --weld-relative R  merge vertices closer than R times the bounding box diagonal\n"
     "  --no-weld       do not weld .stl files (welded by default, as with --weld)\n"
     "  --repair        weld, remove repeated and cancelling faces, split T-junctions (exactly)\n"
+    "  --write-repaired FILE  write the mesh the kernel is computed on (after --weld and\n"
+    "                  --repair) as OBJ, OFF or binary STL (one mesh only)\n"
     "Exit code: 0 all meshes processed, 1 some mesh had an input error, 2 usage error.\n";
 
 struct Arguments {
   std::vector<std::string> inputs;
   std::string output;
+  std::string repaired_output;  // --write-repaired
   bool json = false;
   unsigned jobs = 0;  // 0: std::thread::hardware_concurrency()
   kergen::Options options;
@@ -125,6 +132,11 @@ Arguments parse_arguments(int argc, char** argv) {
       const kergen::MeshFormat format = kergen::format_from_path(args.output);
       if (format != kergen::MeshFormat::Obj && format != kergen::MeshFormat::Off && format != kergen::MeshFormat::Stl)
         usage_error("output '" + args.output + "' must end in .obj, .off or .stl");
+    } else if (arg == "--write-repaired") {
+      args.repaired_output = value();
+      const kergen::MeshFormat format = kergen::format_from_path(args.repaired_output);
+      if (format != kergen::MeshFormat::Obj && format != kergen::MeshFormat::Off && format != kergen::MeshFormat::Stl)
+        usage_error("--write-repaired '" + args.repaired_output + "' must end in .obj, .off or .stl");
     } else if (arg == "--json") {
       args.json = true;
     } else if (arg == "--no-weld") {
@@ -155,6 +167,16 @@ Arguments parse_arguments(int argc, char** argv) {
       args.options.weld_relative = true;
     } else if (arg == "--allow-open") {
       args.options.allow_open = true;
+    } else if (arg == "--open") {
+      const std::string mode = value();
+      if (mode == kergen::open_boundary_name(kergen::OpenBoundary::Clip)) {
+        args.options.allow_open = true;
+        args.options.open_boundary = kergen::OpenBoundary::Clip;
+      } else if (mode == kergen::open_boundary_name(kergen::OpenBoundary::Perpendicular)) {
+        args.options.open_boundary = kergen::OpenBoundary::Perpendicular;
+      } else {
+        usage_error("--open needs clip or perpendicular, got '" + mode + "'");
+      }
     } else if (arg == "--deepest") {
       args.options.deepest_point = true;
     } else if (arg == "--from") {
@@ -294,6 +316,9 @@ std::string json_line(const MeshOutcome& m) {
   s += ",\"kernel_point\":" + json_point(computed && k.has_kernel_point, k.kernel_point);
   s += ",\"deepest_point\":" + json_point(computed && k.has_deepest_point, k.deepest_point);
   s += ",\"inscribed_radius\":" + (computed && k.has_deepest_point ? json_number(k.inscribed_radius) : "null");
+  s += ",\"witness_faces\":[";
+  for (size_t i = 0; i < k.witness_faces.size(); ++i) s += (i ? "," : "") + std::to_string(k.witness_faces[i]);
+  s += "]";
   s += ",\"warnings\":[";
   for (size_t i = 0; i < k.warnings.size(); ++i) {
     const kergen::Warning& w = k.warnings[i];
@@ -348,6 +373,11 @@ void append_human(std::string& out, const MeshOutcome& m) {
   appendf(out, "  area        %.10g\n", k.area);
   if (k.has_kernel_point)
     appendf(out, "  point       %.10g %.10g %.10g\n", k.kernel_point[0], k.kernel_point[1], k.kernel_point[2]);
+  if (!k.witness_faces.empty()) {
+    appendf(out, "  witness     faces");
+    for (uint32_t f : k.witness_faces) appendf(out, " %u", f);
+    appendf(out, " (no point sees all of them from the inside)\n");
+  }
   if (k.has_deepest_point)
     appendf(out, "  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],
             k.deepest_point[2], k.inscribed_radius);
@@ -393,6 +423,20 @@ MeshOutcome process(const std::string& file, const Arguments& args) {
   if (m.ok() && !args.output.empty()) {
     std::string write_message;
     if (kergen::write_mesh_file(args.output, kergen::kernel_mesh(m.kernel), &write_message) != kergen::Error::Ok) {
+      m.error = kergen::Error::IoError;
+      m.message = write_message;
+    }
+  }
+  // Written whatever the kernel's verdict: a mesh repair leaves open is worth looking at too.
+  if (!args.repaired_output.empty()) {
+    const kergen::RepairedMesh repaired = kergen::repair_mesh(read.mesh.view(), options);
+    std::string write_message;
+    if (repaired.mesh.num_faces() == 0) {
+      if (m.ok()) {
+        m.error = repaired.error;
+        m.message = in_cli_words(repaired.message);
+      }
+    } else if (kergen::write_mesh_file(args.repaired_output, repaired.mesh, &write_message) != kergen::Error::Ok) {
       m.error = kergen::Error::IoError;
       m.message = write_message;
     }
@@ -491,6 +535,8 @@ int main(int argc, char** argv) {
   const std::vector<std::string> files = expand_inputs(args.inputs, problems);
   if (!args.output.empty() && (files.size() != 1 || !problems.empty()))
     usage_error("-o needs exactly one mesh (got " + std::to_string(files.size()) + ")");
+  if (!args.repaired_output.empty() && (files.size() != 1 || !problems.empty()))
+    usage_error("--write-repaired needs exactly one mesh (got " + std::to_string(files.size()) + ")");
   for (const std::string& problem : problems) std::fprintf(stderr, "kergen: %s\n", problem.c_str());
 
   const bool batch = files.size() > 1;

@@ -6,7 +6,8 @@
 //                message, and never Error::Internal (that is a bug, not a verdict on the input).
 //   error == Ok: array sizes consistent (xyz triples, edge pairs, face loops summing to the index
 //                count, triangles = sum(size - 2)), every id in range, every coordinate finite,
-//                per-type shape (Empty: nothing; Point: 1 vertex; Segment: 2 vertices, 1 edge;
+//                per-type shape (Empty: nothing but its witness, 0 or 2 to 4 faces, increasing, in range;
+//                others: no witness; Point: 1 vertex; Segment: 2 vertices, 1 edge;
 //                Polyhedron complete: closed, V - E + F = 2, positive volume not above the shape's),
 //                kernel vertices (and the kernel point) inside every input face's half-space up to
 //                output rounding, and (closed input) inside the input's bounding box.
@@ -158,6 +159,13 @@ inline void check_kernel(const kergen::MeshView& mesh, const kergen::Kernel& k, 
   KFUZZ_CHECK(k.has_kernel_point == (k.type != KernelType::Empty), type + ": kernel point presence");
   if (k.has_kernel_point)
     for (double c : k.kernel_point) KFUZZ_CHECK(std::isfinite(c), type + ": non-finite kernel point");
+  const size_t input_faces = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
+  KFUZZ_CHECK(k.witness_faces.empty() || k.type == KernelType::Empty, type + ": a witness of a non-empty kernel");
+  KFUZZ_CHECK(k.witness_faces.size() != 1 && k.witness_faces.size() <= 4,
+              type + ": " + std::to_string(k.witness_faces.size()) + " witness faces");
+  for (size_t i = 0; i < k.witness_faces.size(); ++i)
+    KFUZZ_CHECK(k.witness_faces[i] < input_faces && (i == 0 || k.witness_faces[i - 1] < k.witness_faces[i]),
+                type + ": witness faces out of range or not increasing");
   // Volumes are plain doubles: at extreme scales they may underflow to 0 or overflow to inf.
   if (!allow_open) KFUZZ_CHECK(!(k.shape_volume < 0), "negative shape volume " + std::to_string(k.shape_volume));
 

@@ -20,7 +20,11 @@ if [ ${#need[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need[@]}" >/dev/null
 fi
 
-if [ -f package-lock.json ]; then
+if [ -L node_modules ]; then
+  # A link to another checkout's packages (a git worktree): npm ci would empty the folder it
+  # points to, under the other checkout's feet. That checkout's own set-up keeps it current.
+  echo "setup: node_modules links to $(readlink node_modules): left as it is"
+elif [ -f package-lock.json ]; then
   if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
     echo "setup: npm ci"
     npm ci --no-audit --no-fund --loglevel=error

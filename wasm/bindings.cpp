@@ -53,7 +53,7 @@ namespace {
 // clang-format off
 #define KERGEN_OPTION_SLOTS(X) \
   X(fromX) X(fromY) X(fromZ) X(maxSteps) X(allowOpen) X(deepestPoint) X(maxFaces) X(maxVertices) \
-  X(cullFaces) X(seed) X(weld) X(weldRelative) X(repair)
+  X(cullFaces) X(seed) X(weld) X(weldRelative) X(repair) X(openBoundary)
 // clang-format on
 enum Option : uint32_t {
 #define KERGEN_ENUM(name) kOpt_##name,
@@ -63,14 +63,14 @@ enum Option : uint32_t {
 };
 
 // Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[numWarnings]],
-// f64 vertices, u32 edges, face indices, face sizes, triangles, u8 bytes (writeMesh's file), then
+// f64 vertices, u32 edges, face indices, face sizes, triangles, witness faces, u8 bytes (writeMesh's file), then
 // the text: NUL-terminated UTF-8 strings: name (kernel status, "" for findPoint, or the error
 // code), message ("" unless error), then kind and message of each warning.
 // clang-format off
 #define KERGEN_HEAD_WORDS(X) \
   X(ok) X(complete) X(hasKernelPoint) X(hasDeepestPoint) X(starShaped) X(numWarnings) X(textBytes) \
   X(numVertexValues) X(numEdgeValues) X(numFaceIndices) X(numFaces) X(numTriangleValues) \
-  X(numBytes) X(padding)
+  X(numWitnessFaces) X(numBytes)
 // clang-format on
 enum Head : uint32_t {
 #define KERGEN_ENUM(name) kHead_##name,
@@ -130,6 +130,7 @@ struct Out {
   const std::vector<uint32_t>* face_indices = nullptr;
   const std::vector<uint32_t>* face_sizes = nullptr;
   const std::vector<uint32_t>* triangles = nullptr;
+  const std::vector<uint32_t>* witness_faces = nullptr;
   const std::string* bytes = nullptr;
 
   void set_kernel(const kergen::Kernel& k) {
@@ -138,6 +139,7 @@ struct Out {
     face_indices = &k.face_indices;
     face_sizes = &k.face_sizes;
     triangles = &k.triangles;
+    witness_faces = &k.witness_faces;
   }
 };
 
@@ -159,6 +161,7 @@ uintptr_t pack(Out& o) {
   const std::vector<uint32_t>& face_indices = o.face_indices ? *o.face_indices : kNoIndices;
   const std::vector<uint32_t>& face_sizes = o.face_sizes ? *o.face_sizes : kNoIndices;
   const std::vector<uint32_t>& triangles = o.triangles ? *o.triangles : kNoIndices;
+  const std::vector<uint32_t>& witness_faces = o.witness_faces ? *o.witness_faces : kNoIndices;
   const std::string& bytes_out = o.bytes ? *o.bytes : kNoBytes;
 
   std::string text = o.name;
@@ -180,11 +183,13 @@ uintptr_t pack(Out& o) {
   o.head[kHead_numFaceIndices] = static_cast<uint32_t>(face_indices.size());
   o.head[kHead_numFaces] = static_cast<uint32_t>(face_sizes.size());
   o.head[kHead_numTriangleValues] = static_cast<uint32_t>(triangles.size());
+  o.head[kHead_numWitnessFaces] = static_cast<uint32_t>(witness_faces.size());
   o.head[kHead_numBytes] = static_cast<uint32_t>(bytes_out.size());
 
-  const size_t bytes = sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
-                       4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size()) +
-                       bytes_out.size() + text.size();
+  const size_t bytes =
+      sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
+      4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size() + witness_faces.size()) +
+      bytes_out.size() + text.size();
   char* block = static_cast<char*>(std::malloc(bytes));
   if (!block) return 0;
   char* at = put(block, o.head, kHeadWords);
@@ -195,6 +200,7 @@ uintptr_t pack(Out& o) {
   at = put(at, face_indices.data(), face_indices.size());
   at = put(at, face_sizes.data(), face_sizes.size());
   at = put(at, triangles.data(), triangles.size());
+  at = put(at, witness_faces.data(), witness_faces.size());
   at = put(at, bytes_out.data(), bytes_out.size());
   put(at, text.data(), text.size());
   return reinterpret_cast<uintptr_t>(block);
@@ -240,6 +246,9 @@ kergen::Options read_options(uintptr_t request) {
   if (!std::isnan(slot[kOpt_weld])) o.weld = slot[kOpt_weld];
   if (!std::isnan(slot[kOpt_weldRelative])) o.weld_relative = slot[kOpt_weldRelative] != 0;
   if (!std::isnan(slot[kOpt_repair])) o.repair = slot[kOpt_repair] != 0;
+  // (index.js sends a code of wireFormat().openBoundaries, the enum's values in order)
+  if (!std::isnan(slot[kOpt_openBoundary]))
+    o.open_boundary = static_cast<kergen::OpenBoundary>(static_cast<int>(slot[kOpt_openBoundary]));
   return o;
 }
 
@@ -305,7 +314,7 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
 }
 
 // findPoint(request, numPositionValues, numIndices, numFaceSizes) → result block address
-// (starShaped, the point in the kernel point slots, warnings).
+// (starShaped, the point in the kernel point slots, witness faces, warnings).
 uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   try {
     const kergen::KernelPoint p =
@@ -316,6 +325,7 @@ uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indice
     o.head[kHead_starShaped] = p.star_shaped;
     o.head[kHead_hasKernelPoint] = p.star_shaped;
     put_xyz(p.point, o.scalars + kScalar_kernelPoint);
+    o.witness_faces = &p.witness_faces;
     o.warnings = &p.warnings;
     return pack(o);
   } catch (const std::bad_alloc&) {
@@ -381,6 +391,31 @@ uintptr_t write_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indice
   }
 }
 
+// repair(request, numPositionValues, numIndices, numFaceSizes) → result block address: the mesh
+// kergen::repair_mesh returns as vertices (positions), face indices and face sizes, with its
+// warnings; the name slot holds validation's verdict on it (error_name: "OK", "OPEN_MESH", ...) and
+// the message slot its message. An error block when the input is malformed (no mesh to return).
+uintptr_t repair(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
+  try {
+    const kergen::RepairedMesh r =
+        kergen::repair_mesh(mesh_view(request, num_values, num_indices, num_face_sizes), read_options(request));
+    if (r.mesh.num_faces() == 0) return error_block(kergen::error_name(r.error), r.message);
+    Out o;
+    o.head[kHead_ok] = 1;
+    o.name = kergen::error_name(r.error);
+    o.message = r.message;
+    o.warnings = &r.warnings;
+    o.vertices = &r.mesh.positions;
+    o.face_indices = &r.mesh.indices;
+    o.face_sizes = &r.mesh.face_sizes;
+    return pack(o);
+  } catch (const std::bad_alloc&) {
+    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
+  } catch (const std::exception& e) {
+    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
+  }
+}
+
 // Heap figures for leak tests and diagnostics: { heapSize: bytes of wasm memory,
 // heapUsed: bytes currently allocated by malloc }.
 val memory_stats() {
@@ -438,6 +473,10 @@ val wire_format() {
   for (int t = 0; t <= static_cast<int>(kergen::KernelType::Unbounded); ++t)
     statuses.call<void>("push", std::string(kergen::kernel_type_name(static_cast<kergen::KernelType>(t))));
   w.set("statuses", statuses);
+  val open_boundaries = val::array();  // the codes of the openBoundary slot
+  for (int o = 0; o <= static_cast<int>(kergen::OpenBoundary::Perpendicular); ++o)
+    open_boundaries.call<void>("push", std::string(kergen::open_boundary_name(static_cast<kergen::OpenBoundary>(o))));
+  w.set("openBoundaries", open_boundaries);
   return w;
 }
 
@@ -448,6 +487,7 @@ EMSCRIPTEN_BINDINGS(kergen) {
   emscripten::function("findPoint", &find_point);
   emscripten::function("readMesh", &read_mesh);
   emscripten::function("writeMesh", &write_mesh);
+  emscripten::function("repair", &repair);
   emscripten::function("memoryStats", &memory_stats);
   emscripten::function("wireFormat", &wire_format);
 }

@@ -111,6 +111,25 @@ export interface KernelOptions {
   maxSteps?: number;
   /** Accept meshes with holes; the result may then be 'UNBOUNDED'. */
   allowOpen?: boolean;
+  /**
+   * Accept meshes with holes (a surface with a boundary: a bowl, a terrain, a scan) and say what
+   * bounds their kernel. The faces keep their orientation as given; the kernel lies behind their
+   * counter-clockwise fronts.
+   * - `'clip'`: the same as `allowOpen: true`: the faces' half-spaces only, clipped to a box twice
+   *   the size of the mesh where they leave it open ('UNBOUNDED').
+   * - `'perpendicular'`: also a wall at every boundary edge (an edge of one face only): the plane
+   *   through the edge perpendicular to its face, whose inner side holds the face (Asiler &
+   *   Sahillioglu 2024, Sec. 6.3). The kernel is the points that see every face from its inner
+   *   side and lie inside every wall: bounded where the surface and its walls close around it (a
+   *   bowl, a dome), still 'UNBOUNDED' (clipped) where they leave a direction open (a flat disc or
+   *   a single triangle: the prism behind it; a valley whose walls spread apart), 'EMPTY' when no
+   *   point is behind every face and inside every wall. A wall holds its edge exactly and is
+   *   within 2e-14 radians of the perpendicular (its third point is rounded); every predicate on
+   *   it is exact.
+   * `allowOpen` need not be given; `allowOpen: false` with `open` is an 'INVALID_ARGUMENT'.
+   * Closed meshes are not affected.
+   */
+  open?: 'clip' | 'perpendicular';
   /** Also compute the centre of the largest inscribed ball (`deepestPoint`, `inscribedRadius`). */
   deepestPoint?: boolean;
   /** Refuse larger inputs with `TOO_LARGE` before any work (default 20 000 000). */
@@ -178,8 +197,8 @@ export interface KernelStats {
 }
 
 /**
- * A computed kernel. Its five typed arrays (`vertices`, `edges`, `faceIndices`, `faceSizes`,
- * `triangles`) are copies out of the wasm heap into one fresh ArrayBuffer, which they share as
+ * A computed kernel. Its six typed arrays (`vertices`, `edges`, `faceIndices`, `faceSizes`,
+ * `triangles`, `witnessFaces`) are copies out of the wasm heap into one fresh ArrayBuffer, which they share as
  * views (use `.slice()` for an array with a buffer of its own, e.g. before transferring only it).
  */
 export interface KernelResult {
@@ -206,6 +225,17 @@ export interface KernelResult {
   shapeVolume: number;
   /** volume / shapeVolume. */
   volumeRatio: number;
+  /**
+   * Why the kernel is 'EMPTY': at most four input faces (indices of the faces given, in
+   * increasing order; with `weld` or `repair` too) whose inner half-spaces have no common point,
+   * so no point sees all of them from the inside (Helly's theorem: four suffice in 3D). Minimal,
+   * one face per plane (the lowest-indexed one), checked with exact arithmetic before it is
+   * returned. A non-planar polygon split into triangles is named for its triangles' planes.
+   * Empty when the kernel is not empty, and when no set of faces alone shows it (with
+   * `allowOpen`: half-spaces that meet only outside the clipping box). Computed only for an
+   * empty kernel.
+   */
+  witnessFaces: Uint32Array;
   /** A kernel vertex (null when 'EMPTY'). */
   kernelPoint: Vec3 | null;
   /** Centre of the largest inscribed ball (with options.deepestPoint and a full-dimensional kernel). */
@@ -220,10 +250,12 @@ export interface KernelPointResult {
   starShaped: boolean;
   /** A kernel vertex, or null when not star-shaped. */
   point: Vec3 | null;
+  /** When not star-shaped: why (see KernelResult.witnessFaces); empty otherwise. */
+  witnessFaces: Uint32Array;
   warnings: KernelWarning[];
 }
 
-export type KernelPointOptions = Pick<KernelOptions, 'from' | 'allowOpen' | 'faceSizes' | 'maxFaces' | 'maxVertices'>;
+export type KernelPointOptions = Pick<KernelOptions, 'from' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'>;
 
 export interface MemoryStats {
   /** Bytes of WebAssembly memory (grows, never shrinks). */
@@ -304,6 +336,36 @@ export function readMeshSync(bytes: MeshBytes, options?: ReadMeshOptions): MeshD
  * vertices is refused ('NON_FINITE_COORDINATE', 'INDEX_OUT_OF_RANGE').
  */
 export function writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Uint8Array;
+
+/** What repairMesh accepts: the options that change the mesh the kernel is computed on. */
+export type RepairMeshOptions = Pick<KernelOptions, 'weld' | 'repair' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'>;
+
+/**
+ * The mesh computeKernel computes the kernel on, as repairMesh returns it. Faces keep their
+ * orientation as given and their corners (polygons are not split); vertices no face uses (merged
+ * by the weld, or unused in the input) are left out, the others keep their order and coordinates.
+ */
+export interface RepairedMesh extends MeshData {
+  /** What weld and repair did (`VERTICES_WELDED`, `T_JUNCTIONS_SPLIT`, ...), then validation's warnings. */
+  warnings: KernelWarning[];
+  /**
+   * Validation's verdict on the repaired mesh, as computeKernel would throw it ('OPEN_MESH' when
+   * repair left it open, ...), or null when computeKernel accepts it. The mesh is returned either way.
+   */
+  error: string | null;
+  /** The verdict's message ('' when error is null). */
+  message: string;
+}
+
+/**
+ * The input after `weld` and `repair` (as set in options): what computeKernel with the same
+ * options computes the kernel on, for saving it (`writeMesh(repaired, 'obj')`). Throws a
+ * KergenError only for malformed input (indices out of range, non-finite coordinates, faces of
+ * fewer than three corners), which leaves no mesh to return.
+ */
+export function repairMesh(positions: PositionsInput, indices: IndicesInput, options?: RepairMeshOptions): Promise<RepairedMesh>;
+/** Synchronous repairMesh; requires a finished init(). */
+export function repairMeshSync(positions: PositionsInput, indices: IndicesInput, options?: RepairMeshOptions): RepairedMesh;
 
 /** Wasm heap figures (requires a finished init()). */
 export function memoryStats(): MemoryStats;

@@ -127,9 +127,9 @@ function requireModule(fn) {
 // The layout names this file uses (see W); a module without one of them is from another build.
 const WIRE_NAMES = {
   option: ['fromX', 'fromY', 'fromZ', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed',
-    'weld', 'weldRelative', 'repair', 'slots'],
+    'weld', 'weldRelative', 'repair', 'openBoundary', 'slots'],
   head: ['ok', 'complete', 'hasKernelPoint', 'hasDeepestPoint', 'starShaped', 'numWarnings', 'textBytes', 'numVertexValues',
-    'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numBytes', 'words'],
+    'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numWitnessFaces', 'numBytes', 'words'],
   scalar: ['volume', 'area', 'shapeVolume', 'volumeRatio', 'kernelPoint', 'deepestPoint', 'inscribedRadius', 'stats', 'count'],
   step: ['kind', 'id', 'a', 'b', 'loop', 'loopSize', 'position'],
 };
@@ -145,7 +145,7 @@ export function checkWireFormat(w) {
   for (const [group, names] of Object.entries(WIRE_NAMES)) {
     for (const n of names) if (typeof w?.[group]?.[n] !== 'number') missing.push(`${group}.${n}`);
   }
-  for (const list of ['stats', 'statuses', 'stepKinds', 'optionWords']) if (!Array.isArray(w?.[list])) missing.push(list);
+  for (const list of ['stats', 'statuses', 'stepKinds', 'optionWords', 'openBoundaries']) if (!Array.isArray(w?.[list])) missing.push(list);
   if (missing.length === 0 && !['vertex', 'edge', 'face'].every((k) => w.stepKinds.includes(k))) missing.push('stepKinds');
   if (missing.length) {
     throw new KergenError('WASM_LOAD_FAILED', `kergen.wasm does not match this index.js (rebuild both): its wire format lacks ${missing.join(', ')}`);
@@ -227,6 +227,17 @@ function checkWeld(fn, weld) {
   throw invalid(fn, 'options.weld must be true, a non-negative distance or { relative: r } with r >= 0');
 }
 
+// open: 'clip' is allowOpen: true; open: 'perpendicular' accepts open meshes by itself (the core's
+// OpenBoundary, named by the module: W.openBoundaries), so allowOpen: false contradicts either.
+function checkOpen(fn, open, allowOpen) {
+  const code = W.openBoundaries.indexOf(open);
+  if (typeof open !== 'string' || code < 0) {
+    throw invalid(fn, `options.open must be ${W.openBoundaries.map((o) => `'${o}'`).join(' or ')} (got ${String(open)})`);
+  }
+  if (allowOpen === false) throw invalid(fn, `options.open accepts open meshes; allowOpen: false contradicts it`);
+  return { allowOpen: open === 'clip' ? true : allowOpen, openBoundary: code };
+}
+
 // The core's messages name options as the C++ API does (Options::field); this package names its
 // own options, from the module's table (kergen::option_names, in W.optionWords).
 const inJsWords = (text) => W.optionWords.reduce((t, [api, js]) => t.replaceAll(api, js), text);
@@ -261,6 +272,7 @@ function checkOptions(fn, options) {
     }
   }
   if (options.weld != null && options.weld !== false) out.weld = checkWeld(fn, options.weld);
+  if (options.open != null) Object.assign(out, checkOpen(fn, options.open, options.allowOpen));
   if (options.onStep != null && typeof options.onStep !== 'function') throw invalid(fn, 'options.onStep must be a function');
   if (options.onProgress != null && typeof options.onProgress !== 'function') throw invalid(fn, 'options.onProgress must be a function');
   if (options.faceSizes != null && !(options.faceSizes instanceof Uint32Array || Array.isArray(options.faceSizes))) {
@@ -327,6 +339,7 @@ function writeRequest(m, positions, indices, faceSizes, opts) {
   f64[at + o.weld] = opts.weld ? opts.weld.distance : NaN;
   f64[at + o.weldRelative] = opts.weld ? Number(opts.weld.relative) : NaN;
   f64[at + o.repair] = slot(opts.repair);
+  f64[at + o.openBoundary] = slot(opts.openBoundary);
   f64.set(positions, at + slots);
   const u32 = m.HEAPU32;
   const indexAt = (at + slots + positions.length) * 2;
@@ -398,7 +411,7 @@ function readResult(m, ptr) {
     const s = (ptr + 4 * H.words) / 8; // scalars
     const counts = s + S.count; // warning counts
     const v = counts + numWarnings;
-    // The five arrays lie back to back in the block (the vertices' f64 values, then the u32
+    // The six arrays lie back to back in the block (the vertices' f64 values, then the u32
     // arrays): one copy into one fresh buffer, then views of it. (Each fresh typed array of more
     // than a few values costs about a microsecond in V8, most of a tiny mesh's overhead here.)
     const numVertexValues = u32[h + H.numVertexValues];
@@ -406,8 +419,9 @@ function readResult(m, ptr) {
     const numFaceIndices = u32[h + H.numFaceIndices];
     const numFaces = u32[h + H.numFaces];
     const numTriangleValues = u32[h + H.numTriangleValues];
+    const numWitnessFaces = u32[h + H.numWitnessFaces];
     const arraysStart = v * 8;
-    const u32Values = numEdgeValues + numFaceIndices + numFaces + numTriangleValues;
+    const u32Values = numEdgeValues + numFaceIndices + numFaces + numTriangleValues + numWitnessFaces;
     const arrays = m.HEAPU8.slice(arraysStart, arraysStart + 8 * numVertexValues + 4 * u32Values).buffer;
     const vertices = new Float64Array(arrays, 0, numVertexValues);
     let at = 8 * numVertexValues;
@@ -415,6 +429,7 @@ function readResult(m, ptr) {
     const faceIndices = new Uint32Array(arrays, (at += 4 * numEdgeValues), numFaceIndices);
     const faceSizes = new Uint32Array(arrays, (at += 4 * numFaceIndices), numFaces);
     const triangles = new Uint32Array(arrays, (at += 4 * numFaces), numTriangleValues);
+    const witnessFaces = new Uint32Array(arrays, (at += 4 * numTriangleValues), numWitnessFaces);
     const bytesStart = (v * 2 + 2 * numVertexValues + u32Values) * 4;
     const numBytes = u32[h + H.numBytes];
     const textStart = bytesStart + numBytes;
@@ -427,6 +442,7 @@ function readResult(m, ptr) {
     const st = s + S.stats;
     return {
       status: text[0],
+      message: text[1],
       complete: u32[h + H.complete] !== 0,
       starShaped: u32[h + H.starShaped] !== 0,
       vertices,
@@ -434,6 +450,7 @@ function readResult(m, ptr) {
       faceIndices,
       faceSizes,
       triangles,
+      witnessFaces,
       bytes: numBytes ? m.HEAPU8.slice(bytesStart, textStart) : null,
       volume: f64[s + S.volume],
       area: f64[s + S.area],
@@ -468,6 +485,7 @@ function shapeResult(raw) {
     faceIndices,
     faceSizes,
     triangles: raw.triangles,
+    witnessFaces: raw.witnessFaces,
     volume: raw.volume,
     area: raw.area,
     shapeVolume: raw.shapeVolume,
@@ -562,7 +580,7 @@ export function findKernelPointSync(positions, indices, options = {}) {
     return readResult(m, block);
   });
   throwIfError(raw);
-  return { starShaped: raw.starShaped, point: raw.kernelPoint, warnings: raw.warnings };
+  return { starShaped: raw.starShaped, point: raw.kernelPoint, witnessFaces: raw.witnessFaces, warnings: raw.warnings };
 }
 
 /** Async variant of findKernelPointSync (loads the module on first use). */
@@ -709,4 +727,38 @@ export function writeMesh(meshOrKernel, format) {
   });
   throwIfError(raw);
   return raw.bytes;
+}
+
+/**
+ * The mesh the kernel is computed on: the input after `weld` and `repair` (as set in `options`),
+ * for saving it (writeMesh). Synchronous (init() must have finished). See index.d.ts.
+ */
+export function repairMeshSync(positions, indices, options = {}) {
+  const fn = 'repairMesh';
+  const m = requireModule(fn);
+  const opts = checkOptions(fn, options);
+  const faceSizes = options && options.faceSizes != null ? options.faceSizes : null;
+  checkMesh(fn, positions, indices, faceSizes);
+  const raw = callWasm(fn, () => {
+    const request = writeRequest(m, positions, indices, faceSizes, opts);
+    const block = m.repair(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0);
+    m._free(request);
+    return readResult(m, block);
+  });
+  throwIfError(raw);
+  // As readMeshSync's: each array has a buffer of its own.
+  return {
+    positions: raw.vertices.slice(),
+    indices: raw.faceIndices.slice(),
+    faceSizes: raw.faceSizes.length ? raw.faceSizes.slice() : null,
+    warnings: raw.warnings,
+    error: raw.status === 'OK' ? null : raw.status,
+    message: inJsWords(raw.message),
+  };
+}
+
+/** Async variant of repairMeshSync (loads the module on first use). */
+export async function repairMesh(positions, indices, options = {}) {
+  await init();
+  return repairMeshSync(positions, indices, options);
 }

@@ -1,7 +1,7 @@
 // The module worker spawned by KernelWorker (worker.js). It loads the wasm module once and runs
 // one job per message: a computation on arrays ('compute'), a file read + computation
 // ('computeFile': the bytes are parsed here, so a big file never costs the page's thread), or a
-// mesh written to file bytes ('writeMesh'). Step events are forwarded in batches (every ~50 ms or
+// mesh written to file bytes ('writeMesh'), or the mesh after weld and repair ('repairMesh'). Step events are forwarded in batches (every ~50 ms or
 // 2048 events: a kernel of a million steps is a few hundred messages, each cheap to receive), and
 // result buffers are transferred back.
 //
@@ -9,6 +9,7 @@
 //                            { type: 'compute', id, wasmUrl?, positions, indices, faceSizes?, options, wantSteps }
 //                            { type: 'computeFile', id, wasmUrl?, bytes, format?, name?, options, wantSteps, wantMesh }
 //                            { type: 'writeMesh', id, wasmUrl?, mesh, format }
+//                            { type: 'repairMesh', id, wasmUrl?, positions, indices, faceSizes?, options }
 // Protocol (worker → main):  { type: 'steps', id, events, steps }
 //                            { type: 'progress', id, phase, steps, count?, bytes? }
 //                            { type: 'mesh', id, mesh }                  (computeFile with wantMesh, before computing)
@@ -42,7 +43,8 @@ function packageFunction(name) {
 const now = typeof performance !== 'undefined' ? () => performance.now() : () => Date.now();
 
 function resultTransferables(result) {
-  const list = [result.vertices.buffer, result.edges.buffer, result.triangles.buffer, result.faceIndices.buffer, result.faceSizes.buffer];
+  const list = [result.vertices.buffer, result.edges.buffer, result.triangles.buffer, result.faceIndices.buffer, result.faceSizes.buffer,
+    result.witnessFaces.buffer];
   return list.filter((b) => b.byteLength > 0); // may repeat a buffer: see unique()
 }
 
@@ -124,7 +126,15 @@ async function handleWriteMesh(msg) {
   self.postMessage({ type: 'result', id: msg.id, result: bytes }, [bytes.buffer]);
 }
 
-const HANDLERS = { compute: handleCompute, computeFile: handleComputeFile, writeMesh: handleWriteMesh };
+async function handleRepairMesh(msg) {
+  await ensureInit(msg.wasmUrl);
+  const options = { ...msg.options };
+  if (msg.faceSizes != null) options.faceSizes = msg.faceSizes;
+  const repaired = packageFunction('repairMeshSync')(msg.positions, msg.indices, options);
+  self.postMessage({ type: 'result', id: msg.id, result: repaired }, unique(meshTransferables(repaired)));
+}
+
+const HANDLERS = { compute: handleCompute, computeFile: handleComputeFile, writeMesh: handleWriteMesh, repairMesh: handleRepairMesh };
 
 self.onmessage = (e) => {
   const msg = e.data;

@@ -150,7 +150,7 @@ export class KernelWorker {
         break;
       case 'result':
         this._jobs.delete(job.id);
-        if (job.kind === 'writeMesh') job.resolve(msg.result);
+        if (job.kind === 'writeMesh' || job.kind === 'repairMesh') job.resolve(msg.result);
         else if (job.kind === 'computeFile') job.resolve({ mesh: msg.mesh, result: rebuildResult(msg.result) });
         else job.resolve(rebuildResult(msg.result));
         break;
@@ -191,6 +191,25 @@ export class KernelWorker {
     options = options || {};
     const { faceSizes } = options;
     return this._submit(fn, 'compute', options, (transfer) => {
+      const move = wantsTransfer(fn, options);
+      return {
+        positions: toTransferable(fn, 'positions', positions, move, transfer),
+        indices: toTransferable(fn, 'indices', indices, move, transfer),
+        faceSizes: toTransferable(fn, 'faceSizes', faceSizes, move, transfer),
+      };
+    });
+  }
+
+  /**
+   * The mesh after weld and repair (the package's repairMesh), in the worker. Options: weld,
+   * repair, allowOpen, open, faceSizes, maxFaces, maxVertices, and transfer (as compute's).
+   * Resolves to { positions, indices, faceSizes, warnings, error, message }.
+   */
+  repairMesh(positions, indices, options = {}) {
+    const fn = 'repairMesh';
+    options = options || {};
+    const { faceSizes } = options;
+    return this._submit(fn, 'repairMesh', options, (transfer) => {
       const move = wantsTransfer(fn, options);
       return {
         positions: toTransferable(fn, 'positions', positions, move, transfer),
@@ -244,7 +263,7 @@ export class KernelWorker {
     if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onStep must be a function`));
     if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onProgress must be a function`));
     const plain = {};
-    for (const key of ['from', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'weld']) if (rest[key] !== undefined) plain[key] = rest[key];
+    for (const key of ['from', 'maxSteps', 'allowOpen', 'open', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'weld', 'repair']) if (rest[key] !== undefined) plain[key] = rest[key];
     if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
 
     const transfer = [];

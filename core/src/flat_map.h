@@ -1,8 +1,9 @@
 // The core's one general hash table: open addressing with linear probing in flat arrays (a
 // node-based std::unordered_map paid one heap allocation per key, which on small meshes cost
-// more than the geometry). Two tables stay specialised, for reasons of their own: plane_classes'
-// (32-bit hash slots heading chains of candidates, prefetched a block ahead) and the tracer's
-// vertex index (keyed by a set of plane ids it compares in place).
+// more than the geometry). Three tables stay specialised, for reasons of their own: PointTable
+// (point_table.h: ids keyed by positions held in the caller's array, prefetched a block ahead),
+// plane_classes' (32-bit hash slots heading chains of candidates, prefetched likewise) and the
+// tracer's vertex index (keyed by a set of plane ids it compares in place).
 #pragma once
 
 #include <cassert>
@@ -67,7 +68,6 @@ class FlatMap {
       j = k;
     }
   }
-
 
   size_t size() const { return size_; }
 

@@ -21,12 +21,13 @@
 #include <limits>
 #include <new>
 #include <stdexcept>
-#include <unordered_map>
 #if defined(__has_include)
 #if __has_include(<version>)
 #include <version>
 #endif
 #endif
+
+#include "point_table.h"
 
 // libstdc++ (g++ >= 11) has a correctly rounded, locale-independent std::from_chars for double.
 // Emscripten's libc++ deletes that overload; there we use strtod, which in its musl-based libc
@@ -113,7 +114,12 @@ ReadResult run_reader(const std::function<void(ReadResult&)>& body) {
 // ---------------------------------------------------------------------------------------------
 // Lines and tokens.
 
-inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+// ' ', '\t', '\r', '\v' or '\f' (not '\n'). Every byte above ' ' (most of a token's) is answered by
+// the first comparison.
+inline bool is_blank(char c) {
+  const unsigned char u = static_cast<unsigned char>(c);
+  return u <= ' ' && (u == ' ' || (u >= '\t' && u <= '\r' && u != '\n'));
+}
 
 class LineReader {
  public:
@@ -218,7 +224,7 @@ long long leading_decimal_exponent(std::string_view mantissa, long long exponent
 
 // Strict decimal syntax: [+-] (digits [. digits] | . digits) [(e|E) [+-] digits]. "inf" and "nan"
 // spellings are recognised so they can be reported as non-finite rather than as garbage.
-NumberStatus parse_double(std::string_view token, double& out) {
+NumberStatus parse_double_checked(std::string_view token, double& out) {
   size_t i = 0, n = token.size();
   bool negative = false;
   if (i < n && (token[i] == '+' || token[i] == '-')) negative = token[i++] == '-';
@@ -292,8 +298,37 @@ NumberStatus parse_double(std::string_view token, double& out) {
   return NumberStatus::Ok;
 }
 
+// parse_double_checked, with a fast path for the usual token: without a leading '+', the strings
+// std::from_chars reads in full as a finite number are exactly those of the strict syntax above
+// (its general format is [-] (digits [. digits] | . digits) [(e|E) [+-] digits], or inf / nan
+// spellings, which are not finite), and parse_double_checked converts them with the same call.
+// Anything else (a '+', a partial read, out of range, non-finite) goes the checked way.
+inline NumberStatus parse_double(std::string_view token, double& out) {
+#if KERGEN_FROM_CHARS_DOUBLE
+  if (!token.empty() && token[0] != '+') {
+    double value;
+    const auto converted = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (converted.ec == std::errc() && converted.ptr == token.data() + token.size() && std::isfinite(value)) {
+      out = value;
+      return NumberStatus::Ok;
+    }
+  }
+#endif
+  return parse_double_checked(token, out);
+}
+
 // [+-]digits, no overflow.
 bool parse_integer(std::string_view token, long long& out) {
+  // The usual token, 1 to 9 digits, cannot overflow: read directly.
+  if (!token.empty() && token.size() <= 9) {
+    long long value = 0;
+    size_t i = 0;
+    for (; i < token.size() && token[i] >= '0' && token[i] <= '9'; ++i) value = value * 10 + (token[i] - '0');
+    if (i == token.size()) {
+      out = value;
+      return true;
+    }
+  }
   if (!token.empty() && token[0] == '+') {
     token.remove_prefix(1);
     if (!token.empty() && token[0] == '-') return false;
@@ -349,7 +384,7 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
     if (keyword == "v") {
       double xyz[3];
       read_coordinates(tokens, xyz, name, line_number, "vertex");
-      mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+      for (double x : xyz) mesh.positions.push_back(x);
       check_vertex_count(mesh.positions.size() / 3, name, line_number);
       // Anything after x y z (a w component or vertex colours) is ignored.
     } else if (keyword == "f" || keyword == "fo") {
@@ -358,15 +393,15 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
       std::string_view token;
       while (tokens.next(token)) {
         // v, v/vt, v//vn or v/vt/vn: only the position index matters, the others must be integers.
+        // (A byte loop: the tokens are short, a memchr call per part cost more than the scan.)
         std::string_view parts[3];
         size_t part_count = 0, start = 0;
-        while (true) {
-          size_t slash = token.find('/', start);
+        for (size_t i = 0;; ++i) {
+          if (i < token.size() && token[i] != '/') continue;
           if (part_count == 3) fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
-          parts[part_count++] =
-              token.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
-          if (slash == std::string_view::npos) break;
-          start = slash + 1;
+          parts[part_count++] = token.substr(start, i - start);
+          if (i == token.size()) break;
+          start = i + 1;
         }
         long long index = 0, unused = 0;
         if (!parse_integer(parts[0], index)) fail_at_line(name, line_number, "invalid face vertex " + quoted(token));
@@ -394,7 +429,7 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
       }
       if (face.size() < 3)
         fail_at_line(name, line_number, "face has " + std::to_string(face.size()) + " vertices (at least 3 needed)");
-      mesh.indices.insert(mesh.indices.end(), face.begin(), face.end());
+      for (uint32_t v : face) mesh.indices.push_back(v);
       mesh.face_sizes.push_back(static_cast<uint32_t>(face.size()));
     } else if (keyword == "l" || keyword == "p") {
       ++point_and_line_records;
@@ -494,7 +529,7 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
           "unexpected end of file: " + std::to_string(v) + " of " + std::to_string(vertex_count) + " vertices read");
     double xyz[3];
     read_coordinates(tokens, xyz, name, lines.line_number(), "vertex");
-    mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+    for (double x : xyz) mesh.positions.push_back(x);
   }
   for (long long f = 0; f < face_count; ++f) {
     if (!next_content_line(lines, tokens))
@@ -531,44 +566,40 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
 // STL.
 
 // Welds vertices that have exactly the same coordinates (an STL stores every triangle's corners
-// separately). -0.0 and 0.0 are the same point.
+// separately), numbered in the order they are first met. -0.0 and 0.0 are the same point.
 class VertexWelder {
  public:
-  explicit VertexWelder(std::vector<double>& positions, size_t expected_vertices) : positions_(positions) {
-    index_of_.reserve(expected_vertices);
+  explicit VertexWelder(std::vector<double>& positions, size_t expected_vertices)
+      : positions_(positions), table_(expected_vertices) {}
+  // A corner, its coordinates with -0.0 turned into +0.0 (adding +0.0 does it, round-to-nearest),
+  // and its hash: what add() needs, computed ahead of it by binary STL's blocks.
+  struct Corner {
+    double xyz[3];
+    uint64_t hash;
+  };
+  static Corner corner(double x, double y, double z) {
+    Corner c{{x + 0.0, y + 0.0, z + 0.0}, 0};
+    c.hash = PointTable::hash(c.xyz);
+    return c;
   }
-  uint32_t add(double x, double y, double z) {
-    Point key{x + 0.0, y + 0.0, z + 0.0};  // adding +0.0 turns -0.0 into +0.0 (round-to-nearest)
-    auto inserted = index_of_.emplace(key, static_cast<uint32_t>(positions_.size() / 3));
-    if (inserted.second) {
-      if (positions_.size() / 3 >= std::numeric_limits<uint32_t>::max())
-        fail(Error::TooLarge, "more than 4294967295 distinct vertices");
-      positions_.insert(positions_.end(), {key.x, key.y, key.z});
+  void prefetch(const Corner& c) const { table_.prefetch_slot(c.hash); }
+  void prefetch_held(const Corner& c) const { table_.prefetch_held(positions_.data(), c.hash); }
+  uint32_t add(double x, double y, double z) { return add(corner(x, y, z)); }
+  uint32_t add(const Corner& c) {
+    const size_t count = positions_.size() / 3;
+    if (count >= std::numeric_limits<uint32_t>::max()) {
+      const uint32_t found = table_.find(positions_.data(), c.xyz, c.hash);
+      if (found != PointTable::kEmpty) return found;
+      fail(Error::TooLarge, "more than 4294967295 distinct vertices");
     }
-    return inserted.first->second;
+    const uint32_t id = table_.find_or_insert(positions_.data(), c.xyz, c.hash, uint32_t(count));
+    if (id == count) positions_.insert(positions_.end(), c.xyz, c.xyz + 3);
+    return id;
   }
 
  private:
-  struct Point {
-    double x, y, z;
-    bool operator==(const Point& o) const { return x == o.x && y == o.y && z == o.z; }
-  };
-  struct PointHash {
-    static uint64_t bits(double d) {
-      uint64_t b;
-      std::memcpy(&b, &d, sizeof b);
-      return b;
-    }
-    size_t operator()(const Point& p) const {
-      uint64_t h = bits(p.x) * 0x9E3779B97F4A7C15ull;
-      h ^= (h >> 29) ^ bits(p.y) * 0xC2B2AE3D27D4EB4Full;
-      h ^= (h >> 31) ^ bits(p.z) * 0x165667B19E3779F9ull;
-      h ^= h >> 32;
-      return static_cast<size_t>(h);
-    }
-  };
   std::vector<double>& positions_;
-  std::unordered_map<Point, uint32_t, PointHash> index_of_;
+  PointTable table_;
 };
 
 uint32_t read_le32(const unsigned char* p) {
@@ -582,26 +613,56 @@ float read_le_float(const unsigned char* p) {
   return f;
 }
 
+// Triangles are read in blocks: their corners hashed and their table slots prefetched first,
+// then welded in order (the table is larger than the caches on big files).
 void parse_binary_stl(std::string_view bytes, uint32_t triangle_count, const std::string& name, Mesh& mesh) {
   if (triangle_count == 0) fail(Error::EmptyInput, name + ": no triangles");
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  VertexWelder welder(mesh.positions, std::min<size_t>(triangle_count, size_t(1) << 24));
-  mesh.indices.reserve(3 * size_t(triangle_count));
-  for (uint32_t t = 0; t < triangle_count; ++t) {
-    const size_t record = 84 + 50 * size_t(t);
-    for (int corner = 0; corner < 3; ++corner) {
-      const size_t offset = record + 12 + 12 * size_t(corner);  // after the 12-byte normal
-      double xyz[3];
-      for (int k = 0; k < 3; ++k) {
-        float value = read_le_float(data + offset + 4 * k);
-        if (!std::isfinite(value))
-          fail_at_byte(
-              name, offset + 4 * k,
-              "non-finite coordinate in triangle " + std::to_string(t) + " (vertex " + std::to_string(corner) + ")");
-        xyz[k] = static_cast<double>(value);  // exact: every float is a double
+  // A closed mesh has about half as many vertices as triangles.
+  const size_t expected_vertices = std::min<size_t>(triangle_count / 2 + 16, size_t(1) << 24);
+  VertexWelder welder(mesh.positions, expected_vertices);
+  mesh.positions.reserve(3 * expected_vertices);
+  mesh.indices.resize(3 * size_t(triangle_count));
+  uint32_t* index_out = mesh.indices.data();
+  constexpr uint32_t kBlock = 32;
+  VertexWelder::Corner corners[3 * kBlock];
+  for (uint32_t first = 0; first < triangle_count; first += kBlock) {
+    const uint32_t n = std::min(kBlock, triangle_count - first);
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t t = first + i;
+      const size_t record = 84 + 50 * size_t(t);
+      for (int corner = 0; corner < 3; ++corner) {
+        const size_t offset = record + 12 + 12 * size_t(corner);  // after the 12-byte normal
+        double xyz[3];
+        for (int k = 0; k < 3; ++k) {
+          float value = read_le_float(data + offset + 4 * k);
+          if (!std::isfinite(value))
+            fail_at_byte(
+                name, offset + 4 * k,
+                "non-finite coordinate in triangle " + std::to_string(t) + " (vertex " + std::to_string(corner) + ")");
+          xyz[k] = static_cast<double>(value);  // exact: every float is a double
+        }
+        corners[3 * i + corner] = VertexWelder::corner(xyz[0], xyz[1], xyz[2]);
+        welder.prefetch(corners[3 * i + corner]);
       }
-      mesh.indices.push_back(welder.add(xyz[0], xyz[1], xyz[2]));
     }
+    for (uint32_t c = 0; c < 3 * n; ++c) welder.prefetch_held(corners[c]);
+    for (uint32_t c = 0; c < 3 * n; ++c) *index_out++ = welder.add(corners[c]);
+  }
+}
+
+// "normal nx ny nz" after "facet". The normal is recomputed by everyone; it only has to be three
+// numbers (some exporters write nan for degenerate facets, which is harmless here).
+void read_facet_normal(Tokens& tokens, const std::string& name, size_t line_number) {
+  std::string_view word;
+  if (!tokens.next(word) || !equals_ignore_case(word, "normal"))
+    fail_at_line(name, line_number, "expected 'facet normal nx ny nz'");
+  for (int k = 0; k < 3; ++k) {
+    std::string_view token;
+    double ignored;
+    if (!tokens.next(token)) fail_at_line(name, line_number, "facet normal needs 3 components");
+    if (parse_double(token, ignored) == NumberStatus::Invalid)
+      fail_at_line(name, line_number, "invalid number " + quoted(token));
   }
 }
 
@@ -613,7 +674,17 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
   std::string_view line;
   // A facet line is about 200 bytes of text; a generous guess keeps rehashing rare.
   VertexWelder welder(mesh.positions, text.size() / 200 + 16);
-  uint32_t corners[3];
+  VertexWelder::Corner corners[3];
+  // Finished facets' corners are welded a block at a time, their table slots prefetched when the
+  // facet ends (binary STL's scheme). The weld's only failure, more than 2^32 - 1 distinct
+  // vertices, then shows up to kBlock facets later, which no file under ~400 GB can reach.
+  constexpr size_t kBlock = 32;
+  std::vector<VertexWelder::Corner> pending;
+  pending.reserve(3 * kBlock);
+  auto weld_pending = [&] {
+    for (const auto& c : pending) mesh.indices.push_back(welder.add(c));
+    pending.clear();
+  };
   int corner_count = 0;
   auto expect_end = [&](Tokens& tokens, std::string_view keyword) {
     std::string_view extra;
@@ -637,18 +708,7 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
         if (equals_ignore_case(keyword, "endsolid")) {
           state = State::OutsideSolid;
         } else if (equals_ignore_case(keyword, "facet")) {
-          std::string_view word;
-          if (!tokens.next(word) || !equals_ignore_case(word, "normal"))
-            fail_at_line(name, line_number, "expected 'facet normal nx ny nz'");
-          // The normal is recomputed by everyone; it only has to be three numbers (some exporters
-          // write nan for degenerate facets, which is harmless here).
-          for (int k = 0; k < 3; ++k) {
-            std::string_view token;
-            double ignored;
-            if (!tokens.next(token)) fail_at_line(name, line_number, "facet normal needs 3 components");
-            if (parse_double(token, ignored) == NumberStatus::Invalid)
-              fail_at_line(name, line_number, "invalid number " + quoted(token));
-          }
+          read_facet_normal(tokens, name, line_number);
           expect_end(tokens, "facet normal");
           state = State::InFacet;
         } else {
@@ -670,7 +730,7 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
           double xyz[3];
           read_coordinates(tokens, xyz, name, line_number, "vertex");
           expect_end(tokens, "vertex x y z");
-          corners[corner_count++] = welder.add(xyz[0], xyz[1], xyz[2]);
+          corners[corner_count++] = VertexWelder::corner(xyz[0], xyz[1], xyz[2]);
         } else if (equals_ignore_case(keyword, "endloop")) {
           if (corner_count != 3)
             fail_at_line(name, line_number, "facet has " + std::to_string(corner_count) + " vertices (3 needed)");
@@ -683,11 +743,16 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
       case State::AfterLoop:
         if (!equals_ignore_case(keyword, "endfacet")) unexpected("'endfacet'");
         expect_end(tokens, "endfacet");
-        mesh.indices.insert(mesh.indices.end(), corners, corners + 3);
+        for (const auto& c : corners) {
+          welder.prefetch(c);
+          pending.push_back(c);
+        }
+        if (pending.size() == 3 * kBlock) weld_pending();
         state = State::InSolid;
         break;
     }
   }
+  weld_pending();
   // A missing final "endsolid" is tolerated (common in hand-written files); a cut facet is not.
   if (state != State::OutsideSolid && state != State::InSolid)
     fail_at_line(name, lines.line_number(), "unexpected end of file inside a facet");

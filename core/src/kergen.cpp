@@ -15,6 +15,7 @@
 #include "face_culling.h"
 #include "lp.h"
 #include "mesh_prep.h"
+#include "open_boundary.h"
 #include "plane_classes.h"
 #include "plane_culling.h"
 #include "polytope.h"
@@ -24,6 +25,7 @@
 #include "step_replay.h"
 #include "tracer.h"
 #include "weld.h"
+#include "witness.h"
 
 namespace kergen {
 
@@ -65,6 +67,7 @@ const char* kernel_type_name(KernelType t) {
 const std::vector<OptionName>& option_names() {
   static const std::vector<OptionName> names = {
       {"allow_open", "--allow-open", "allowOpen: true"},
+      {"open_boundary", "--open perpendicular", "open: 'perpendicular'"},
       {"weld_relative", "--weld-relative", "weld: { relative }"},
       {"weld", "--weld", "weld: true"},
       {"repair", "--repair", "repair: true"},
@@ -79,6 +82,14 @@ const std::vector<OptionName>& option_names() {
       {"from", "--from", "from"},
   };
   return names;
+}
+
+const char* open_boundary_name(OpenBoundary o) {
+  switch (o) {
+    case OpenBoundary::Clip: return "clip";
+    case OpenBoundary::Perpendicular: return "perpendicular";
+  }
+  return "unknown";
 }
 
 const char* warning_kind_name(Warning::Kind k) {
@@ -179,16 +190,50 @@ void refuse_nested_shells(const PreparedMesh& m, Error& error, std::string& mess
             "inside the first, not a void)";
 }
 
+// An open mesh refused: the message also names the other way of accepting it.
+PreparedMesh mention_open_boundary(PreparedMesh m) {
+  if (m.error == Error::OpenMesh)
+    m.message += "; Options::open_boundary bounds such a surface's kernel by walls at its boundary edges";
+  return m;
+}
+
+// A copy of the arrays `m` views (what Mesh::view would give back).
+Mesh copy_of(const MeshView& m) {
+  Mesh out;
+  out.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
+  out.indices.assign(m.indices, m.indices + m.num_indices);
+  if (m.face_sizes) out.face_sizes.assign(m.face_sizes, m.face_sizes + m.num_faces);
+  return out;
+}
+
 // prepare_mesh after Options::weld and Options::repair: the prepared mesh of the welded (and
 // repaired) input, what was done reported first among its warnings and the dropped faces
-// counted with the input's.
-PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
+// counted with the input's. `validated`, when given, receives the mesh prepare_mesh judged (the
+// welded and repaired one, or a copy of the input; left empty for malformed input, which
+// validation refuses). OpenBoundary::Perpendicular accepts open meshes as allow_open does.
+PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated = nullptr) {
+  if (options.open_boundary == OpenBoundary::Perpendicular && !options.allow_open) {
+    Options accepting = options;
+    accepting.allow_open = true;
+    return prepare_input(mesh, accepting, validated);
+  }
   const bool weld = options.weld >= 0;
-  if ((!weld && !options.repair) || !weldable(mesh)) return judge_shells(prepare_mesh(mesh, options, true));
+  const bool can_weld = weldable(mesh);
+  if ((!weld && !options.repair) || !can_weld) {
+    if (validated && can_weld) *validated = copy_of(mesh);
+    return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true)));
+  }
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
   RepairCounts repaired;
-  if (options.repair) repaired = repair_mesh(w.mesh);
-  PreparedMesh m = judge_shells(prepare_mesh(w.mesh.view(), options, true));
+  std::vector<uint32_t> repair_kept;
+  if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
+  PreparedMesh m = mention_open_boundary(judge_shells(prepare_mesh(w.mesh.view(), options, true)));
+  // Faces are named by their index in the input (the witness): through the repair, then the weld.
+  m.welded_source = std::move(w.source_face);
+  if (options.repair) {
+    for (uint32_t& f : repair_kept) f = m.welded_source[f];
+    m.welded_source = std::move(repair_kept);
+  }
   m.input_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   m.dropped_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
   // The merged vertices are no face's any more: only the input's own unused ones are reported.
@@ -221,7 +266,24 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options) {
                     std::to_string(repaired.t_junctions) +
                         " vertices lying on the edge of another face were inserted into it (T-junctions split)"});
   m.warnings.insert(m.warnings.begin(), done.begin(), done.end());
+  if (validated) *validated = std::move(w.mesh);
   return m;
+}
+
+// `mesh` without the vertices no face uses, the others renumbered in their order.
+Mesh without_unused_vertices(Mesh mesh) {
+  const size_t nv = mesh.num_vertices();
+  std::vector<uint32_t> new_id(nv, 0);
+  for (uint32_t v : mesh.indices) new_id[v] = 1;
+  uint32_t kept = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    if (!new_id[v]) continue;
+    for (int k = 0; k < 3; ++k) mesh.positions[3 * size_t(kept) + k] = mesh.positions[3 * v + k];
+    new_id[v] = kept++;
+  }
+  mesh.positions.resize(3 * size_t(kept));
+  for (uint32_t& v : mesh.indices) v = new_id[v];
+  return mesh;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -237,12 +299,17 @@ struct Setup {
   LpResult lp;
   bool rejected_early = false;  // empty kernel proven before the plane classes were built
   double center[3] = {0, 0, 0};
+  size_t surface_faces = 0;  // the mesh's own faces (boundary walls follow them in `mesh`)
 };
 
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
   auto t = Clock::now();
   report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
-  s.mesh = prepare_input(mesh, options);
+  const bool walls = options.open_boundary == OpenBoundary::Perpendicular;
+  Mesh validated;
+  s.mesh = prepare_input(mesh, options, walls ? &validated : nullptr);
+  s.surface_faces = s.mesh.num_faces();
+  if (walls && s.mesh.error == Error::Ok && s.mesh.boundary_edges > 0) add_boundary_walls(s.mesh, validated.view());
   stats.input_vertices = mesh.num_vertices;
   stats.input_faces = s.mesh.input_faces;
   stats.dropped_faces = s.mesh.dropped_faces;
@@ -297,6 +364,17 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_lp += ms_since(t);
 }
 
+// The witness of an empty kernel (witness.h) as input face indices, increasing and distinct (the
+// triangles of a split polygon are named by the polygon).
+std::vector<uint32_t> input_witness(const Setup& s) {
+  std::vector<uint32_t> faces = witness_faces(s.mesh, s.lp.conflict);
+  for (uint32_t f : faces)
+    if (f >= s.surface_faces) return {};  // a boundary wall is no input face: no witness to name
+  for (uint32_t& f : faces) f = s.mesh.input_face(f);
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
 // The refusal of a surface that a ray from inside its kernel crosses more than once.
 void refuse_crossing(const PreparedMesh& mesh, const EmbeddingCheck& check, Error& error, std::string& message) {
   char point[96];
@@ -312,8 +390,9 @@ void refuse_crossing(const PreparedMesh& mesh, const EmbeddingCheck& check, Erro
 // when no two of its faces meet away from the vertices and edges they share (self_contact.h):
 // false, with the error set, when two do. Undecided (a polygon face that is not simple in its
 // plane) leaves a warning instead: nothing was proved either way.
-bool certify_no_contact(const PreparedMesh& mesh, Error& error, std::string& message, std::vector<Warning>& warnings) {
-  const FaceContact contact = find_face_contact(mesh);
+bool certify_no_contact(const Setup& s, Error& error, std::string& message, std::vector<Warning>& warnings) {
+  const PreparedMesh& mesh = s.mesh;
+  const FaceContact contact = find_face_contact(mesh, s.surface_faces);  // (walls may meet the surface)
   if (contact.outcome == FaceContact::Outcome::None) return true;
   if (contact.outcome == FaceContact::Outcome::Undecided) {
     warnings.push_back({Warning::Kind::CrossingsUnchecked, 1,
@@ -346,11 +425,11 @@ bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out) {
       if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) full_dimensional = false;
     }
   }
-  if (!full_dimensional) return certify_no_contact(s.mesh, out.error, out.message, out.warnings);
+  if (!full_dimensional) return certify_no_contact(s, out.error, out.message, out.warnings);
   const EmbeddingCheck check = check_embedding(s.mesh, *s.planes, tr);
   if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
   if (check.outcome == EmbeddingCheck::Outcome::Undecided)
-    return certify_no_contact(s.mesh, out.error, out.message, out.warnings);
+    return certify_no_contact(s, out.error, out.message, out.warnings);
   refuse_crossing(s.mesh, check, out.error, out.message);
   return false;
 }
@@ -361,7 +440,7 @@ bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out) {
 // exact contact test (flat kernels, open meshes, a centroid on a facet).
 bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
   if (s.lp.outcome != LpResult::Outcome::Optimal || s.mesh.boundary_edges > 0)
-    return certify_no_contact(s.mesh, r.error, r.message, r.warnings);
+    return certify_no_contact(s, r.error, r.message, r.warnings);
   static const double kDirections[][3] = {
       {1, -1.03125, -0.96875}, {-0.96875, 1, -1.03125}, {-1.03125, -0.96875, 1},  // tetrahedron
       {1, 0.25, 0.0625},       {-1, -0.25, -0.0625},    {0.0625, 1, 0.25},
@@ -386,7 +465,7 @@ bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
       return false;
     }
   }
-  return certify_no_contact(s.mesh, r.error, r.message, r.warnings);
+  return certify_no_contact(s, r.error, r.message, r.warnings);
 }
 
 }  // namespace
@@ -407,6 +486,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   out.shape_volume = std::ldexp(s.mesh.volume, 3 * unscale_exp);
   if (s.rejected_early) {
     out.type = KernelType::Empty;
+    out.witness_faces = input_witness(s);
     out.stats.ms_total = ms_since(t_total);
     return out;
   }
@@ -419,9 +499,10 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   }
   if (s.lp.outcome == LpResult::Outcome::Infeasible) {
     out.type = KernelType::Empty;
+    out.witness_faces = input_witness(s);
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     out.type = KernelType::Unbounded;
-    if (!certify_no_contact(s.mesh, out.error, out.message, out.warnings)) {
+    if (!certify_no_contact(s, out.error, out.message, out.warnings)) {
       out.type = KernelType::Empty;
       out.stats.ms_total = ms_since(t_total);
       return out;
@@ -531,7 +612,20 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
     for (int k = 0; k < 3; ++k) r.point[k] = s.mesh.to_input(hi[k]);
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     r.star_shaped = true;  // non-empty but unbounded (open input)
+  } else {
+    r.witness_faces = input_witness(s);
   }
+  return r;
+}
+
+RepairedMesh repair_mesh(const MeshView& mesh, const Options& options) {
+  RepairedMesh r;
+  Mesh validated;
+  const PreparedMesh m = prepare_input(mesh, options, &validated);
+  r.error = m.error;
+  r.message = m.message;
+  r.warnings = m.warnings;
+  r.mesh = without_unused_vertices(std::move(validated));
   return r;
 }
 

@@ -55,13 +55,16 @@ class SeidelLp {
     assert(found == 2);
   }
 
-  LpResult solve(const std::vector<uint32_t>& cons) {
+  // Infeasible: *failed_at is the first i for which cons[0..i] has no common point (cons[0..i)
+  // has one, the optimum before constraint i, which it violates).
+  LpResult solve(const std::vector<uint32_t>& cons, size_t* failed_at = nullptr) {
     LpResult r;
     VertexGeom v = make_vertex(ps_, cons[0], cons[1], cons[2], false);
     for (size_t i = 3; i < cons.size(); ++i) {
       uint32_t h = cons[i];
       if (side(ps_, h, v) > 0 && !solve2(h, cons.data(), i, v)) {
         r.outcome = LpResult::Outcome::Infeasible;
+        if (failed_at) *failed_at = i;
         return r;
       }
     }
@@ -227,6 +230,72 @@ class SeidelLp {
 
 namespace {
 
+// Bounds of the conflict search, far beyond the LP's: the planes of a small conflict can meet
+// far from the mesh (nearly parallel ones at about the gap between them over their angle: two
+// faces of a torus's top and bottom rings, antiparallel up to rounding, meet ~1e15 away), and a
+// conflict must not need the bounds. A power of two, exact like the LP's; its cube, in the
+// homogeneous coordinates of a corner of the bounds, stays far from overflow.
+const double kConflictBound = std::ldexp(1.0, 100);
+
+// A minimal conflict among the face planes of cons[3..failed] (cons[0..failed] infeasible:
+// solve's failed_at), by the additive method (Chinneck, "Feasibility and Infeasibility in
+// Optimization", 2008): the planes are taken in order until they have no common point; the last
+// one taken belongs to the conflict and goes first, and the planes before it are taken again,
+// until the conflict found so far has no common point by itself. Each plane added was needed
+// (the planes before it, with the conflict found before it, have a common point), so the result
+// is minimal and, by Helly's theorem, at most four planes. Explicit planes (the LP's bounds, a
+// bounding box) are left out, and the search runs inside far wider bounds of its own; when that
+// makes cons[3..failed] feasible (it needed the box), every face plane of cons is searched
+// instead. Each round is one exact LP over the planes left; solve_lp put the float run's
+// conflict first, so failed is small in practice. Empty when no conflict of face planes is found
+// within the wide bounds.
+std::vector<uint32_t> minimal_conflict(PlaneSet& ps, const double direction[3], const std::vector<uint32_t>& cons,
+                                       size_t failed) {
+  // (The search's exact evaluations are not counted: Stats::exact_fallbacks stays the kernel's.)
+  const size_t exact_fallbacks = ps.exact_fallbacks;
+  uint32_t bounds[3];
+  for (int i = 0; i < 3; ++i) {
+    double n[3] = {0, 0, 0};
+    n[i] = direction[i] < 0 ? -1 : 1;
+    bounds[i] = ps.add_explicit(n[0], n[1], n[2], -kConflictBound);
+  }
+  auto face_planes = [&](size_t end) {
+    std::vector<uint32_t> out;
+    for (size_t i = 3; i < end; ++i)
+      if (!ps.explicit_plane(cons[i])) out.push_back(cons[i]);
+    return out;
+  };
+  std::vector<uint32_t> found, rest = face_planes(failed + 1), order;
+  {
+    SeidelLp lp(ps, direction, bounds);
+    // The planes are taken in this order (the bounds first), and `at` is where they first have
+    // no common point.
+    auto infeasible_at = [&](size_t& at) {
+      order.assign(bounds, bounds + 3);
+      order.insert(order.end(), found.begin(), found.end());
+      order.insert(order.end(), rest.begin(), rest.end());
+      return lp.solve(order, &at).outcome == LpResult::Outcome::Infeasible;
+    };
+    size_t at = 0;
+    bool done = !infeasible_at(at);
+    if (done) {
+      rest = face_planes(cons.size());
+      done = !infeasible_at(at);
+    }
+    for (int round = 0; round < 5 && !done; ++round) {
+      const size_t fixed = 3 + found.size();
+      if (at < fixed) break;  // found has no common point by itself (at == fixed - 1)
+      found.push_back(order[at]);
+      rest.resize(at - fixed);
+      done = !infeasible_at(at);  // (never: the previous round's order with the same prefix failed)
+    }
+    if (done || found.size() > 4) found.clear();
+  }
+  for (int i = 0; i < 3; ++i) ps.pop_last();
+  ps.exact_fallbacks = exact_fallbacks;
+  return found;
+}
+
 // Planes of `planes` outside `skip` that the vertex violates: a double pass with a rigorous
 // per-plane error bound, the exact predicate only where that is undecided.
 void violated_planes(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<char>& skip,
@@ -272,7 +341,11 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
       }
       for (size_t i = 0; i < order.size(); ++i)
         if (!moved[i]) cons.push_back(order[i]);
-      return lp.solve(cons);
+      size_t failed = 0;
+      LpResult result = lp.solve(cons, &failed);
+      if (result.outcome == LpResult::Outcome::Infeasible)
+        for (uint32_t p : minimal_conflict(ps, direction, cons, failed)) result.conflict.push_back(ps.rep(p));
+      return result;
     };
     if (planes.size() <= kSamplingThreshold) {
       r = run(planes, seed);

@@ -34,6 +34,17 @@ struct PreparedMesh {
   // Pairs of plane-faces that share an edge (for merging coplanar neighbours).
   RawVector<std::array<uint32_t, 2>> adjacent;
 
+  // The face of the input each face comes from, in increasing order (a split polygon's
+  // triangles share it): source_face as prepare_mesh numbers the faces of its MeshView (empty:
+  // face f is face f, nothing was dropped or split), then welded_source for the faces of a welded
+  // or repaired mesh (prepare_input; empty: none). input_face composes them.
+  std::vector<uint32_t> source_face;
+  std::vector<uint32_t> welded_source;
+  uint32_t input_face(uint32_t f) const {
+    const uint32_t g = source_face.empty() ? f : source_face[f];
+    return welded_source.empty() ? g : welded_source[g];
+  }
+
   size_t input_faces = 0;
   size_t dropped_faces = 0;
   size_t shells = 1;                                        // connected pieces (> 1 only with allow_shells)

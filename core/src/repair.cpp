@@ -49,7 +49,7 @@ Loop canonical(const Loop& l) {
 
 // Removes faces repeating another's cycle: copies of one orientation keep one, and a cycle
 // present in both orientations goes entirely.
-void remove_repeated_faces(std::vector<Loop>& loops, RepairCounts& counts) {
+void remove_repeated_faces(std::vector<Loop>& loops, RepairCounts& counts, std::vector<uint32_t>& kept_faces) {
   std::map<Loop, std::vector<size_t>> by_cycle;
   for (size_t f = 0; f < loops.size(); ++f) by_cycle[canonical(loops[f])].push_back(f);
   std::vector<char> removed(loops.size(), 0);
@@ -66,8 +66,12 @@ void remove_repeated_faces(std::vector<Loop>& loops, RepairCounts& counts) {
     counts.cancelling_faces += 2;
   }
   std::vector<Loop> kept;
+  kept_faces.clear();
   for (size_t f = 0; f < loops.size(); ++f)
-    if (!removed[f]) kept.push_back(std::move(loops[f]));
+    if (!removed[f]) {
+      kept.push_back(std::move(loops[f]));
+      kept_faces.push_back(uint32_t(f));
+    }
   loops = std::move(kept);
 }
 
@@ -125,10 +129,12 @@ void split_t_junctions(const std::vector<double>& positions, std::vector<Loop>& 
 
 }  // namespace
 
-RepairCounts repair_mesh(Mesh& mesh) {
+RepairCounts repair_mesh(Mesh& mesh, std::vector<uint32_t>* kept_faces) {
   RepairCounts counts;
   std::vector<Loop> loops = loops_of(mesh);
-  remove_repeated_faces(loops, counts);
+  std::vector<uint32_t> kept;
+  remove_repeated_faces(loops, counts, kept);
+  if (kept_faces) *kept_faces = std::move(kept);
   split_t_junctions(mesh.positions, loops, counts);
   set_loops(mesh, loops);
   return counts;

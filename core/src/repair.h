@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "kergen/kergen.h"
 
@@ -20,6 +22,7 @@ struct RepairCounts {
 
 // Repairs `mesh` in place (its positions are not changed; faces are removed or gain corners).
 // `mesh` must have finite coordinates, indices in range and faces of at least three corners.
-RepairCounts repair_mesh(Mesh& mesh);
+// `kept_faces` (optional) receives the index before the repair of each face after it.
+RepairCounts repair_mesh(Mesh& mesh, std::vector<uint32_t>* kept_faces = nullptr);
 
 }  // namespace kergen

@@ -233,10 +233,10 @@ struct Grid {
   }
   double lo[3], cell;
   uint64_t n;
-  explicit Grid(const PreparedMesh& m) {
+  Grid(const PreparedMesh& m, size_t num_faces) {
     for (int k = 0; k < 3; ++k) lo[k] = m.bbox_min[k];
     double sides = 0;
-    for (uint32_t f = 0; f < m.num_faces(); ++f) {
+    for (uint32_t f = 0; f < num_faces; ++f) {
       double flo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, fhi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
       for (uint32_t i = m.loop_offsets[f]; i < m.loop_offsets[f + 1]; ++i)
         for (int k = 0; k < 3; ++k) {
@@ -245,7 +245,7 @@ struct Grid {
         }
       sides += std::max({fhi[0] - flo[0], fhi[1] - flo[1], fhi[2] - flo[2]});
     }
-    const double side = m.extent(), mean = m.num_faces() ? sides / double(m.num_faces()) : side;
+    const double side = m.extent(), mean = num_faces ? sides / double(num_faces) : side;
     n = side > 0 && mean > 0 ? uint64_t(std::clamp(side / mean, 1.0, double(1u << 20))) : 1;
     cell = side > 0 ? side / double(n) * (1 + 1e-9) : 1;
   }
@@ -313,17 +313,18 @@ std::vector<uint32_t> ring_with_side_vertices(const Geometry& g, const PreparedM
 
 }  // namespace
 
-FaceContact find_face_contact(const PreparedMesh& m) {
+FaceContact find_face_contact(const PreparedMesh& m, size_t num_faces) {
   FaceContact out;
   const Geometry g(m);
-  const Grid grid(m);
+  const Grid grid(m, num_faces);
   // (cell, vertex) of every face corner, when a vertex may lie inside a side as the mesh says:
   // where zero-area faces were dropped, or at the holes of an open mesh (T-junctions). Elsewhere
   // such a vertex is a touch, found by the pair tests.
   std::vector<std::pair<uint64_t, uint32_t>> vertex_cells;
   if (m.dropped_faces > 0 || m.boundary_edges > 0) {
     vertex_cells.reserve(m.loops.size());
-    for (uint32_t v : m.loops) {
+    for (uint32_t i = 0; i < m.loop_offsets[num_faces]; ++i) {
+      const uint32_t v = m.loops[i];
       const double* p = g.p(v);
       vertex_cells.push_back({grid.key(grid.index(p[0], 0), grid.index(p[1], 1), grid.index(p[2], 2)), v});
     }
@@ -332,7 +333,7 @@ FaceContact find_face_contact(const PreparedMesh& m) {
   }
   std::vector<Tri> tris;
   tris.reserve(m.loops.size());
-  for (uint32_t f = 0; f < m.num_faces(); ++f)
+  for (uint32_t f = 0; f < num_faces; ++f)
     if (!triangulate_face(g, m, f, ring_with_side_vertices(g, m, grid, vertex_cells, f), tris)) {
       out.outcome = FaceContact::Outcome::Undecided;
       out.face_a = out.face_b = f;

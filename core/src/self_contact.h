@@ -11,6 +11,7 @@
 // Positions that are equal under two vertex ids count as a touch: such a surface is not embedded.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "mesh_prep.h"
@@ -29,8 +30,10 @@ struct FaceContact {
   uint32_t corner_a = 0, corner_b = 0;  // a vertex id of each of the two triangles that meet
 };
 
-// Expected O(faces) for well-spread meshes (each grid cell holds a few triangles); a polygon of k
-// corners costs O(k^2) to triangulate.
-FaceContact find_face_contact(const PreparedMesh& mesh);
+// The first `num_faces` faces of `mesh` (all by default; boundary walls that follow a surface's own
+// faces are left out). Expected O(faces) for well-spread meshes (each grid cell holds a few
+// triangles); a polygon of k corners costs O(k^2) to triangulate.
+FaceContact find_face_contact(const PreparedMesh& mesh, size_t num_faces);
+inline FaceContact find_face_contact(const PreparedMesh& mesh) { return find_face_contact(mesh, mesh.num_faces()); }
 
 }  // namespace kergen

@@ -117,6 +117,7 @@ WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative) 
     all_triangles &= loop.size() == 3;
     out.mesh.indices.insert(out.mesh.indices.end(), loop.begin(), loop.end());
     out.mesh.face_sizes.push_back(uint32_t(loop.size()));
+    out.source_face.push_back(uint32_t(f));
   }
   if (all_triangles) out.mesh.face_sizes.clear();
   return out;

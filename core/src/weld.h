@@ -4,16 +4,19 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "kergen/kergen.h"
 
 namespace kergen {
 
 struct WeldResult {
-  Mesh mesh;                   // the welded mesh: the input's positions, faces renumbered
-  size_t merged_vertices = 0;  // vertices that took another's place
-  size_t dropped_faces = 0;    // faces left with fewer than three distinct corners
-  double tolerance = 0;        // the distance used (absolute)
+  Mesh mesh;                          // the welded mesh: the input's positions, faces renumbered
+  size_t merged_vertices = 0;         // vertices that took another's place
+  size_t dropped_faces = 0;           // faces left with fewer than three distinct corners
+  double tolerance = 0;               // the distance used (absolute)
+  std::vector<uint32_t> source_face;  // the input face of each face of `mesh` (increasing)
 };
 
 // Vertices within `tolerance` of each other (Euclidean; relative: in units of the bounding box

@@ -415,3 +415,39 @@ TEST_F(CliTest, EmptyKernelIsNotAnError) {
 }
 
 }  // namespace
+
+TEST_F(CliTest, OpenPerpendicularWallsAnOpenCube) {
+  const std::string path = (dir_ / "open_cube.off").string();
+  std::string message;
+  ASSERT_EQ(kergen::write_mesh_file(path, kergen_test::open_cube(), &message), kergen::Error::Ok) << message;
+  const CliRun refused = run(shell_quote(path));
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_TRUE(has(refused.err, "--open perpendicular")) << refused.err;
+  const CliRun clip = run("--json --open clip " + shell_quote(path));
+  ASSERT_EQ(clip.exit_code, 0) << clip.err;
+  EXPECT_EQ(json_raw(clip.out, "status"), "UNBOUNDED");
+  const CliRun walls = run("--json --open perpendicular " + shell_quote(path));
+  ASSERT_EQ(walls.exit_code, 0) << walls.err;
+  EXPECT_EQ(json_raw(walls.out, "status"), "POLYHEDRON");
+  EXPECT_DOUBLE_EQ(json_number(walls.out, "volume"), 1.0);
+  EXPECT_EQ(run("--open sideways " + shell_quote(path)).exit_code, 2);
+}
+
+TEST_F(CliTest, WriteRepairedSavesWhatTheKernelIsComputedOn) {
+  const std::string path = (dir_ / "t_junction.off").string(), out = (dir_ / "repaired.obj").string();
+  std::string message;
+  ASSERT_EQ(kergen::write_mesh_file(path, kergen_test::t_junction_box(), &message), kergen::Error::Ok) << message;
+  const CliRun r = run("--json --repair --write-repaired " + shell_quote(out) + " " + shell_quote(path));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_DOUBLE_EQ(json_number(r.out, "volume"), 2.0);
+  const kergen::ReadResult back = kergen::read_mesh_file(out);
+  ASSERT_TRUE(back.ok()) << back.message;
+  const kergen::Kernel k = kergen::compute_kernel(back.mesh.view());
+  ASSERT_TRUE(k.ok()) << k.message;
+  EXPECT_EQ(k.volume, 2.0);
+  // Written also when the kernel is refused (still open without --repair), to be looked at.
+  const std::string open_out = (dir_ / "as_given.off").string();
+  EXPECT_EQ(run("--write-repaired " + shell_quote(open_out) + " " + shell_quote(path)).exit_code, 1);
+  EXPECT_TRUE(fs::exists(open_out));
+  EXPECT_EQ(run("--write-repaired out.ply " + shell_quote(path)).exit_code, 2);
+}

@@ -257,6 +257,22 @@ inline Mesh open_cube() {
   return m;
 }
 
+// The box [0,2]x[0,1]x[0,1] whose bottom is two unit squares: their shared corners (1,0,0) and
+// (1,1,0) lie inside the bottom edges of the front and back faces, which are single quads
+// (T-junctions: open without Options::repair; the bad-input table's mesh_t_junction).
+inline Mesh t_junction_box() {
+  Mesh m;
+  m.positions = {0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0};
+  // 0..7 the box's corners, 8 = (1,0,0), 9 = (1,1,0)
+  m.indices = {0, 3, 9, 8, 8, 9, 2, 1,  // bottom: two squares, seen from below
+               4, 5, 6, 7,              // top
+               0, 1, 5, 4,              // front (y = 0): one quad over the split edge 0-8-1
+               2, 3, 7, 6,              // back (y = 1): over 2-9-3
+               1, 2, 6, 5, 3, 0, 4, 7};
+  m.face_sizes = {4, 4, 4, 4, 4, 4, 4};
+  return m;
+}
+
 // Two unit cubes sharing only the edge x = 1, y = 1 (same vertex ids): non-manifold.
 inline Mesh cubes_sharing_edge() {
   Mesh a = unit_cube();

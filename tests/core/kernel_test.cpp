@@ -405,6 +405,75 @@ TEST(Kernel, NotStarShapedIsEmpty) {
   }
 }
 
+// The witness of an empty kernel on shapes whose answer is known: the U's inner walls (x = 1
+// facing +x, x = 2 facing -x: x <= 1 and x >= 2 inside), also with the U's top face removed
+// (allow_open), and for two disjoint cubes a face of each on facing planes. Each face named is the
+// lowest-indexed one in its plane. (The oracle test checks witnesses of real meshes.)
+namespace {
+// The axis and coordinate of an axis-aligned face (all corners share it), or -1.
+std::pair<int, double> axis_plane(const Mesh& m, uint32_t face) {
+  size_t at = 0;
+  for (uint32_t f = 0; f < face; ++f) at += m.face_sizes.empty() ? 3 : m.face_sizes[f];
+  const size_t k = m.face_sizes.empty() ? 3 : m.face_sizes[face];
+  for (int axis = 0; axis < 3; ++axis) {
+    const double c = m.positions[3 * size_t(m.indices[at]) + axis];
+    bool all = true;
+    for (size_t i = 1; i < k; ++i) all &= m.positions[3 * size_t(m.indices[at + i]) + axis] == c;
+    if (all) return {axis, c};
+  }
+  return {-1, 0};
+}
+}  // namespace
+
+TEST(Kernel, WitnessOfKnownShapes) {
+  const Mesh u = u_prism();
+  Mesh open_u = u;  // without its top face (the one at z = 1)
+  {
+    open_u.indices.clear();
+    open_u.face_sizes.clear();
+    size_t at = 0;
+    for (size_t f = 0; f < u.num_faces(); ++f) {
+      const size_t k = u.face_sizes[f];
+      if (axis_plane(u, uint32_t(f)) != std::pair<int, double>{2, 1.0}) {
+        open_u.indices.insert(open_u.indices.end(), u.indices.begin() + long(at), u.indices.begin() + long(at + k));
+        open_u.face_sizes.push_back(uint32_t(k));
+      }
+      at += k;
+    }
+    ASSERT_EQ(open_u.num_faces() + 1, u.num_faces());
+  }
+  Options open;
+  open.allow_open = true;
+  for (const auto& [m, o] : {std::pair<const Mesh&, Options>{u, {}}, {open_u, open}}) {
+    const Kernel k = run(m, o);
+    ASSERT_TRUE(k.ok()) << k.message;
+    EXPECT_EQ(k.type, KernelType::Empty);
+    ASSERT_EQ(k.witness_faces.size(), 2u);
+    EXPECT_EQ(axis_plane(m, k.witness_faces[0]).first, 0);
+    EXPECT_EQ(axis_plane(m, k.witness_faces[1]).first, 0);
+    std::set<double> walls = {axis_plane(m, k.witness_faces[0]).second, axis_plane(m, k.witness_faces[1]).second};
+    EXPECT_EQ(walls, (std::set<double>{1, 2}));
+    EXPECT_EQ(find_kernel_point(m.view(), o).witness_faces, k.witness_faces);
+  }
+  Mesh cubes = unit_cube();
+  const Mesh far = box(5, 0, 0, 6, 1, 1);
+  const uint32_t base = uint32_t(cubes.num_vertices());
+  cubes.positions.insert(cubes.positions.end(), far.positions.begin(), far.positions.end());
+  for (uint32_t v : far.indices) cubes.indices.push_back(v + base);
+  const Kernel two = run(cubes);
+  ASSERT_TRUE(two.ok()) << two.message;
+  ASSERT_EQ(two.witness_faces.size(), 2u);
+  EXPECT_EQ(axis_plane(cubes, two.witness_faces[0]), (std::pair<int, double>{0, 1.0}));  // the first cube's x = 1
+  EXPECT_EQ(axis_plane(cubes, two.witness_faces[1]), (std::pair<int, double>{0, 5.0}));  // the second's x = 5
+  for (uint32_t f = 0; f < two.witness_faces[0]; ++f)
+    EXPECT_NE(axis_plane(cubes, f), axis_plane(cubes, two.witness_faces[0]));
+  for (uint32_t f = 0; f < two.witness_faces[1]; ++f)
+    EXPECT_NE(axis_plane(cubes, f), axis_plane(cubes, two.witness_faces[1]));
+  // Star-shaped: no witness.
+  EXPECT_TRUE(run(unit_cube()).witness_faces.empty());
+  EXPECT_TRUE(find_kernel_point(l_prism().view()).witness_faces.empty());
+}
+
 TEST(Kernel, OpenCube) {
   Mesh m = open_cube();
   Kernel k = run(m);

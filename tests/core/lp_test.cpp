@@ -72,6 +72,40 @@ TEST(Lp, InfeasibleWhenNotStarShaped) {
     EXPECT_EQ(solve_lp(*p.ps, p.all, c, 8, seed).outcome, LpResult::Outcome::Infeasible);
 }
 
+// The conflict of an infeasible LP: two to four face planes, proven disjoint and each needed by
+// exact Farkas weights. The U's inner walls (x <= 1 inside the left prong, x >= 2 inside the
+// right one) are the only pair of planes with no common point, whatever the order; so on the
+// U prism every conflict is that pair.
+TEST(Lp, ConflictIsAMinimalDisjointSet) {
+  const Mesh shapes[] = {kergen_test::u_prism(), kergen_test::torus(), kergen_test::s_prism(),
+                         kergen_test::pinwheel_prism()};
+  double c[3] = {1, 1, 1};
+  int conflicts = 0;
+  for (const Mesh& m : shapes) {
+    Planes p(m);
+    for (uint64_t seed = 0; seed < 10; ++seed) {
+      const LpResult r = solve_lp(*p.ps, p.all, c, 8, seed);
+      if (r.outcome != LpResult::Outcome::Infeasible) continue;
+      ASSERT_GE(r.conflict.size(), 2u);
+      ASSERT_LE(r.conflict.size(), 4u);
+      std::vector<PlaneCoef<Expansion>> planes;
+      for (const auto& t : r.conflict)
+        planes.push_back(exact_plane(p.mesh.point(t[0]), p.mesh.point(t[1]), p.mesh.point(t[2]), p.mesh.exact_shift));
+      EXPECT_TRUE(halfspaces_disjoint(planes.data(), planes.size())) << "seed " << seed;
+      if (&m == &shapes[0]) {
+        ASSERT_EQ(r.conflict.size(), 2u);
+        for (const auto& t : r.conflict) {  // both walls are vertical planes at x = 1 or x = 2
+          const double x = p.mesh.to_input(p.mesh.point(t[0])[0]);
+          EXPECT_TRUE(x == 1 || x == 2);
+          for (int k = 1; k < 3; ++k) EXPECT_EQ(p.mesh.point(t[k])[0], p.mesh.point(t[0])[0]);
+        }
+      }
+      ++conflicts;
+    }
+  }
+  EXPECT_GE(conflicts, 20);
+}
+
 TEST(LpHint, PlanesOfTheGuessPassThroughTheExactOptimum) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> N(0, 1);

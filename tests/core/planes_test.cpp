@@ -266,3 +266,53 @@ TEST(Planes, DDCoordinatesOfNearlyCoplanarTriplesMatchExpansions) {
 }
 
 }  // namespace
+
+// halfspaces_disjoint on constructed sets with known answers: planes n . x + d <= 0 with small
+// integer coefficients (exact as given).
+namespace {
+PlaneCoef<Expansion> plane(double nx, double ny, double nz, double d) {
+  return {{Expansion(nx), Expansion(ny), Expansion(nz)}, Expansion(d)};
+}
+}  // namespace
+
+TEST(Planes, HalfspacesDisjointOnConstructedSets) {
+  struct Case {
+    const char* what;
+    std::vector<PlaneCoef<Expansion>> planes;
+    bool disjoint;
+  };
+  const Case cases[] = {
+      {"slab z <= 0, z >= 1", {plane(0, 0, 1, 0), plane(0, 0, -2, 2)}, true},
+      {"z <= 0, z >= 0 (a common plane)", {plane(0, 0, 1, 0), plane(0, 0, -1, 0)}, false},
+      {"z <= 1, z >= 0", {plane(0, 0, 1, -1), plane(0, 0, -1, 0)}, false},
+      {"z <= 0 twice (same side)", {plane(0, 0, 1, 0), plane(0, 0, 3, 1)}, false},
+      {"crossing planes", {plane(1, 0, 0, 5), plane(0, 1, 0, 5)}, false},
+      {"x <= -1, y <= -1, x + y >= 1", {plane(1, 0, 0, 1), plane(0, 1, 0, 1), plane(-1, -1, 0, 1)}, true},
+      {"x <= 1, y <= 1, x + y >= 1 (a triangle prism)",
+       {plane(1, 0, 0, -1), plane(0, 1, 0, -1), plane(-1, -1, 0, 1)},
+       false},
+      {"three with a disjoint pair (not minimal)", {plane(0, 0, 1, 0), plane(0, 0, -1, 1), plane(1, 0, 0, 0)}, false},
+      {"three parallel", {plane(0, 0, 1, 0), plane(0, 0, -1, 1), plane(0, 0, 2, 0)}, false},
+      {"inside-out tetrahedron",
+       {plane(1, 1, 1, 1), plane(1, -1, -1, 1), plane(-1, 1, -1, 1), plane(-1, -1, 1, 1)},
+       true},
+      {"tetrahedron", {plane(1, 1, 1, -1), plane(1, -1, -1, -1), plane(-1, 1, -1, -1), plane(-1, -1, 1, -1)}, false},
+      {"tetrahedron of one point",
+       {plane(1, 1, 1, 0), plane(1, -1, -1, 0), plane(-1, 1, -1, 0), plane(-1, -1, 1, 0)},
+       false},
+      {"four with a disjoint pair (not minimal)",
+       {plane(0, 0, 1, 0), plane(0, 0, -1, 1), plane(1, 0, 0, 0), plane(0, 1, 0, 0)},
+       false},
+      {"four of rank 2", {plane(1, 0, 0, 1), plane(0, 1, 0, 1), plane(-1, -1, 0, 1), plane(1, 1, 0, 1)}, false},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(halfspaces_disjoint(c.planes.data(), c.planes.size()), c.disjoint) << c.what;
+    // The answer does not depend on the order of the planes, nor on positive scales.
+    std::vector<PlaneCoef<Expansion>> turned(c.planes.rbegin(), c.planes.rend());
+    for (auto& p : turned) {
+      for (auto& n : p.n) n = n * Expansion(3);
+      p.d = p.d * Expansion(3);
+    }
+    EXPECT_EQ(halfspaces_disjoint(turned.data(), turned.size()), c.disjoint) << c.what << " (reversed, scaled)";
+  }
+}

@@ -983,7 +983,8 @@ TEST(RegressionValidation, OpenMeshNamesTheSmallestBoundaryEdge) {
   EXPECT_EQ(k.error, kergen::Error::OpenMesh);
   EXPECT_EQ(k.message,
             "the mesh is open: 6 edge(s) belong to one face only, e.g. edge (0, 1) (Options::weld merges nearly "
-            "coincident vertices, Options::repair also splits T-junctions; Options::allow_open accepts open meshes)");
+            "coincident vertices, Options::repair also splits T-junctions; Options::allow_open accepts open meshes); "
+            "Options::open_boundary bounds such a surface's kernel by walls at its boundary edges");
 }
 
 TEST(RegressionValidation, InconsistentOrientationNamesTheSmallestEdge) {

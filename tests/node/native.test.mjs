@@ -1,6 +1,6 @@
 // The wasm build gives the same answers as the native CLI (`build/kergen --json FILE`) on the
-// shared real meshes: same status (or the same error code) and the same volume within 1e-9
-// relative. The OFF files are read here by a separate test-only JS parser.
+// shared real meshes: same status (or the same error code), the same volume within 1e-9
+// relative and the same witness faces of an empty kernel. The OFF files are read here by a separate test-only JS parser.
 import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -43,7 +43,7 @@ function runWasm(file) {
   }
   try {
     const r = K.computeKernelSync(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes ?? undefined });
-    return { status: r.status, volume: r.volume };
+    return { status: r.status, volume: r.volume, witnessFaces: Array.from(r.witnessFaces) };
   } catch (err) {
     if (!(err instanceof K.KergenError)) throw err;
     return { error: err.code, message: err.message };
@@ -83,6 +83,10 @@ function compareFolder(folder) {
       const scale = Math.max(Math.abs(n.volume), Math.abs(w.volume));
       if (Math.abs(n.volume - w.volume) > 1e-9 * scale) {
         problems.push(`${name}: volume native ${n.volume} vs wasm ${w.volume}`);
+        continue;
+      }
+      if (JSON.stringify(n.witness_faces) !== JSON.stringify(w.witnessFaces)) {
+        problems.push(`${name}: witness faces native ${JSON.stringify(n.witness_faces)} vs wasm ${JSON.stringify(w.witnessFaces)}`);
         continue;
       }
       agree++;

@@ -54,9 +54,11 @@ function runPackage(file) {
 // Each front end names the options a message suggests in its own words (CLI flags, JS option
 // names); the rest of the message is the core's and must be the same.
 const cliWords = (m) =>
-  m.replaceAll('--weld', '<weld>').replaceAll('--allow-open', '<allowOpen>').replaceAll('--repair', '<repair>');
+  m.replaceAll('--weld', '<weld>').replaceAll('--allow-open', '<allowOpen>').replaceAll('--repair', '<repair>')
+    .replaceAll('--open perpendicular', '<open>');
 const jsWords = (m) =>
-  m.replaceAll('weld: true', '<weld>').replaceAll('allowOpen: true', '<allowOpen>').replaceAll('repair: true', '<repair>');
+  m.replaceAll('weld: true', '<weld>').replaceAll('allowOpen: true', '<allowOpen>').replaceAll('repair: true', '<repair>')
+    .replaceAll("open: 'perpendicular'", '<open>');
 
 // Differences between the CLI's and the package's outcome for one file ('' when they agree).
 function compareOutcome(file) {

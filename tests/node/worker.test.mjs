@@ -268,3 +268,35 @@ test('a worker that cannot start rejects the pending calls once and is not resta
   const m = box();
   assert.equal((await kw.compute(m.positions, m.indices)).volume, 1, 'a working Worker works as before');
 });
+
+test('the worker forwards open and repair', async () => {
+  const b = box();
+  const openCube = b.indices.slice(0, b.indices.length - 6); // without the x = 1 side: a hole
+  const kw = newWorker();
+  const walled = await kw.compute(b.positions, openCube, { copy: true, open: 'perpendicular' });
+  const expected = K.computeKernelSync(b.positions, openCube, { open: 'perpendicular' });
+  assert.equal(walled.status, expected.status);
+  assert.equal(walled.volume, expected.volume);
+  // The bad-input table's T-junction box: open as given, the box with repair.
+  const t = {
+    positions: Float64Array.from([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]),
+    indices: Uint32Array.from([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]),
+    faceSizes: Uint32Array.from([4, 4, 4, 4, 4, 4, 4]),
+  };
+  const repaired = await kw.compute(t.positions, t.indices, { copy: true, faceSizes: t.faceSizes, repair: true });
+  assert.equal(repaired.volume, 2);
+});
+
+test('repairMesh in the worker equals repairMeshSync', async () => {
+  const t = {
+    positions: Float64Array.from([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]),
+    indices: Uint32Array.from([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]),
+    faceSizes: Uint32Array.from([4, 4, 4, 4, 4, 4, 4]),
+  };
+  const expected = K.repairMeshSync(t.positions, t.indices, { faceSizes: t.faceSizes, repair: true });
+  const kw = newWorker();
+  const r = await kw.repairMesh(t.positions, t.indices, { faceSizes: t.faceSizes, repair: true });
+  assert.deepEqual(r, expected);
+  assert.equal(r.error, null);
+  await assert.rejects(kw.repairMesh(t.positions, Uint32Array.from([0, 1, 99]), {}), (e) => e.code === 'INDEX_OUT_OF_RANGE');
+});

@@ -120,7 +120,98 @@ std::vector<Triangle> split_like_core(const std::vector<Vec>& P, const double* p
   return out;
 }
 
+// Whether the half-spaces n . x + d <= 0 have a common point (exact LP, free variables, no
+// objective).
+bool have_common_point(const std::vector<Plane>& planes) {
+  CGAL::Quadratic_program<NT> lp(CGAL::SMALLER, false, NT(0), false, NT(0));
+  for (size_t i = 0; i < planes.size(); ++i) {
+    for (int a = 0; a < 3; ++a) lp.set_a(a, static_cast<int>(i), planes[i].n[a]);
+    lp.set_b(static_cast<int>(i), -planes[i].d);
+  }
+  return !CGAL::solve_linear_program(lp, NT()).is_infeasible();
+}
+
 }  // namespace
+
+WitnessCheck check_witness(const kergen::Mesh& mesh, const std::vector<uint32_t>& faces) {
+  WitnessCheck r;
+  const size_t nf = mesh.num_faces();
+  if (faces.empty() || faces.size() > 4) {
+    r.message = std::to_string(faces.size()) + " witness faces (expected 1 to 4)";
+    return r;
+  }
+  std::vector<Vec> P(mesh.num_vertices());
+  for (size_t v = 0; v < P.size(); ++v)
+    for (int k = 0; k < 3; ++k) P[v][k] = NT(mesh.positions[3 * v + k]);
+  std::vector<size_t> offset(nf + 1, 0);
+  for (size_t f = 0; f < nf; ++f) offset[f + 1] = offset[f] + (mesh.face_sizes.empty() ? 3 : mesh.face_sizes[f]);
+  NT vol6 = 0;  // the orientation, as oracle_kernel decides it
+  for (size_t f = 0; f < nf; ++f) {
+    const uint32_t* loop = mesh.indices.data() + offset[f];
+    for (size_t j = 1; j + 2 <= offset[f + 1] - offset[f]; ++j)
+      vol6 = vol6 + dot(P[loop[0]], cross(P[loop[j]], P[loop[j + 1]]));
+  }
+  const bool flipped = CGAL::is_negative(vol6);
+  std::vector<std::vector<Plane>> face_planes;
+  for (uint32_t f : faces) {
+    if (f >= nf) {
+      r.message = "witness face " + std::to_string(f) + " does not exist";
+      return r;
+    }
+    std::vector<uint32_t> loop(mesh.indices.begin() + long(offset[f]), mesh.indices.begin() + long(offset[f + 1]));
+    if (flipped) std::reverse(loop.begin(), loop.end());
+    const Vec& p0 = P[loop[0]];
+    Vec n{NT(0), NT(0), NT(0)};
+    for (size_t j = 1; j + 1 < loop.size(); ++j) {
+      const Vec c = cross(sub(P[loop[j]], p0), sub(P[loop[j + 1]], p0));
+      for (int a = 0; a < 3; ++a) n[a] = n[a] + c[a];
+    }
+    bool planar = !is_zero(n);
+    for (size_t j = 3; planar && j < loop.size(); ++j) planar = CGAL::is_zero(dot(n, sub(P[loop[j]], p0)));
+    std::vector<Plane> planes;
+    if (planar) {
+      planes.push_back({n, -dot(n, p0)});
+    } else {
+      ++r.non_planar_faces;
+      for (const Triangle& t : split_like_core(P, mesh.positions.data(), loop)) {
+        const Vec c = cross(sub(P[t[1]], P[t[0]]), sub(P[t[2]], P[t[0]]));
+        if (!is_zero(c)) planes.push_back({c, -dot(c, P[t[0]])});
+      }
+    }
+    if (planes.empty()) {
+      r.message = "witness face " + std::to_string(f) + " has no plane (zero area)";
+      return r;
+    }
+    r.planes += planes.size();
+    face_planes.push_back(std::move(planes));
+  }
+  // One plane per face (a non-planar face stands for one of its triangles' planes): some choice
+  // must be disjoint, and minimal.
+  size_t choices = 1;
+  for (const auto& planes : face_planes) choices *= planes.size();
+  std::string why = "the witness faces' half-spaces have a common point";
+  for (size_t choice = 0; choice < choices && choices <= 4096; ++choice) {
+    std::vector<Plane> chosen;
+    for (size_t i = 0, c = choice; i < face_planes.size(); c /= face_planes[i].size(), ++i)
+      chosen.push_back(face_planes[i][c % face_planes[i].size()]);
+    if (have_common_point(chosen)) continue;
+    bool minimal = true;
+    for (size_t i = 0; i < chosen.size() && minimal; ++i) {
+      std::vector<Plane> others = chosen;
+      others.erase(others.begin() + long(i));
+      if (!have_common_point(others)) {
+        minimal = false;
+        why = "not minimal: the half-spaces are disjoint without face " + std::to_string(faces[i]);
+      }
+    }
+    if (minimal) {
+      r.ok = true;
+      return r;
+    }
+  }
+  r.message = why;
+  return r;
+}
 
 const char* verdict_name(Verdict v) {
   switch (v) {
@@ -167,7 +258,7 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
     }
 
   // ---- topology: every directed edge once, its reverse once; one connected piece -----------
-  {
+  if (!options.half_spaces_only) {
     std::unordered_map<uint64_t, uint32_t> directed;
     std::vector<uint32_t> parent(nv);
     for (uint32_t v = 0; v < nv; ++v) parent[v] = v;
@@ -249,11 +340,11 @@ OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& option
       non_planar.emplace_back(loop, loop + k);
     }
   }
-  if (CGAL::is_zero(vol6)) {
+  if (CGAL::is_zero(vol6) && !options.half_spaces_only) {
     r.message = "the mesh encloses no volume";
     return r;
   }
-  r.flipped = CGAL::is_negative(vol6);
+  r.flipped = CGAL::is_negative(vol6) && !options.half_spaces_only;
   r.shape_volume = std::abs(CGAL::to_double(vol6)) / 6.0;
   if (r.flipped)
     for (Plane& p : planes) {

@@ -32,6 +32,11 @@ const char* verdict_name(Verdict v);
 
 struct OracleOptions {
   bool build_polyhedron = true;  // false: LP verdict only (no halfspace_intersection_3)
+  // The faces as given are only half-spaces (each face's plane, inner side behind its
+  // counter-clockwise front): no topology check and no orientation flip, so an open surface and
+  // extra planes (boundary walls given as triangles) can be given. Non-planar polygons are split
+  // as given.
+  bool half_spaces_only = false;
 };
 
 struct OracleResult {
@@ -52,6 +57,19 @@ struct OracleResult {
 };
 
 OracleResult oracle_kernel(const kergen::Mesh& mesh, const OracleOptions& options = {});
+
+// A non-star witness checked here, independently of the library: `faces` (indices into the
+// mesh's faces) are at most four, the inner half-spaces of their planes have no common point
+// (exact LP: infeasible), and without any one of the faces the others' have one (minimal).
+// Planes as above: a planar face's exact normal, a non-planar face's split (it stands for one of
+// its triangles' planes: some choice must pass), oriented by the exact enclosed volume.
+struct WitnessCheck {
+  bool ok = false;  // all of the above holds
+  std::string message;
+  size_t planes = 0;            // planes of the witness faces (all triangles of non-planar ones)
+  size_t non_planar_faces = 0;  // witness faces that stand for their split's planes
+};
+WitnessCheck check_witness(const kergen::Mesh& mesh, const std::vector<uint32_t>& faces);
 
 // Axis-aligned bounding-box diagonal of the mesh's vertices.
 double bbox_diagonal(const kergen::Mesh& mesh);

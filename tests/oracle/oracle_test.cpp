@@ -448,3 +448,215 @@ TEST(OracleGenerated, NearConvexSpheres) {
   }
   std::printf("[generated] %d near-convex spheres checked against the oracle\n", checked);
 }
+
+// ---- The non-star witness (Kernel::witness_faces), checked by the oracle ------------------------
+// Every empty kernel must come with a witness, and check_witness (its own planes, an exact LP)
+// must find the witness faces' half-spaces disjoint and each face needed. find_kernel_point runs
+// the same LP and must name the same faces.
+namespace {
+
+struct WitnessReport {
+  std::string name;
+  size_t meshes = 0, refused = 0, empty = 0, certified = 0, non_planar = 0;
+  size_t by_size[5] = {0, 0, 0, 0, 0};
+  std::vector<std::string> failures;
+
+  void check(const std::string& what, const kergen::Mesh& mesh, const kergen::Options& options = {},
+             bool print = false) {
+    ++meshes;
+    const kergen::Kernel k = kergen::compute_kernel(mesh.view(), options);
+    if (!k.ok()) {  // refused input: no kernel, no witness
+      ++refused;
+      return;
+    }
+    if (k.type != kergen::KernelType::Empty) {
+      if (!k.witness_faces.empty()) fail(what, "a witness for a non-empty kernel");
+      return;
+    }
+    ++empty;
+    const kergen::KernelPoint p = kergen::find_kernel_point(mesh.view(), options);
+    if (p.witness_faces != k.witness_faces) fail(what, "find_kernel_point names other faces");
+    if (k.witness_faces.empty()) return fail(what, "empty kernel without a witness");
+    const kergen_oracle::WitnessCheck c = kergen_oracle::check_witness(mesh, k.witness_faces);
+    if (!c.ok) return fail(what, c.message);
+    ++certified;
+    ++by_size[k.witness_faces.size()];
+    non_planar += c.non_planar_faces;
+    if (print) {
+      std::printf("  %-32s %6zu faces  witness", what.c_str(), mesh.num_faces());
+      for (uint32_t f : k.witness_faces) std::printf(" %u", f);
+      std::printf("  (%zu planes, disjoint and minimal)\n", c.planes);
+    }
+  }
+  void fail(const std::string& what, const std::string& why) {
+    ADD_FAILURE() << what << ": " << why;
+    failures.push_back(what + ": " + why);
+  }
+  void print() const {
+    std::printf(
+        "[witness %s] %zu meshes (%zu refused), %zu empty kernels, %zu witnesses certified (of 2/3/4 faces: "
+        "%zu/%zu/%zu; "
+        "%zu non-planar faces), %zu failures\n",
+        name.c_str(), meshes, refused, empty, certified, by_size[2], by_size[3], by_size[4], non_planar,
+        failures.size());
+    EXPECT_EQ(certified, empty) << name;
+  }
+};
+
+kergen::Mesh read_or_fail(const fs::path& file) {
+  kergen::ReadResult rr = kergen::read_mesh_file(file.string());
+  EXPECT_TRUE(rr.ok()) << file << ": " << rr.message;
+  return rr.mesh;
+}
+
+// A UV sphere (each ring of vertices turned by `twist` from the one before) stretched along z to
+// length 6, radius 1, and bent into an arc of `theta` radians. Below ~4.7 radians it is
+// star-shaped; above, its ends hide from each other. (A sphere whose vertices move along their
+// radius only stays star-shaped: its centre sees every face; so do peanuts.)
+kergen::Mesh arc_capsule(int nu, int nv, double twist, double theta) {
+  const double R = 6 / theta;  // the arc's radius: the axis, of length 6, spans theta
+  kergen::Mesh m = kergen_test::uv_sphere(nu, nv, twist);
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    double* p = &m.positions[3 * v];
+    const double phi = 3 * p[2] / R, r = R + p[0];
+    p[0] = r * std::cos(phi) - R;
+    p[2] = r * std::sin(phi);
+  }
+  return m;
+}
+
+// Mostly non-star meshes: arcs of 4.2 to 5.8 radians (about 240 to 330 degrees) with random
+// twists, and every vertex moved by a random vector of up to `jitter` in each coordinate (the
+// surface may then cross itself; the witness is about the faces' half-spaces only).
+kergen::Mesh bent_capsule(uint32_t seed, int nu, int nv) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  const double theta = 4.2 + 1.6 * U(rng);
+  const double twist = 2 * U(rng);
+  const double jitter = 0.05 * U(rng);
+  kergen::Mesh m = arc_capsule(nu, nv, twist, theta);
+  for (double& x : m.positions) x += jitter * (2 * U(rng) - 1);
+  return m;
+}
+
+}  // namespace
+
+TEST(OracleWitness, SharedNonStarMeshes) {
+  REQUIRE_MESHES("princeton");
+  WitnessReport rep{"shared meshes"};
+  std::vector<fs::path> files = files_in(kMeshes / "princeton", ".off");
+  for (const char* ext : {".off", ".stl", ".ply", ".obj"}) {
+    auto more = files_in(kMeshes / "fixtures", ext);
+    files.insert(files.end(), more.begin(), more.end());
+  }
+  files.push_back(kMeshes / "fixtures" / "bad" / "bad-stl-tardis.stl");
+  for (const fs::path& f : files) {
+    if (!fs::exists(f)) continue;
+    rep.check(fs::relative(f, kMeshes).generic_string(), read_or_fail(f), {}, true);
+  }
+  rep.print();
+  // labels.tsv's non-star meshes that we read: princeton 1, 10, 100, 200, 300 and nine fixtures,
+  // plus the tardis STL.
+  EXPECT_GE(rep.empty, 15u);
+}
+
+TEST(OracleWitness, PolyhedraHaveNone) {
+  REQUIRE_MESHES("polyhedra");
+  WitnessReport rep{"polyhedra"};
+  for (const fs::path& f : polyhedra(1)) rep.check(fs::relative(f, kMeshes).generic_string(), read_or_fail(f));
+  rep.print();  // (every one of them is star-shaped: this checks that none gets a witness)
+  EXPECT_GT(rep.meshes, 0u);
+}
+
+TEST(OracleWitness, GeneratedShapes) {
+  WitnessReport rep{"generated"};
+  for (uint32_t seed = 0; seed < 200; ++seed)
+    rep.check("bent_capsule(" + std::to_string(seed) + ")", bent_capsule(seed, 8 + int(seed % 9), 6 + int(seed % 6)));
+  // Tori (never star-shaped), some of them with jittered vertices.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(0, 1);
+  for (int i = 0; i < 50; ++i) {
+    const int nu = 6 + i % 13, nv = 3 + i % 7;
+    const double R = 1 + U(rng), r = 0.1 + 0.8 * U(rng), jitter = i % 2 ? 0.02 * U(rng) : 0;
+    kergen::Mesh t = kergen_test::torus(nu, nv, R, r);
+    for (double& x : t.positions) x += jitter * (2 * U(rng) - 1);
+    rep.check("torus(" + std::to_string(i) + ")", t);
+  }
+  rep.print();
+  EXPECT_GT(rep.empty, 150u);
+}
+
+// Large capsules bent to about the arc where they stop being star-shaped (~4.7 radians): the
+// face-sample LP then often finds a point and the LP of the kept planes decides; without face
+// culling the LP runs on all ~9,400 planes, in Clarkson's rounds on subsets.
+TEST(OracleWitness, GeneratedNearTheThreshold) {
+  WitnessReport rep{"near the threshold"};
+  size_t late = 0;
+  for (int i = 0; i < 12; ++i) {
+    const double theta = 4.64 + 0.01 * i;
+    const kergen::Mesh m = arc_capsule(80, 60, 0, theta);
+    for (const bool cull : {true, false}) {
+      kergen::Options o;
+      o.cull_faces = cull;
+      rep.check("arc_capsule(" + std::to_string(theta) + (cull ? ")" : ", no culling)"), m, o);
+      const kergen::Kernel k = kergen::compute_kernel(m.view(), o);
+      late += k.type == kergen::KernelType::Empty && k.stats.distinct_planes > 0;  // (0: the sample's LP decided)
+    }
+  }
+  rep.print();
+  std::printf("  %zu empty kernels decided by the LP of the mesh's planes (not the face sample's)\n", late);
+  EXPECT_GT(rep.empty, 0u);
+  EXPECT_GT(late, 0u);
+}
+
+// Witness faces are the input's: faces dropped (fewer than three distinct corners), split
+// (non-planar polygons), welded (a triangle soup) or repaired (duplicates) before the planes are
+// built keep their input numbering.
+TEST(OracleWitness, InputFaceNumbering) {
+  WitnessReport rep{"renumbered inputs"};
+  kergen::Mesh u = kergen_test::u_prism();  // planar polygons
+  rep.check("u_prism", u, {}, true);
+  // Collapsed faces first: dropped before validation, so every later face moves.
+  kergen::Mesh collapsed = u;
+  for (uint32_t i = 0; i < 3; ++i) kergen_test::add_face(collapsed, {i, i + 1, i});
+  std::rotate(collapsed.face_sizes.begin(), collapsed.face_sizes.end() - 3, collapsed.face_sizes.end());
+  std::rotate(collapsed.indices.begin(), collapsed.indices.end() - 9, collapsed.indices.end());
+  rep.check("u_prism with collapsed faces first", collapsed, {}, true);
+  // Non-planar quads: a bent capsule's triangles paired into quads (split back by the core).
+  for (uint32_t seed = 0; seed < 20; ++seed) {
+    kergen::Mesh tri = bent_capsule(seed, 8, 8), quads;
+    quads.positions = tri.positions;
+    const size_t nt = tri.num_faces(), nu = 8;
+    for (size_t f = 0; f < nt; ++f) {
+      const uint32_t* t = &tri.indices[3 * f];
+      const bool band = f >= nu && f + nu < nt;  // the bands' triangle pairs share a diagonal
+      if (band && (f - nu) % 2 == 0) {
+        const uint32_t* s = t + 3;  // (i,j), (i,j+1), (i+1,j+1) then (i,j), (i+1,j+1), (i+1,j)
+        kergen_test::add_face(quads, {t[0], t[1], t[2], s[2]});
+        ++f;
+      } else {
+        kergen_test::add_face(quads, {t[0], t[1], t[2]});
+      }
+    }
+    rep.check("bent capsule quads(" + std::to_string(seed) + ")", quads);
+  }
+  // A triangle soup (every corner its own vertex), welded.
+  for (uint32_t seed = 0; seed < 20; ++seed) {
+    kergen::Mesh tri = bent_capsule(seed, 8, 8), soup;
+    for (uint32_t c : tri.indices) {
+      soup.positions.insert(soup.positions.end(), &tri.positions[3 * size_t(c)], &tri.positions[3 * size_t(c)] + 3);
+      soup.indices.push_back(uint32_t(soup.indices.size()));
+    }
+    kergen::Options weld;
+    weld.weld = 0;
+    rep.check("welded soup(" + std::to_string(seed) + ")", soup, weld);
+    // Repeated faces (the first ten again), removed by repair.
+    kergen::Mesh repeated = tri;
+    repeated.indices.insert(repeated.indices.begin(), tri.indices.begin(), tri.indices.begin() + 30);
+    kergen::Options repair;
+    repair.repair = true;
+    rep.check("repaired copies(" + std::to_string(seed) + ")", repeated, repair);
+  }
+  rep.print();
+  EXPECT_GT(rep.empty, 20u);
+}

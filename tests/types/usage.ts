@@ -10,7 +10,10 @@ import {
   readMesh,
   readMeshSync,
   writeMesh,
+  repairMesh,
+  repairMeshSync,
   KergenError,
+  type RepairedMesh,
   type KernelPhase,
   type KernelProgress,
   type MeshData,
@@ -76,6 +79,15 @@ async function main(): Promise<void> {
   const off: Uint8Array = writeMesh({ positions: [0, 0, 0, 1, 0, 0, 0, 1, 0], indices: [0, 1, 2] }, 'off');
   void [sizes, obj, stl, off];
 
+  // The repaired mesh: a MeshData with warnings and validation's verdict, ready for writeMesh.
+  const repaired: RepairedMesh = await repairMesh(read.positions, read.indices, { faceSizes: read.faceSizes, repair: true });
+  const verdict: string | null = repaired.error;
+  const saved: Uint8Array = writeMesh(repaired, 'off');
+  const again2 = repairMeshSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2], { weld: true, open: 'perpendicular' });
+  void [verdict, saved, again2.warnings, repaired.message];
+  const walled: KernelResult = await computeKernel(positions, indices, { open: 'perpendicular' });
+  void walled;
+
   const sync = computeKernelSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2], { allowOpen: true, faceSizes: [3] });
   const complete: boolean = sync.complete;
   const kp = await findKernelPoint(positions, indices, { from: [0, 0, 0] });
@@ -83,9 +95,12 @@ async function main(): Promise<void> {
     const [x, y, z] = kp.point;
     void (x + y + z);
   }
+  // Why a shape is not star-shaped: input face indices (empty unless the kernel is empty).
+  const why: Uint32Array = kp.starShaped ? new Uint32Array(0) : kp.witnessFaces;
+  const whyToo: Uint32Array = sync.witnessFaces;
   const star: boolean = await isStarShaped(positions, indices);
   const heap: number = memoryStats().heapUsed + memoryStats().heapSize;
-  void [complete, star, heap];
+  void [complete, why, whyToo, star, heap];
 
   try {
     await computeKernel([NaN], [0]);
@@ -111,6 +126,8 @@ async function main(): Promise<void> {
   const positions64: Float64Array = mesh.positions;
   void [positions64, fileKernel.volume];
   const stlBytes: Uint8Array = await worker.writeMesh(fileKernel, 'stl');
+  const inWorker: RepairedMesh = await worker.repairMesh(positions, indices, { repair: true, transfer: false });
+  void inWorker.error;
   void stlBytes;
   worker.cancel();
   worker.dispose();

@@ -66,9 +66,38 @@ enum class KernelType : int {
   Segment,     // two vertices, one edge
   Polygon,     // a flat convex polygon (one face, no volume)
   Polyhedron,  // a closed convex polyhedron
-  Unbounded,   // only with allow_open: the half-spaces do not bound a region; the result is
-               // clipped to a large box around the mesh (box facets are reported as such)
+  Unbounded,   // only for an open mesh (allow_open, open_boundary): the half-spaces do not bound
+               // a region; the result is clipped to a large box around the mesh
 };
+
+// What bounds the kernel of an open mesh (a surface with a boundary: edges used by one face only),
+// once it is accepted (Options::allow_open, or open_boundary = Perpendicular, which accepts it by
+// itself). Either way the faces keep their orientation as given (an open surface is never
+// flipped): the kernel lies on their inner sides, behind their counter-clockwise fronts.
+enum class OpenBoundary : int {
+  // The faces' half-spaces only: where they leave the region open (through the holes) it is
+  // clipped to a box twice the size of the mesh (KernelType::Unbounded).
+  Clip = 0,
+  // Also a wall at every boundary edge (Asiler & Sahillioglu 2024, Sec. 6.3): the plane through
+  // the edge perpendicular to its face, whose inner side holds the face. The kernel is then the
+  // set of points that see every face from its inner side and lie on the inner side of every
+  // boundary wall: bounded where the surface and its walls close around it (a bowl, a dome), and
+  // still Unbounded (clipped as above) where they leave a direction open: a flat patch (a disc,
+  // a single triangle: the prism behind it), or a patch whose walls spread apart behind it (a
+  // valley-shaped terrain). Empty when no point is behind every face and inside every wall.
+  //
+  // Exactness: a wall is the plane through the edge's two input points a, b and the point
+  // c = a + n, where n is the face's exact normal rounded to double, scaled by a power of two to
+  // a largest component in [1/32, 1/16) and rounded to a multiple of 2^-60 (in the units where
+  // the mesh lies within [-1, 1]^3); c is rounded to double. The wall thus holds the edge exactly
+  // and is within 2e-14 radians of the exact perpendicular (c - a is within 4e-16 of n, of length
+  // at least 1/32), and every predicate on it is exact, as on the faces' planes. A boundary edge
+  // whose face has no area (dropped: Warning::Kind::DegenerateFacesDropped) gets no wall. The
+  // walls count as planes in Stats (distinct_planes, active_planes), not as input faces. Like any
+  // open mesh, the surface is not certified against crossing itself (compute_kernel).
+  Perpendicular = 1,
+};
+const char* open_boundary_name(OpenBoundary o);  // "clip", "perpendicular" (CLI --open, JS `open`)
 
 const char* error_name(Error e);             // "OPEN_MESH", ...
 const char* kernel_type_name(KernelType t);  // "POLYHEDRON", ...
@@ -182,6 +211,9 @@ struct Options {
   // that one face uses, whose neighbours use its two halves, is inserted into that face's loop).
   // What is still open or non-manifold afterwards is refused as before.
   bool repair = false;
+  // How an open mesh's kernel is bounded (see OpenBoundary); Perpendicular accepts open meshes
+  // without allow_open. Closed meshes are not affected.
+  OpenBoundary open_boundary = OpenBoundary::Clip;
 };
 
 // How each front end names an Options field, for messages that suggest one: the library's
@@ -228,7 +260,8 @@ struct Stats {
       0;  // after merging the other faces' coplanar planes (a plane used from both sides counts twice)
   size_t active_planes = 0;  // planes left after culling (those that can touch the kernel)
   size_t traced_lines = 0;
-  size_t exact_fallbacks = 0;  // predicate evaluations the floating-point filter could not decide
+  size_t exact_fallbacks = 0;  // predicate evaluations the floating-point filter could not decide (the
+                               // search for an empty kernel's witness not counted)
   double ms_validate = 0, ms_planes = 0, ms_lp = 0, ms_trace = 0, ms_assemble = 0, ms_total = 0;
 };
 
@@ -239,6 +272,23 @@ struct StatsField {
   double value;
 };
 std::array<StatsField, 14> stats_fields(const Stats& s);
+
+// The witness of an empty kernel (Kernel::witness_faces, KernelPoint::witness_faces): at most
+// four faces whose inner half-spaces have no common point, so that no point sees all of them
+// from the inside. By Helly's theorem four suffice in 3D; the set is minimal (each face is
+// needed), found from the LP's infeasible constraints and checked with exact arithmetic before it
+// is given (Farkas weights: a positive combination of the faces' plane equations that is
+// positive everywhere). One face per plane: the lowest-indexed face lying in it with the same
+// inner side.
+//   Indices are those of the faces given in the MeshView, also with Options::weld and repair
+// (the plane is then that of the welded, repaired face); a non-planar polygon split into
+// triangles (Warning::Kind::NonPlanarFacesSplit) is named for its triangles' planes, once even
+// if two of them are in the set. Separate pieces (Warning::Kind::SeparateShells) get one too.
+// Empty when the kernel is not empty, and when no set of faces alone shows it: with
+// Options::allow_open, half-spaces that meet only outside the box the kernel is clipped to; with
+// OpenBoundary::Perpendicular, a conflict that needs a boundary wall (no input face); and, in
+// theory, faces whose planes meet only beyond ~2^100 times the mesh's size. Computed only for
+// an empty kernel (no cost otherwise).
 
 struct Kernel {
   Error error = Error::Ok;
@@ -256,6 +306,9 @@ struct Kernel {
   double area = 0;          // kernel surface area (Polygon: the polygon's area)
   double shape_volume = 0;  // volume enclosed by the input mesh
   double volume_ratio = 0;  // volume / shape_volume
+
+  // Why the kernel is Empty (see the witness above): input face indices, increasing.
+  std::vector<uint32_t> witness_faces;
 
   bool has_kernel_point = false;  // the LP vertex (a kernel vertex); false when Empty
   std::array<double, 3> kernel_point{};
@@ -282,8 +335,9 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options = {});
 struct KernelPoint {
   Error error = Error::Ok;
   std::string message;
-  bool star_shaped = false;       // kernel non-empty
-  std::array<double, 3> point{};  // a kernel vertex (when star_shaped)
+  bool star_shaped = false;             // kernel non-empty
+  std::array<double, 3> point{};        // a kernel vertex (when star_shaped)
+  std::vector<uint32_t> witness_faces;  // when not star_shaped: why (the witness above)
   std::vector<Warning> warnings;
 };
 KernelPoint find_kernel_point(const MeshView& mesh, const Options& options = {});
@@ -296,5 +350,20 @@ struct Validation {
   double volume = 0;  // enclosed volume after any orientation fix
 };
 Validation validate_mesh(const MeshView& mesh, const Options& options = {});
+
+// The mesh compute_kernel validates: the input after Options::weld and Options::repair (as they
+// are set in `options`), for saving what a kernel was computed on (io.h writes it). Faces keep
+// their orientation as given (validation may still flip the whole mesh: that is a warning here
+// too) and their corners (polygons are not split); vertices no face uses (the merged ones and any
+// the input had) are left out, the others keep their input order and coordinates.
+struct RepairedMesh {
+  Error error = Error::Ok;        // validation's verdict on the repaired mesh, as compute_kernel gives it
+  std::string message;            // (Ok, OpenMesh when still open, ...)
+  Mesh mesh;                      // filled whatever the verdict; empty when the input is malformed
+                                  // (indices out of range, non-finite coordinates, faces too small)
+  std::vector<Warning> warnings;  // what weld and repair did (with counts), then validation's
+  bool ok() const { return error == Error::Ok; }
+};
+RepairedMesh repair_mesh(const MeshView& mesh, const Options& options);
 
 }  // namespace kergen

@@ -207,4 +207,57 @@ int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, u
   return edge_in_facet_formula(ps.exact(p), ps.exact(q), ps.exact(h), ps.exact(s)).sign();
 }
 
+namespace {
+// Farkas weights w (all of one strict sign, made positive) for planes 0..k-1, from the normals'
+// null combination: true when they exist and sum w_i d_i > 0.
+bool weights_prove_disjoint(const PlaneCoef<Expansion>* pl, const Expansion* w, size_t k) {
+  const int s = w[0].sign();
+  if (s == 0) return false;
+  for (size_t i = 1; i < k; ++i)
+    if (w[i].sign() != s) return false;
+  Expansion sum;
+  for (size_t i = 0; i < k; ++i) sum = sum + w[i] * pl[i].d;
+  return sum.sign() == s;
+}
+}  // namespace
+
+bool halfspaces_disjoint(const PlaneCoef<Expansion>* pl, size_t k) {
+  if (k == 4) {
+    // sum_i (-1)^i det3(the other three normals, in order) n_i = 0 for any four vectors of R^3
+    // (a 4x4 determinant with a repeated column, expanded).
+    Expansion w[4];
+    for (size_t i = 0; i < 4; ++i) {
+      const PlaneCoef<Expansion>* o[3];
+      for (size_t j = 0, m = 0; j < 4; ++j)
+        if (j != i) o[m++] = &pl[j];
+      w[i] = det3_normals(*o[0], *o[1], *o[2]);
+      if (i % 2) w[i] = -w[i];
+    }
+    return weights_prove_disjoint(pl, w, 4);
+  }
+  if (k == 3) {
+    // Three normals in a plane with normal u: n_a x n_b = c_ab u, and c_12 n_0 + c_20 n_1 +
+    // c_01 n_2 = 0 (Cramer's rule in that plane); one coordinate of the cross products gives
+    // c times u_j, a common factor, on an axis where u_j != 0.
+    if (det3_normals(pl[0], pl[1], pl[2]).sign() != 0) return false;
+    const auto c12 = cross_normals(pl[1], pl[2]), c20 = cross_normals(pl[2], pl[0]), c01 = cross_normals(pl[0], pl[1]);
+    for (int j = 0; j < 3; ++j) {
+      const Expansion w[3] = {c12[j], c20[j], c01[j]};
+      if (w[0].sign() != 0 || w[1].sign() != 0 || w[2].sign() != 0) return weights_prove_disjoint(pl, w, 3);
+    }
+    return false;  // all normals parallel: rank 1, not 2
+  }
+  if (k == 2) {
+    // Parallel normals: w = (-n_1j, n_0j) on an axis where n_0j != 0 is a null combination.
+    const auto c = cross_normals(pl[0], pl[1]);
+    if (c[0].sign() != 0 || c[1].sign() != 0 || c[2].sign() != 0) return false;
+    for (int j = 0; j < 3; ++j)
+      if (pl[0].n[j].sign() != 0) {
+        const Expansion w[2] = {-pl[1].n[j], pl[0].n[j]};
+        return weights_prove_disjoint(pl, w, 2);
+      }
+  }
+  return false;
+}
+
 }  // namespace kergen

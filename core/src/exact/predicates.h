@@ -59,5 +59,12 @@ int orient2d(const double* a, const double* b, const double* c, int axis, int sh
 bool collinear(const double* a, const double* b, const double* c, int shift = 0);
 // sign of dir . (n_h x n_s) where dir = n_p x n_q (edge orientation in facet h).
 int sign_edge_in_facet(const PlaneSet& ps, uint32_t p, uint32_t q, uint32_t h, uint32_t s);
+// Whether the inner half-spaces n_i . x + d_i <= 0 of k planes (exact coefficients, 2 <= k <= 4)
+// have no common point and every one of them is needed for that. The proof is Farkas weights
+// w_i > 0 with sum w_i n_i = 0 and sum w_i d_i > 0: at any point x, sum w_i (n_i . x + d_i) =
+// sum w_i d_i > 0, so some plane has x outside. With all k weights positive and the normals of
+// rank k - 1 (the only case where k normals have a null combination, unique up to scale), no
+// proper subset has such weights, so no proper subset is disjoint (Farkas' converse).
+bool halfspaces_disjoint(const PlaneCoef<Expansion>* planes, size_t k);
 
 }  // namespace kergen
