@@ -652,6 +652,15 @@ export class Viewer {
     // A hair beyond the box at either end: 0 and 1 cut nothing and everything.
     const span = hi - lo || this.radius;
     s.set(axis, lo - 1e-3 * span + at * (1 + 2e-3) * span, this.radius * 1.5);
+    // Materials change (and three.js looks their programs up again) only when what is clipped
+    // changes; moving the plane moves the shared THREE.Plane.
+    const clipKey = `${on}/${clipKernel}`;
+    if (clipKey === this.clipKey) {
+      s.updateVisibility(this.inputVisible, this.kernelClosed);
+      this.dirty = true;
+      return;
+    }
+    this.clipKey = clipKey;
     this.inputMaterial.clippingPlanes = this.wireMaterial.clippingPlanes = s.planesFor(false);
     // What lies inside the kernel (ball, deepest point, kernel point) is cut with it.
     const kernelMaterials = [this.kernel.faces.material, this.kernel.lines.material, this.kernel.points.material, this.boxFacets.material,
