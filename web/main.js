@@ -39,7 +39,7 @@ const ui = {
   showEdges: $('show-edges'), edgesNote: $('edges-note'), openFile: $('open-file'), showInput: $('show-input'),
   showBall: $('show-ball'), sectionOn: $('section-on'), sectionAxis: $('section-axis'), sectionKernel: $('section-kernel'),
   sectionPos: $('section-pos'), sectionLabel: $('section-label'), shareUrl: $('share-url'), copyLink: $('copy-link'),
-  shareNote: $('share-note'), actions: $('actions'), retryOpen: $('retry-open'), retryRepair: $('retry-repair'),
+  shareNote: $('share-note'), actions: $('actions'), retryOpen: $('retry-open'), retryWalls: $('retry-walls'), retryRepair: $('retry-repair'),
   playbar: $('playbar'),
 };
 
@@ -64,7 +64,11 @@ const state = {
   edgesReady: false,
   // What is open, kept so that it can be computed again with other options (see open()).
   source: null,
-  runOptions: { allowOpen: PARAMS.get('allowOpen') === '1', repair: PARAMS.get('repair') === '1' },
+  runOptions: {
+    allowOpen: PARAMS.get('allowOpen') === '1',
+    repair: PARAMS.get('repair') === '1',
+    walls: PARAMS.get('open') === 'perpendicular',
+  },
   view: viewFromParams(PARAMS),
   mesh: null, // the parsed input when it is drawn on this thread (small); else the drawing worker has it
   drawing: null, // { center, maxAbs } of the drawn input
@@ -144,9 +148,11 @@ function showError(err) {
   setStat('stat-status', d.code, 'ERROR');
   showRows(d.rows);
   const reopenable = !!state.source && state.inputShown;
-  ui.retryOpen.hidden = !(reopenable && d.code === 'OPEN_MESH' && !state.runOptions.allowOpen);
+  const open = reopenable && d.code === 'OPEN_MESH';
+  ui.retryOpen.hidden = !(open && !state.runOptions.allowOpen);
+  ui.retryWalls.hidden = !(open && !state.runOptions.walls);
   ui.retryRepair.hidden = !(reopenable && REPAIRABLE.has(d.code) && !state.runOptions.repair);
-  ui.actions.hidden = ui.retryOpen.hidden && ui.retryRepair.hidden;
+  ui.actions.hidden = ui.retryOpen.hidden && ui.retryWalls.hidden && ui.retryRepair.hidden;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -210,7 +216,7 @@ function beginRun(name) {
   viewer.setOpenEdges(null);
   viewer.setKernelClosed(false);
   hideMessage();
-  ui.actions.hidden = ui.retryOpen.hidden = ui.retryRepair.hidden = true;
+  ui.actions.hidden = ui.retryOpen.hidden = ui.retryWalls.hidden = ui.retryRepair.hidden = true;
   clearStats();
   setStat('stat-name', name);
   showRows(['name', 'input-faces']);
@@ -479,15 +485,17 @@ function setExportEnabled(on) {
 const kernelOptions = () => ({
   // The inscribed ball costs little next to the kernel (docs/demo.md has the numbers): always on.
   deepestPoint: true,
-  ...(state.runOptions.allowOpen ? { allowOpen: true } : {}),
+  // Walls at the boundary edges (the package's open: 'perpendicular') bound an open surface's
+  // kernel where allowOpen clips it to a box; walls win when both were asked for.
+  ...(state.runOptions.walls ? { open: 'perpendicular' } : state.runOptions.allowOpen ? { allowOpen: true } : {}),
   ...(state.runOptions.repair ? { repair: true } : {}),
 });
 
 /**
  * Opens `source` ({ kind: 'sample', id } | { kind: 'file', file } | { kind: 'url', url, file })
- * and computes its kernel with `options` ({ allowOpen, repair }).
+ * and computes its kernel with `options` ({ allowOpen, repair, walls }: walls is open: 'perpendicular').
  */
-async function openSource(source, options = { allowOpen: false, repair: false }, t0 = performance.now()) {
+async function openSource(source, options = { allowOpen: false, repair: false, walls: false }, t0 = performance.now()) {
   state.source = source;
   state.runOptions = options;
   selectSample(source.kind === 'sample' ? source.id : null);
@@ -591,7 +599,8 @@ function reopen(options) {
   if (!source) return;
   openSource(source, { ...state.runOptions, ...options });
 }
-ui.retryOpen.addEventListener('click', () => reopen({ allowOpen: true }));
+ui.retryOpen.addEventListener('click', () => reopen({ allowOpen: true, walls: false }));
+ui.retryWalls.addEventListener('click', () => reopen({ walls: true, allowOpen: false }));
 ui.retryRepair.addEventListener('click', () => reopen({ repair: true }));
 
 function selectSample(id) {
@@ -861,7 +870,7 @@ window.addEventListener('keyup', (e) => {
 // A new input from the user: the face-edge toggle goes back to its default for the mesh's size.
 function openFile(file, t0) {
   state.view.edges = null;
-  openSource({ kind: 'file', file }, { allowOpen: false, repair: false }, t0);
+  openSource({ kind: 'file', file }, { allowOpen: false, repair: false, walls: false }, t0);
 }
 
 ui.openFile.addEventListener('click', () => ui.fileInput.click());

@@ -41,6 +41,7 @@ export function shareUrl(base, source, options, view) {
   else p.set('url', source.url);
   if (options.allowOpen) p.set('allowOpen', '1');
   if (options.repair) p.set('repair', '1');
+  if (options.walls) p.set('open', 'perpendicular');
   const d = VIEW_DEFAULTS;
   if (view.opacity !== d.opacity) p.set('opacity', String(view.opacity));
   if (view.shape !== d.shape) p.set('shape', view.shape ? '1' : '0');

@@ -236,6 +236,18 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
     assert(new URL(page.url()).searchParams.get('allowOpen') === null, 'a file has no link');
   });
 
+  await test('open: "Compute with boundary walls" bounds the open box by walls at its rim: the unit cube', async () => {
+    const e = await loadFile(page, openCube);
+    assert(e.state === 'error' && e.message?.code === 'OPEN_MESH', JSON.stringify(e));
+    assert(!(await page.isHidden('#retry-walls')), 'walls not offered');
+    await markPending(page);
+    await page.click('#retry-walls');
+    const s = await waitFinished(page);
+    assert(s.status === 'POLYHEDRON', JSON.stringify(s));
+    assertClose(Number(s.stats.volume), 1, 1e-12, 'kernel volume with walls (the unit cube)');
+    assert(await page.isHidden('#retry-walls'), 'walls offered again after they were used');
+  });
+
   // ---------------------------------------------------------------------------------- repair
   await test('repair: a T-junction cube is OPEN_MESH; "Repair and compute" gives the unit cube with the repair noted', async () => {
     const file = path.join(tmp, 't-junction-cube.off');
