@@ -6,20 +6,17 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
-#include <memory>
 
 #include "deepest_point.h"
 #include "embedding.h"
 #include "exact/predicates.h"
-#include "face_culling.h"
 #include "lp.h"
 #include "mesh_prep.h"
-#include "open_boundary.h"
-#include "plane_classes.h"
 #include "plane_culling.h"
 #include "polytope.h"
 #include "prepare_input.h"
 #include "progress.h"
+#include "setup.h"
 #include "self_contact.h"
 #include "step_replay.h"
 #include "tracer.h"
@@ -37,81 +34,6 @@ void refuse_nested_shells(const PreparedMesh& m, Error& error, std::string& mess
   message = "the mesh has " + std::to_string(m.shells) +
             " separate pieces nested with the same orientation (an inner piece faces outward: a second solid "
             "inside the first, not a void)";
-}
-
-// Everything up to and including the LP, shared by compute_kernel and find_kernel_point.
-struct Setup {
-  PreparedMesh mesh;
-  std::unique_ptr<PlaneSet> planes;
-  std::vector<uint32_t> active;  // the LP's constraints: the mesh planes (+ the box for open meshes)
-  std::vector<uint32_t> box;
-  std::vector<char> is_box;
-  LpResult lp;
-  bool rejected_early = false;  // empty kernel proven before the plane classes were built
-  double center[3] = {0, 0, 0};
-  size_t surface_faces = 0;  // the mesh's own faces (boundary walls follow them in `mesh`)
-};
-
-void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
-  auto t = Clock::now();
-  report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
-  const bool walls = options.open_boundary == OpenBoundary::Perpendicular;
-  Mesh validated;
-  s.mesh = prepare_input(mesh, options, walls ? &validated : nullptr);
-  s.surface_faces = s.mesh.num_faces();
-  if (walls && s.mesh.error == Error::Ok && s.mesh.boundary_edges > 0) add_boundary_walls(s.mesh, validated.view());
-  stats.input_vertices = mesh.num_vertices;
-  stats.input_faces = s.mesh.input_faces;
-  stats.dropped_faces = s.mesh.dropped_faces;
-  stats.ms_validate = ms_since(t);
-  if (s.mesh.error != Error::Ok) return;
-
-  const size_t nf = s.mesh.num_faces();
-  report(options, Progress::Phase::Planes, nf);
-  t = Clock::now();
-  const FaceCulling faces = cull_faces(s.mesh, options.cull_faces, options.seed);
-  stats.ms_lp = faces.ms_lp;
-  if (faces.kernel_empty) {
-    s.lp = faces.lp;
-    s.rejected_early = true;
-    stats.ms_planes = ms_since(t) - stats.ms_lp;
-    return;
-  }
-  if (faces.culled) stats.culled_faces = nf - faces.kept_faces.size();
-  stats.ms_planes = ms_since(t) - stats.ms_lp;
-
-  t = Clock::now();
-  s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
-  s.planes->set_extent(s.mesh.extent());
-  std::vector<uint32_t> face_plane;
-  if (faces.culled)
-    build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane);
-  else
-    build_planes(s.mesh, *s.planes, face_plane);
-  stats.distinct_planes = s.planes->size();
-  s.active.reserve(s.planes->size() + 6);
-  for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
-  for (int k = 0; k < 3; ++k) s.center[k] = 0.5 * (s.mesh.bbox_min[k] + s.mesh.bbox_max[k]);
-  add_bounding_box(*s.planes, s.box);
-  if (s.mesh.boundary_edges > 0) s.active.insert(s.active.end(), s.box.begin(), s.box.end());
-  s.is_box.assign(s.planes->size(), 0);
-  for (uint32_t i = 0; i < s.planes->size(); ++i) s.is_box[i] = s.planes->explicit_plane(i);
-  stats.ms_planes += ms_since(t);
-
-  t = Clock::now();
-  report(options, Progress::Phase::Lp, stats.distinct_planes);
-  double dir[3] = {kDefaultDirection[0], kDefaultDirection[1], kDefaultDirection[2]};
-  if (options.has_from) {
-    double len = 0;
-    for (int k = 0; k < 3; ++k) {
-      double d = s.mesh.to_scaled(options.from[k]) - s.center[k];
-      len += d * d;
-    }
-    if (len > 0 && std::isfinite(len))
-      for (int k = 0; k < 3; ++k) dir[k] = s.mesh.to_scaled(options.from[k]) - s.center[k];
-  }
-  s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
-  stats.ms_lp += ms_since(t);
 }
 
 // The witness of an empty kernel (witness.h) as input face indices, increasing and distinct (the
