@@ -21,8 +21,93 @@
 
 namespace kergen {
 
+namespace {
+
+// The kernel traced from the LP's vertex and certified (certify.h), into `ct`. It is traced
+// without events whatever the caller asked for; the stream is then replayed from the result
+// (step_replay.h), so steps never change the algorithm. False when `out` is final: the surface is
+// refused, or the trace failed (Error::Internal).
+bool trace_certified(const Setup& s, const Options& options, int unscale_exp, CulledTrace& ct, uint64_t& steps,
+                     Kernel& out) {
+  const auto t = Clock::now();
+  report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
+  TraceOptions topt;
+  ReplayOptions ropt;
+  ropt.on_step = &options.on_step;
+  ropt.max_steps = options.max_steps;
+  ropt.steps = &steps;
+  ropt.unscale_exp = unscale_exp;
+  if (options.has_from) {
+    topt.has_from = ropt.has_from = true;
+    for (int k = 0; k < 3; ++k) topt.from[k] = ropt.from[k] = s.mesh.to_scaled(options.from[k]);
+  }
+  std::vector<uint32_t> mesh_planes;
+  mesh_planes.reserve(s.planes->size());
+  for (uint32_t i = 0; i < s.planes->size(); ++i)
+    if (!s.is_box[i]) mesh_planes.push_back(i);
+  ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
+  TraceResult& tr = ct.trace;
+  if (!tr.internal_error && !certify_embedding(s, tr, out)) return false;
+  if (!tr.internal_error && (options.on_step || options.max_steps)) replay_steps(*s.planes, ct.start_vertex, tr, ropt);
+  out.stats.active_planes = 0;
+  for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];
+  out.stats.ms_trace = ms_since(t);
+  out.stats.traced_lines = tr.traced_lines;
+  out.complete = tr.complete;
+  if (tr.internal_error) {
+    out.error = Error::Internal;
+    out.message = "internal error: kernel tracing could not certify a vertex (please report this mesh)";
+    return false;
+  }
+  return true;
+}
+
+// The traced kernel `tr` assembled into `out` (polytope.h), its face events emitted while the
+// caller goes on and `steps` stays under Options::max_steps; then its type (Unbounded when the
+// clipping box holds a vertex), the deepest point when asked for, and the volume ratio. False
+// when `out` is final: the traced edges do not close (Error::Internal).
+bool assemble(const Setup& s, const Options& options, int unscale_exp, const TraceResult& tr, uint64_t& steps,
+              Kernel& out) {
+  const auto t = Clock::now();
+  report(options, Progress::Phase::Assembling, tr.vertices.size());
+  bool stopped = !tr.complete;
+  auto emit_face = [&](const StepEvent& e) {
+    if (stopped) return false;
+    ++steps;
+    bool go = !options.on_step || options.on_step(e);
+    if (options.max_steps && steps >= options.max_steps) go = false;
+    if (!go) {
+      stopped = true;
+      out.complete = false;
+    }
+    return go;
+  };
+  double scaled_volume = 0;
+  if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
+    out.error = Error::Internal;
+    out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
+    return false;
+  }
+  for (const auto& v : tr.vertices)
+    for (uint32_t p : v.tight)
+      if (s.is_box[p]) out.type = KernelType::Unbounded;
+  if (options.deepest_point && out.type == KernelType::Polyhedron && out.complete) {
+    double p[3] = {0, 0, 0}, r = 0;
+    if (deepest_point(*s.planes, facet_planes(tr), s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
+      out.has_deepest_point = true;
+      for (int k = 0; k < 3; ++k) out.deepest_point[k] = std::ldexp(p[k], unscale_exp);
+      out.inscribed_radius = std::ldexp(r, unscale_exp);
+    }
+  }
+  out.stats.ms_assemble = ms_since(t);
+  out.volume_ratio = s.mesh.volume > 0 ? scaled_volume / s.mesh.volume : 0;
+  return true;
+}
+
+}  // namespace
+
 Kernel compute_kernel(const MeshView& mesh, const Options& options) {
-  auto t_total = Clock::now();
+  const auto t_total = Clock::now();
   Kernel out;
   Setup s;
   setup(mesh, options, s, out.stats);
@@ -65,75 +150,10 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     double hi[3], lo[3];
     precise_coordinates(*s.planes, s.lp.vertex, hi, lo);
     for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(hi[k], unscale_exp);
-
-    auto t = Clock::now();
-    report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
-    // The kernel is traced without events whatever the caller asked for; the stream is then
-    // replayed from the result (step_replay.h), so steps never change the algorithm.
-    uint64_t steps = 0;
-    TraceOptions topt;
-    ReplayOptions ropt;
-    ropt.on_step = &options.on_step;
-    ropt.max_steps = options.max_steps;
-    ropt.steps = &steps;
-    ropt.unscale_exp = unscale_exp;
-    if (options.has_from) {
-      topt.has_from = ropt.has_from = true;
-      for (int k = 0; k < 3; ++k) topt.from[k] = ropt.from[k] = s.mesh.to_scaled(options.from[k]);
-    }
-    std::vector<uint32_t> mesh_planes;
-    mesh_planes.reserve(s.planes->size());
-    for (uint32_t i = 0; i < s.planes->size(); ++i)
-      if (!s.is_box[i]) mesh_planes.push_back(i);
-    CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
-    TraceResult& tr = ct.trace;
-    if (!tr.internal_error && !certify_embedding(s, tr, out)) return out;
-    if (!tr.internal_error && (options.on_step || options.max_steps))
-      replay_steps(*s.planes, ct.start_vertex, tr, ropt);
-    out.stats.active_planes = 0;
-    for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];
-    out.stats.ms_trace = ms_since(t);
-    out.stats.traced_lines = tr.traced_lines;
-    out.complete = tr.complete;
-    if (tr.internal_error) {
-      out.error = Error::Internal;
-      out.message = "internal error: kernel tracing could not certify a vertex (please report this mesh)";
-      return out;
-    }
-
-    t = Clock::now();
-    report(options, Progress::Phase::Assembling, tr.vertices.size());
-    bool stopped = !tr.complete;
-    auto emit_face = [&](const StepEvent& e) {
-      if (stopped) return false;
-      ++steps;
-      bool go = !options.on_step || options.on_step(e);
-      if (options.max_steps && steps >= options.max_steps) go = false;
-      if (!go) {
-        stopped = true;
-        out.complete = false;
-      }
-      return go;
-    };
-    double scaled_volume = 0;
-    if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
-      out.error = Error::Internal;
-      out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
-      return out;
-    }
-    for (const auto& v : tr.vertices)
-      for (uint32_t p : v.tight)
-        if (s.is_box[p]) out.type = KernelType::Unbounded;
-    if (options.deepest_point && out.type == KernelType::Polyhedron && out.complete) {
-      double p[3] = {0, 0, 0}, r = 0;
-      if (deepest_point(*s.planes, facet_planes(tr), s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
-        out.has_deepest_point = true;
-        for (int k = 0; k < 3; ++k) out.deepest_point[k] = std::ldexp(p[k], unscale_exp);
-        out.inscribed_radius = std::ldexp(r, unscale_exp);
-      }
-    }
-    out.stats.ms_assemble = ms_since(t);
-    out.volume_ratio = s.mesh.volume > 0 ? scaled_volume / s.mesh.volume : 0;
+    CulledTrace ct;
+    uint64_t steps = 0;  // events emitted, the replayed trace's then the faces'
+    if (!trace_certified(s, options, unscale_exp, ct, steps, out)) return out;
+    if (!assemble(s, options, unscale_exp, ct.trace, steps, out)) return out;
   }
   out.stats.exact_fallbacks = s.planes->exact_fallbacks;
   out.stats.ms_total = ms_since(t_total);
