@@ -1,16 +1,16 @@
-// Public entry points: validation -> exact planes -> LP start vertex -> tracing -> polytope.
+// The public entry points (kergen.h), each stringing its phases together: the input prepared
+// (prepare_input.h), then for compute_kernel and find_kernel_point the planes and the LP
+// (setup.h), the trace and the polytope, every answer about the kernel certified (certify.h).
 #include "kergen/kergen.h"
 
-#include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdio>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "certify.h"
 #include "deepest_point.h"
-#include "exact/predicates.h"
-#include "lp.h"
-#include "mesh_prep.h"
+#include "exact/vertex.h"
 #include "plane_culling.h"
 #include "polytope.h"
 #include "prepare_input.h"
