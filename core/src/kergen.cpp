@@ -1,477 +1,113 @@
-// Public entry points: validation -> exact planes -> LP start vertex -> tracing -> polytope.
+// The public entry points (kergen.h), each stringing its phases together: the input prepared
+// (prepare_input.h), then for compute_kernel and find_kernel_point the planes and the LP
+// (setup.h), the trace and the polytope, every answer about the kernel certified (certify.h).
 #include "kergen/kergen.h"
 
-#include <algorithm>
-#include <array>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <iterator>
-#include <memory>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
+#include "certify.h"
 #include "deepest_point.h"
-#include "embedding.h"
-#include "exact/predicates.h"
-#include "face_culling.h"
-#include "lp.h"
-#include "mesh_prep.h"
-#include "open_boundary.h"
-#include "plane_classes.h"
+#include "exact/vertex.h"
 #include "plane_culling.h"
 #include "polytope.h"
-#include "repair.h"
-#include "self_contact.h"
-#include "shells.h"
+#include "prepare_input.h"
+#include "progress.h"
+#include "setup.h"
 #include "step_replay.h"
 #include "tracer.h"
-#include "weld.h"
-#include "witness.h"
 
 namespace kergen {
 
-const char* error_name(Error e) {
-  switch (e) {
-    case Error::Ok: return "OK";
-    case Error::EmptyInput: return "EMPTY_INPUT";
-    case Error::NonFiniteCoordinate: return "NON_FINITE_COORDINATE";
-    case Error::IndexOutOfRange: return "INDEX_OUT_OF_RANGE";
-    case Error::FaceTooSmall: return "FACE_TOO_SMALL";
-    case Error::OpenMesh: return "OPEN_MESH";
-    case Error::NonManifoldEdge: return "NON_MANIFOLD_EDGE";
-    case Error::InconsistentOrientation: return "INCONSISTENT_ORIENTATION";
-    case Error::MultipleComponents: return "MULTIPLE_COMPONENTS";
-    case Error::DegenerateInput: return "DEGENERATE_INPUT";
-    case Error::TooLarge: return "TOO_LARGE";
-    case Error::ParseError: return "PARSE_ERROR";
-    case Error::IoError: return "IO_ERROR";
-    case Error::InvalidArgument: return "INVALID_ARGUMENT";
-    case Error::CoordinateRange: return "COORDINATE_RANGE";
-    case Error::Internal: return "INTERNAL_ERROR";
-    case Error::SelfIntersection: return "SELF_INTERSECTION";
-  }
-  return "UNKNOWN";
-}
-
-const char* kernel_type_name(KernelType t) {
-  switch (t) {
-    case KernelType::Empty: return "EMPTY";
-    case KernelType::Point: return "POINT";
-    case KernelType::Segment: return "SEGMENT";
-    case KernelType::Polygon: return "POLYGON";
-    case KernelType::Polyhedron: return "POLYHEDRON";
-    case KernelType::Unbounded: return "UNBOUNDED";
-  }
-  return "UNKNOWN";
-}
-
-const std::vector<OptionName>& option_names() {
-  static const std::vector<OptionName> names = {
-      {"allow_open", "--allow-open", "allowOpen: true"},
-      {"open_boundary", "--open perpendicular", "open: 'perpendicular'"},
-      {"weld_relative", "--weld-relative", "weld: { relative }"},
-      {"weld", "--weld", "weld: true"},
-      {"repair", "--repair", "repair: true"},
-      {"deepest_point", "--deepest", "deepestPoint: true"},
-      {"max_steps", "--max-steps", "maxSteps"},
-      {"cull_faces", "--no-cull-faces", "cullFaces"},
-      {"seed", "--seed", "seed"},
-      {"max_faces", nullptr, "options.maxFaces"},
-      {"max_vertices", nullptr, "options.maxVertices"},
-      {"on_step", nullptr, "onStep"},
-      {"on_progress", nullptr, "onProgress"},
-      {"from", "--from", "from"},
-  };
-  return names;
-}
-
-const char* open_boundary_name(OpenBoundary o) {
-  switch (o) {
-    case OpenBoundary::Clip: return "clip";
-    case OpenBoundary::Perpendicular: return "perpendicular";
-  }
-  return "unknown";
-}
-
-const char* warning_kind_name(Warning::Kind k) {
-  switch (k) {
-    case Warning::Kind::OrientationFlipped: return "ORIENTATION_FLIPPED";
-    case Warning::Kind::DegenerateFacesDropped: return "DEGENERATE_FACES_DROPPED";
-    case Warning::Kind::NonPlanarFacesSplit: return "NON_PLANAR_FACES_SPLIT";
-    case Warning::Kind::UnusedVertices: return "UNUSED_VERTICES";
-    case Warning::Kind::VerticesWelded: return "VERTICES_WELDED";
-    case Warning::Kind::DuplicateFacesRemoved: return "DUPLICATE_FACES_REMOVED";
-    case Warning::Kind::CancellingFacesRemoved: return "CANCELLING_FACES_REMOVED";
-    case Warning::Kind::TJunctionsSplit: return "T_JUNCTIONS_SPLIT";
-    case Warning::Kind::SeparateShells: return "SEPARATE_SHELLS";
-    case Warning::Kind::CrossingsUnchecked: return "CROSSINGS_UNCHECKED";
-  }
-  return "UNKNOWN";
-}
-
-std::array<StatsField, 14> stats_fields(const Stats& s) {
-  return {{{"input_vertices", double(s.input_vertices)},
-           {"input_faces", double(s.input_faces)},
-           {"dropped_faces", double(s.dropped_faces)},
-           {"culled_faces", double(s.culled_faces)},
-           {"distinct_planes", double(s.distinct_planes)},
-           {"active_planes", double(s.active_planes)},
-           {"traced_lines", double(s.traced_lines)},
-           {"exact_fallbacks", double(s.exact_fallbacks)},
-           {"ms_validate", s.ms_validate},
-           {"ms_planes", s.ms_planes},
-           {"ms_lp", s.ms_lp},
-           {"ms_trace", s.ms_trace},
-           {"ms_assemble", s.ms_assemble},
-           {"ms_total", s.ms_total}}};
-}
-
-const char* progress_phase_name(Progress::Phase p) {
-  switch (p) {
-    case Progress::Phase::Validating: return "validating";
-    case Progress::Phase::Planes: return "planes";
-    case Progress::Phase::Lp: return "lp";
-    case Progress::Phase::Tracing: return "tracing";
-    case Progress::Phase::Assembling: return "assembling";
-  }
-  return "unknown";
-}
-
 namespace {
 
-void report(const Options& options, Progress::Phase phase, size_t count) {
-  if (options.on_progress) options.on_progress(Progress{phase, count});
-}
-
-// Whether Options::weld can run on the input as given: finite coordinates, indices in range,
-// face sizes that add up, no face of fewer than three corners. Otherwise validation reports the
-// input's defect as given (welding would hide or change it).
-bool weldable(const MeshView& m) {
-  if (m.num_vertices == 0 || (m.face_sizes == nullptr && m.num_indices % 3 != 0)) return false;
-  for (size_t i = 0; i < 3 * m.num_vertices; ++i)
-    if (!std::isfinite(m.positions[i])) return false;
-  for (size_t i = 0; i < m.num_indices; ++i)
-    if (m.indices[i] >= m.num_vertices) return false;
-  if (m.face_sizes) {
-    size_t sum = 0;
-    for (size_t f = 0; f < m.num_faces; ++f) {
-      if (m.face_sizes[f] < 3) return false;
-      sum += m.face_sizes[f];
-    }
-    if (sum != m.num_indices) return false;
+// The kernel traced from the LP's vertex and certified (certify.h), into `ct`. It is traced
+// without events whatever the caller asked for; the stream is then replayed from the result
+// (step_replay.h), so steps never change the algorithm. False when `out` is final: the surface is
+// refused, or the trace failed (Error::Internal).
+bool trace_certified(const Setup& s, const Options& options, int unscale_exp, CulledTrace& ct, uint64_t& steps,
+                     Kernel& out) {
+  const auto t = Clock::now();
+  report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
+  TraceOptions topt;
+  ReplayOptions ropt;
+  ropt.on_step = &options.on_step;
+  ropt.max_steps = options.max_steps;
+  ropt.steps = &steps;
+  ropt.unscale_exp = unscale_exp;
+  if (options.has_from) {
+    topt.has_from = ropt.has_from = true;
+    for (int k = 0; k < 3; ++k) topt.from[k] = ropt.from[k] = s.mesh.to_scaled(options.from[k]);
+  }
+  std::vector<uint32_t> mesh_planes;
+  mesh_planes.reserve(s.planes->size());
+  for (uint32_t i = 0; i < s.planes->size(); ++i)
+    if (!s.is_box[i]) mesh_planes.push_back(i);
+  ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
+  TraceResult& tr = ct.trace;
+  if (!tr.internal_error && !certify_embedding(s, tr, out)) return false;
+  if (!tr.internal_error && (options.on_step || options.max_steps)) replay_steps(*s.planes, ct.start_vertex, tr, ropt);
+  out.stats.active_planes = 0;
+  for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];
+  out.stats.ms_trace = ms_since(t);
+  out.stats.traced_lines = tr.traced_lines;
+  out.complete = tr.complete;
+  if (tr.internal_error) {
+    out.error = Error::Internal;
+    out.message = "internal error: kernel tracing could not certify a vertex (please report this mesh)";
+    return false;
   }
   return true;
 }
 
-// A closed mesh of several pieces (shells.h): refused when two pieces cross or touch, else
-// prepared with a warning (the kernel is then empty, or the pieces are nested alike: the entry
-// points refuse that once the LP has found a point).
-PreparedMesh judge_shells(PreparedMesh m) {
-  if (m.error != Error::Ok || m.shells < 2) return m;
-  const std::string pieces = std::to_string(m.shells) + " separate pieces";
-  if (find_shell_contact(m).found) {
-    m.error = Error::SelfIntersection;
-    m.message = "the mesh has " + pieces + " and two of them cross or touch each other: no solid has that surface";
-    return m;
-  }
-  m.warnings.push_back({Warning::Kind::SeparateShells, m.shells,
-                        "the mesh has " + pieces +
-                            " that neither cross nor touch (disjoint solids, or a solid and a void inside it): no "
-                            "point sees all of them from inside"});
-  return m;
-}
-
-// Several pieces and a non-empty intersection of the faces' half-spaces: a point in it sees
-// every piece from inside, so it lies inside every piece: they are nested alike (a second solid
-// inside the first, not a void), which no solid's surface is.
-void refuse_nested_shells(const PreparedMesh& m, Error& error, std::string& message) {
-  error = Error::MultipleComponents;
-  message = "the mesh has " + std::to_string(m.shells) +
-            " separate pieces nested with the same orientation (an inner piece faces outward: a second solid "
-            "inside the first, not a void)";
-}
-
-// An open mesh refused: the message also names the other way of accepting it.
-PreparedMesh mention_open_boundary(PreparedMesh m) {
-  if (m.error == Error::OpenMesh)
-    m.message += "; Options::open_boundary bounds such a surface's kernel by walls at its boundary edges";
-  return m;
-}
-
-// A copy of the arrays `m` views (what Mesh::view would give back).
-Mesh copy_of(const MeshView& m) {
-  Mesh out;
-  out.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
-  out.indices.assign(m.indices, m.indices + m.num_indices);
-  if (m.face_sizes) out.face_sizes.assign(m.face_sizes, m.face_sizes + m.num_faces);
-  return out;
-}
-
-// prepare_mesh after Options::weld and Options::repair: the prepared mesh of the welded (and
-// repaired) input, what was done reported first among its warnings and the dropped faces
-// counted with the input's. `validated`, when given, receives the mesh prepare_mesh judged (the
-// welded and repaired one, or a copy of the input; left empty for malformed input, which
-// validation refuses). OpenBoundary::Perpendicular accepts open meshes as allow_open does.
-PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated = nullptr) {
-  if (options.open_boundary == OpenBoundary::Perpendicular && !options.allow_open) {
-    Options accepting = options;
-    accepting.allow_open = true;
-    return prepare_input(mesh, accepting, validated);
-  }
-  const bool weld = options.weld >= 0;
-  const bool can_weld = weldable(mesh);
-  if ((!weld && !options.repair) || !can_weld) {
-    if (validated && can_weld) *validated = copy_of(mesh);
-    return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true)));
-  }
-  WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
-  RepairCounts repaired;
-  std::vector<uint32_t> repair_kept;
-  if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
-  PreparedMesh m = mention_open_boundary(judge_shells(prepare_mesh(w.mesh.view(), options, true)));
-  // Faces are named by their index in the input (the witness): through the repair, then the weld.
-  m.welded_source = std::move(w.source_face);
-  if (options.repair) {
-    for (uint32_t& f : repair_kept) f = m.welded_source[f];
-    m.welded_source = std::move(repair_kept);
-  }
-  m.input_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
-  m.dropped_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
-  // The merged vertices are no face's any more: only the input's own unused ones are reported.
-  for (size_t i = 0; i < m.warnings.size(); ++i)
-    if (m.warnings[i].kind == Warning::Kind::UnusedVertices) {
-      const size_t unused = m.warnings[i].count - std::min(m.warnings[i].count, w.merged_vertices);
-      if (unused == 0)
-        m.warnings.erase(m.warnings.begin() + long(i));
-      else
-        m.warnings[i] = unused_vertices_warning(unused);
-      break;
+// The traced kernel `tr` assembled into `out` (polytope.h), its face events emitted while the
+// caller goes on and `steps` stays under Options::max_steps; then its type (Unbounded when the
+// clipping box holds a vertex), the deepest point when asked for, and the volume ratio. False
+// when `out` is final: the traced edges do not close (Error::Internal).
+bool assemble(const Setup& s, const Options& options, int unscale_exp, const TraceResult& tr, uint64_t& steps,
+              Kernel& out) {
+  const auto t = Clock::now();
+  report(options, Progress::Phase::Assembling, tr.vertices.size());
+  bool stopped = !tr.complete;
+  auto emit_face = [&](const StepEvent& e) {
+    if (stopped) return false;
+    ++steps;
+    bool go = !options.on_step || options.on_step(e);
+    if (options.max_steps && steps >= options.max_steps) go = false;
+    if (!go) {
+      stopped = true;
+      out.complete = false;
     }
-  std::vector<Warning> done;
-  if (w.merged_vertices || w.dropped_faces) {
-    char tolerance[32];
-    std::snprintf(tolerance, sizeof tolerance, "%.3g", w.tolerance);
-    std::string message = std::to_string(w.merged_vertices) + " vertices were merged into others within " + tolerance;
-    if (w.dropped_faces) message += ", and " + std::to_string(w.dropped_faces) + " faces that collapsed were dropped";
-    done.push_back({Warning::Kind::VerticesWelded, w.merged_vertices, message});
-  }
-  if (repaired.duplicate_faces)
-    done.push_back({Warning::Kind::DuplicateFacesRemoved, repaired.duplicate_faces,
-                    std::to_string(repaired.duplicate_faces) + " faces repeating another face were removed"});
-  if (repaired.cancelling_faces)
-    done.push_back({Warning::Kind::CancellingFacesRemoved, repaired.cancelling_faces,
-                    std::to_string(repaired.cancelling_faces) +
-                        " faces were removed in pairs of opposite orientation on the same corners"});
-  if (repaired.t_junctions)
-    done.push_back({Warning::Kind::TJunctionsSplit, repaired.t_junctions,
-                    std::to_string(repaired.t_junctions) +
-                        " vertices lying on the edge of another face were inserted into it (T-junctions split)"});
-  m.warnings.insert(m.warnings.begin(), done.begin(), done.end());
-  if (validated) *validated = std::move(w.mesh);
-  return m;
-}
-
-// `mesh` without the vertices no face uses, the others renumbered in their order.
-Mesh without_unused_vertices(Mesh mesh) {
-  const size_t nv = mesh.num_vertices();
-  std::vector<uint32_t> new_id(nv, 0);
-  for (uint32_t v : mesh.indices) new_id[v] = 1;
-  uint32_t kept = 0;
-  for (size_t v = 0; v < nv; ++v) {
-    if (!new_id[v]) continue;
-    for (int k = 0; k < 3; ++k) mesh.positions[3 * size_t(kept) + k] = mesh.positions[3 * v + k];
-    new_id[v] = kept++;
-  }
-  mesh.positions.resize(3 * size_t(kept));
-  for (uint32_t& v : mesh.indices) v = new_id[v];
-  return mesh;
-}
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-// Everything up to and including the LP, shared by compute_kernel and find_kernel_point.
-struct Setup {
-  PreparedMesh mesh;
-  std::unique_ptr<PlaneSet> planes;
-  std::vector<uint32_t> active;  // the LP's constraints: the mesh planes (+ the box for open meshes)
-  std::vector<uint32_t> box;
-  std::vector<char> is_box;
-  LpResult lp;
-  bool rejected_early = false;  // empty kernel proven before the plane classes were built
-  double center[3] = {0, 0, 0};
-  size_t surface_faces = 0;  // the mesh's own faces (boundary walls follow them in `mesh`)
-};
-
-void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats) {
-  auto t = Clock::now();
-  report(options, Progress::Phase::Validating, mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
-  const bool walls = options.open_boundary == OpenBoundary::Perpendicular;
-  Mesh validated;
-  s.mesh = prepare_input(mesh, options, walls ? &validated : nullptr);
-  s.surface_faces = s.mesh.num_faces();
-  if (walls && s.mesh.error == Error::Ok && s.mesh.boundary_edges > 0) add_boundary_walls(s.mesh, validated.view());
-  stats.input_vertices = mesh.num_vertices;
-  stats.input_faces = s.mesh.input_faces;
-  stats.dropped_faces = s.mesh.dropped_faces;
-  stats.ms_validate = ms_since(t);
-  if (s.mesh.error != Error::Ok) return;
-
-  const size_t nf = s.mesh.num_faces();
-  report(options, Progress::Phase::Planes, nf);
-  t = Clock::now();
-  const FaceCulling faces = cull_faces(s.mesh, options.cull_faces, options.seed);
-  stats.ms_lp = faces.ms_lp;
-  if (faces.kernel_empty) {
-    s.lp = faces.lp;
-    s.rejected_early = true;
-    stats.ms_planes = ms_since(t) - stats.ms_lp;
-    return;
-  }
-  if (faces.culled) stats.culled_faces = nf - faces.kept_faces.size();
-  stats.ms_planes = ms_since(t) - stats.ms_lp;
-
-  t = Clock::now();
-  s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
-  s.planes->set_extent(s.mesh.extent());
-  std::vector<uint32_t> face_plane;
-  if (faces.culled)
-    build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane);
-  else
-    build_planes(s.mesh, *s.planes, face_plane);
-  stats.distinct_planes = s.planes->size();
-  s.active.reserve(s.planes->size() + 6);
-  for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
-  for (int k = 0; k < 3; ++k) s.center[k] = 0.5 * (s.mesh.bbox_min[k] + s.mesh.bbox_max[k]);
-  add_bounding_box(*s.planes, s.box);
-  if (s.mesh.boundary_edges > 0) s.active.insert(s.active.end(), s.box.begin(), s.box.end());
-  s.is_box.assign(s.planes->size(), 0);
-  for (uint32_t i = 0; i < s.planes->size(); ++i) s.is_box[i] = s.planes->explicit_plane(i);
-  stats.ms_planes += ms_since(t);
-
-  t = Clock::now();
-  report(options, Progress::Phase::Lp, stats.distinct_planes);
-  double dir[3] = {kDefaultDirection[0], kDefaultDirection[1], kDefaultDirection[2]};
-  if (options.has_from) {
-    double len = 0;
-    for (int k = 0; k < 3; ++k) {
-      double d = s.mesh.to_scaled(options.from[k]) - s.center[k];
-      len += d * d;
-    }
-    if (len > 0 && std::isfinite(len))
-      for (int k = 0; k < 3; ++k) dir[k] = s.mesh.to_scaled(options.from[k]) - s.center[k];
-  }
-  s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
-  stats.ms_lp += ms_since(t);
-}
-
-// The witness of an empty kernel (witness.h) as input face indices, increasing and distinct (the
-// triangles of a split polygon are named by the polygon).
-std::vector<uint32_t> input_witness(const Setup& s) {
-  std::vector<uint32_t> faces = witness_faces(s.mesh, s.lp.conflict);
-  for (uint32_t f : faces)
-    if (f >= s.surface_faces) return {};  // a boundary wall is no input face: no witness to name
-  for (uint32_t& f : faces) f = s.mesh.input_face(f);
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  return faces;
-}
-
-// The refusal of a surface that a ray from inside its kernel crosses more than once.
-void refuse_crossing(const PreparedMesh& mesh, const EmbeddingCheck& check, Error& error, std::string& message) {
-  char point[96];
-  std::snprintf(point, sizeof point, "(%.9g, %.9g, %.9g)", mesh.to_input(check.point[0]), mesh.to_input(check.point[1]),
-                mesh.to_input(check.point[2]));
-  error = Error::SelfIntersection;
-  message = "the surface crosses itself: a ray from " + std::string(point) +
-            ", a point every face is seen from the inside, crosses it " + std::to_string(check.crossings) +
-            " times (a closed surface that does not cross itself is crossed once)";
-}
-
-// A surface whose kernel is not full-dimensional and bounded, or an open one, is answered only
-// when no two of its faces meet away from the vertices and edges they share (self_contact.h):
-// false, with the error set, when two do. Undecided (a polygon face that is not simple in its
-// plane) leaves a warning instead: nothing was proved either way.
-bool certify_no_contact(const Setup& s, Error& error, std::string& message, std::vector<Warning>& warnings) {
-  const PreparedMesh& mesh = s.mesh;
-  const FaceContact contact = find_face_contact(mesh, s.surface_faces);  // (walls may meet the surface)
-  if (contact.outcome == FaceContact::Outcome::None) return true;
-  if (contact.outcome == FaceContact::Outcome::Undecided) {
-    warnings.push_back({Warning::Kind::CrossingsUnchecked, 1,
-                        "a polygon face is not a simple polygon in its plane: whether the surface crosses itself "
-                        "was not checked"});
-    return true;
-  }
-  auto at = [&](uint32_t v) {
-    char text[96];
-    std::snprintf(text, sizeof text, "(%.9g, %.9g, %.9g)", mesh.to_input(mesh.point(v)[0]),
-                  mesh.to_input(mesh.point(v)[1]), mesh.to_input(mesh.point(v)[2]));
-    return std::string(text);
+    return go;
   };
-  error = Error::SelfIntersection;
-  message = "the surface crosses or touches itself: two faces, one with a corner at " + at(contact.corner_a) +
-            " and one with a corner at " + at(contact.corner_b) + ", meet away from the vertices and edges they share";
-  return false;
-}
-
-// A bounded, full-dimensional kernel of a closed surface is certified by the ray degree from a
-// point inside it (embedding.h); every other answer by the exact contact test.
-bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out) {
-  bool full_dimensional = s.mesh.boundary_edges == 0 && tr.vertices.size() >= 4;
-  for (const TracedVertex& v : tr.vertices)
-    for (uint32_t p : v.tight) full_dimensional &= !s.is_box[p];  // unbounded
-  if (full_dimensional) {
-    const PlaneIds& tight = tr.vertices[0].tight;  // flat: a plane and its opposite hold it
-    for (uint32_t p : tight) {
-      const uint32_t o = s.planes->opposite(p);
-      if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) full_dimensional = false;
+  double scaled_volume = 0;
+  if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
+    out.error = Error::Internal;
+    out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
+    return false;
+  }
+  for (const auto& v : tr.vertices)
+    for (uint32_t p : v.tight)
+      if (s.is_box[p]) out.type = KernelType::Unbounded;
+  if (options.deepest_point && out.type == KernelType::Polyhedron && out.complete) {
+    double p[3] = {0, 0, 0}, r = 0;
+    if (deepest_point(*s.planes, facet_planes(tr), s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
+      out.has_deepest_point = true;
+      for (int k = 0; k < 3; ++k) out.deepest_point[k] = std::ldexp(p[k], unscale_exp);
+      out.inscribed_radius = std::ldexp(r, unscale_exp);
     }
   }
-  if (!full_dimensional) return certify_no_contact(s, out.error, out.message, out.warnings);
-  const EmbeddingCheck check = check_embedding(s.mesh, *s.planes, tr);
-  if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
-  if (check.outcome == EmbeddingCheck::Outcome::Undecided)
-    return certify_no_contact(s, out.error, out.message, out.warnings);
-  refuse_crossing(s.mesh, check, out.error, out.message);
-  return false;
-}
-
-// find_kernel_point's certificate, without a trace: the ray degree from the centroid of kernel
-// vertices that LPs in more directions reach (strictly inside the kernel once they span it):
-// three more, opposite the first's corner of a tetrahedron, then six along the axes; else the
-// exact contact test (flat kernels, open meshes, a centroid on a facet).
-bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
-  if (s.lp.outcome != LpResult::Outcome::Optimal || s.mesh.boundary_edges > 0)
-    return certify_no_contact(s, r.error, r.message, r.warnings);
-  static const double kDirections[][3] = {
-      {1, -1.03125, -0.96875}, {-0.96875, 1, -1.03125}, {-1.03125, -0.96875, 1},  // tetrahedron
-      {1, 0.25, 0.0625},       {-1, -0.25, -0.0625},    {0.0625, 1, 0.25},
-      {-0.0625, -1, -0.25},    {0.25, 0.0625, 1},       {-0.25, -0.0625, -1}};
-  std::vector<uint32_t> planes;
-  for (uint32_t i = 0; i < s.planes->size(); ++i)
-    if (!s.is_box[i]) planes.push_back(i);
-  double sum[3] = {s.lp.vertex.x[0].v, s.lp.vertex.x[1].v, s.lp.vertex.x[2].v};
-  int vertices = 1;
-  for (size_t i = 0; i < std::size(kDirections); ++i) {
-    const LpResult lp = solve_lp(*s.planes, s.active, kDirections[i], kLpBound, options.seed);
-    if (lp.outcome == LpResult::Outcome::Optimal) {
-      for (int k = 0; k < 3; ++k) sum[k] += lp.vertex.x[k].v;
-      ++vertices;
-    }
-    if (i != 2 && i + 1 != std::size(kDirections)) continue;
-    const double c[3] = {sum[0] / vertices, sum[1] / vertices, sum[2] / vertices};
-    const EmbeddingCheck check = check_embedding_at(s.mesh, *s.planes, planes, c);
-    if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
-    if (check.outcome == EmbeddingCheck::Outcome::CrossesItself) {
-      refuse_crossing(s.mesh, check, r.error, r.message);
-      return false;
-    }
-  }
-  return certify_no_contact(s, r.error, r.message, r.warnings);
+  out.stats.ms_assemble = ms_since(t);
+  out.volume_ratio = s.mesh.volume > 0 ? scaled_volume / s.mesh.volume : 0;
+  return true;
 }
 
 }  // namespace
 
 Kernel compute_kernel(const MeshView& mesh, const Options& options) {
-  auto t_total = Clock::now();
+  const auto t_total = Clock::now();
   Kernel out;
   Setup s;
   setup(mesh, options, s, out.stats);
@@ -514,75 +150,10 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
     double hi[3], lo[3];
     precise_coordinates(*s.planes, s.lp.vertex, hi, lo);
     for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(hi[k], unscale_exp);
-
-    auto t = Clock::now();
-    report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
-    // The kernel is traced without events whatever the caller asked for; the stream is then
-    // replayed from the result (step_replay.h), so steps never change the algorithm.
-    uint64_t steps = 0;
-    TraceOptions topt;
-    ReplayOptions ropt;
-    ropt.on_step = &options.on_step;
-    ropt.max_steps = options.max_steps;
-    ropt.steps = &steps;
-    ropt.unscale_exp = unscale_exp;
-    if (options.has_from) {
-      topt.has_from = ropt.has_from = true;
-      for (int k = 0; k < 3; ++k) topt.from[k] = ropt.from[k] = s.mesh.to_scaled(options.from[k]);
-    }
-    std::vector<uint32_t> mesh_planes;
-    mesh_planes.reserve(s.planes->size());
-    for (uint32_t i = 0; i < s.planes->size(); ++i)
-      if (!s.is_box[i]) mesh_planes.push_back(i);
-    CulledTrace ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
-    TraceResult& tr = ct.trace;
-    if (!tr.internal_error && !certify_embedding(s, tr, out)) return out;
-    if (!tr.internal_error && (options.on_step || options.max_steps))
-      replay_steps(*s.planes, ct.start_vertex, tr, ropt);
-    out.stats.active_planes = 0;
-    for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];
-    out.stats.ms_trace = ms_since(t);
-    out.stats.traced_lines = tr.traced_lines;
-    out.complete = tr.complete;
-    if (tr.internal_error) {
-      out.error = Error::Internal;
-      out.message = "internal error: kernel tracing could not certify a vertex (please report this mesh)";
-      return out;
-    }
-
-    t = Clock::now();
-    report(options, Progress::Phase::Assembling, tr.vertices.size());
-    bool stopped = !tr.complete;
-    auto emit_face = [&](const StepEvent& e) {
-      if (stopped) return false;
-      ++steps;
-      bool go = !options.on_step || options.on_step(e);
-      if (options.max_steps && steps >= options.max_steps) go = false;
-      if (!go) {
-        stopped = true;
-        out.complete = false;
-      }
-      return go;
-    };
-    double scaled_volume = 0;
-    if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
-      out.error = Error::Internal;
-      out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
-      return out;
-    }
-    for (const auto& v : tr.vertices)
-      for (uint32_t p : v.tight)
-        if (s.is_box[p]) out.type = KernelType::Unbounded;
-    if (options.deepest_point && out.type == KernelType::Polyhedron && out.complete) {
-      double p[3] = {0, 0, 0}, r = 0;
-      if (deepest_point(*s.planes, facet_planes(tr), s.mesh.bbox_min, s.mesh.bbox_max, p, r)) {
-        out.has_deepest_point = true;
-        for (int k = 0; k < 3; ++k) out.deepest_point[k] = std::ldexp(p[k], unscale_exp);
-        out.inscribed_radius = std::ldexp(r, unscale_exp);
-      }
-    }
-    out.stats.ms_assemble = ms_since(t);
-    out.volume_ratio = s.mesh.volume > 0 ? scaled_volume / s.mesh.volume : 0;
+    CulledTrace ct;
+    uint64_t steps = 0;  // events emitted, the replayed trace's then the faces'
+    if (!trace_certified(s, options, unscale_exp, ct, steps, out)) return out;
+    if (!assemble(s, options, unscale_exp, ct.trace, steps, out)) return out;
   }
   out.stats.exact_fallbacks = s.planes->exact_fallbacks;
   out.stats.ms_total = ms_since(t_total);

@@ -1,0 +1,35 @@
+// What compute_kernel and find_kernel_point share, up to and including the LP: the input
+// prepared (prepare_input.h) with its boundary walls (open_boundary.h), the faces culled
+// (face_culling.h), the exact plane classes (plane_classes.h) and the LP's start vertex (lp.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "exact/plane_store.h"
+#include "kergen/kergen.h"
+#include "lp.h"
+#include "mesh_prep.h"
+
+namespace kergen {
+
+struct Setup {
+  PreparedMesh mesh;
+  std::unique_ptr<PlaneSet> planes;
+  std::vector<uint32_t> active;  // the LP's constraints: the mesh planes (+ the box for open meshes)
+  std::vector<uint32_t> box;
+  std::vector<char> is_box;
+  LpResult lp;
+  bool rejected_early = false;  // empty kernel proven before the plane classes were built
+  double center[3] = {0, 0, 0};
+  size_t surface_faces = 0;  // the mesh's own faces (boundary walls follow them in `mesh`)
+};
+
+// Fills `s` phase by phase, each reported to Options::on_progress and timed in `stats`; stops
+// after validation when s.mesh.error is set, and before the planes when face culling proves the
+// kernel empty (s.rejected_early, with that LP's result in s.lp).
+void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats);
+
+}  // namespace kergen
