@@ -275,8 +275,7 @@ class Tracer {
   Tracer(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceOptions& opt)
       : ps_(ps), active_(active), opt_(opt), mark_(ps.size(), 0) {
     arr_.build(ps, active);
-    on_head_.assign(active.size(), kNoPlane);
-    on_tail_.assign(active.size(), kNoPlane);
+    on_list_.assign(active.size(), {kNoVertex, kNoVertex});
     slot_.assign(ps.size(), kNoPlane);
     for (size_t i = 0; i < active.size(); ++i) slot_[active[i]] = uint32_t(i);
     // Room for a small kernel up front (every call starts with empty vectors, and growing them
@@ -284,8 +283,7 @@ class Tracer {
     constexpr size_t kVertices = 32;
     res_.vertices.reserve(kVertices);
     res_.edges.reserve(3 * kVertices / 2);
-    on_vertex_.reserve(3 * kVertices);
-    on_next_.reserve(3 * kVertices);
+    on_entry_.reserve(3 * kVertices);
     rays_.reserve(3 * kVertices);
     line_pool_.reserve(6 * kVertices);
     tight_.reserve(16);
@@ -384,8 +382,8 @@ class Tracer {
 
   // The known vertex whose tight set holds planes a, b and c, or kNoVertex.
   uint32_t known_vertex_on(uint32_t a, uint32_t b, uint32_t c) const {
-    for (uint32_t e = on_head_[slot_[a]]; e != kNoVertex; e = on_next_[e]) {
-      const uint32_t v = on_vertex_[e];
+    for (uint32_t e = on_list_[slot_[a]].head; e != kNoVertex; e = on_entry_[e].next) {
+      const uint32_t v = on_entry_[e].vertex;
       const auto& G = res_.vertices[v].tight;
       if (std::binary_search(G.begin(), G.end(), b) && std::binary_search(G.begin(), G.end(), c)) return v;
     }
@@ -403,14 +401,13 @@ class Tracer {
 
   // Appends v to the known vertices on the active plane in `slot` (insertion order kept).
   void link_vertex_on(uint32_t slot, uint32_t v) {
-    const uint32_t e = uint32_t(on_vertex_.size());
-    on_vertex_.push_back(v);
-    on_next_.push_back(kNoVertex);
-    if (on_head_[slot] == kNoVertex)
-      on_head_[slot] = e;
+    const uint32_t e = uint32_t(on_entry_.size());
+    on_entry_.push_back({v, kNoVertex});
+    if (on_list_[slot].head == kNoVertex)
+      on_list_[slot].head = e;
     else
-      on_next_[on_tail_[slot]] = e;
-    on_tail_[slot] = e;
+      on_entry_[on_list_[slot].tail].next = e;
+    on_list_[slot].tail = e;
   }
 
   void queue_rays(uint32_t v) {
@@ -673,7 +670,14 @@ class Tracer {
   std::vector<uint32_t> line_pool_;     // the line planes of every queued ray, concatenated
   // Known vertices on each active plane: linked lists by slot (head, tail) over entries
   // (vertex, next), in insertion order.
-  std::vector<uint32_t> on_head_, on_tail_, on_vertex_, on_next_;
+  struct OnList {
+    uint32_t head, tail;
+  };
+  struct OnEntry {
+    uint32_t vertex, next;
+  };
+  std::vector<OnList> on_list_;    // by slot
+  std::vector<OnEntry> on_entry_;  // (pairs, not parallel arrays: half the allocations)
   std::vector<uint32_t> slot_;
   std::vector<std::array<double, 4>> saved_;
   TraceResult res_;
@@ -699,10 +703,15 @@ TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>&
 }
 
 std::vector<uint32_t> facet_planes(const TraceResult& trace) {
+  // (Sized first: growing the arrays step by step was a tenth of a small kernel's allocations.)
+  size_t total = 0;
+  for (const TracedEdge& e : trace.edges) total += e.planes.size();
   std::vector<uint32_t> planes;
+  planes.reserve(total);
   for (const TracedEdge& e : trace.edges) planes.insert(planes.end(), e.planes.begin(), e.planes.end());
   std::sort(planes.begin(), planes.end());
   std::vector<uint32_t> facets;
+  facets.reserve(total / 3 + 1);  // (a facet holds three edges or more)
   for (size_t i = 0, j; i < planes.size(); i = j) {
     for (j = i; j < planes.size() && planes[j] == planes[i]; ++j) {}
     if (j - i >= 3) facets.push_back(planes[i]);
