@@ -330,17 +330,19 @@ LpResult solve_lp(PlaneSet& ps, const std::vector<uint32_t>& planes, const doubl
       cons.assign(bounds, bounds + 3);
       std::vector<uint32_t> order = subset;
       shuffle(order, s);
-      std::vector<char> moved(order.size(), 0);
       // A double-precision run's basis (or conflict) goes first: the exact run then builds the
       // optimum about once instead of once per violation. The rest keep their shuffled order,
       // and with it the expected linear time whatever the guess.
       const LpHint hint = float_lp_hint(ps, order.data(), order.size(), direction, bound);
-      for (int k = 0; k < hint.count; ++k) {
-        cons.push_back(order[hint.position[k]]);
-        moved[hint.position[k]] = 1;
-      }
+      for (int k = 0; k < hint.count; ++k) cons.push_back(order[hint.position[k]]);
+      // (The moved positions are at most four: looked up in the hint, not marked in an array.)
+      auto moved = [&](size_t i) {
+        for (int k = 0; k < hint.count; ++k)
+          if (hint.position[k] == i) return true;
+        return false;
+      };
       for (size_t i = 0; i < order.size(); ++i)
-        if (!moved[i]) cons.push_back(order[i]);
+        if (!moved(i)) cons.push_back(order[i]);
       size_t failed = 0;
       LpResult result = lp.solve(cons, &failed);
       if (result.outcome == LpResult::Outcome::Infeasible)

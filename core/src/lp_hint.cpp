@@ -30,9 +30,7 @@ class FloatSeidel {
  public:
   FloatSeidel(const double dir[3], double bound, size_t n) {
     pl_.reserve(n + 3);
-    ax_.reserve(n + 3);
-    ay_.reserve(n + 3);
-    b_.reserve(n + 3);
+    in_plane_.reserve(n + 3);
     for (int k = 0; k < 3; ++k) s_[k] = dir[k] < 0 ? -1.0 : 1.0;
     const double len = std::sqrt(dot3(dir, dir));
     for (int k = 0; k < 3; ++k) c_[k] = len > 0 ? dir[k] / len : s_[k];
@@ -91,22 +89,16 @@ class FloatSeidel {
       cy = dot3(tie_, w);
     }
     // The constraints before i in the plane's coordinates: A . y + B <= 0.
-    ax_.resize(i);
-    ay_.resize(i);
-    b_.resize(i);
-    for (int j = 0; j < i; ++j) {
-      ax_[j] = dot3(pl_[j].n, u);
-      ay_[j] = dot3(pl_[j].n, w);
-      b_[j] = value(pl_[j], p0);
-    }
+    in_plane_.resize(i);
+    for (int j = 0; j < i; ++j) in_plane_[j] = {dot3(pl_[j].n, u), dot3(pl_[j].n, w), value(pl_[j], p0)};
     // A square far beyond the box bounds every line of the plane: its sides are ids -1..-4.
     const double r = 64 * bound_;
     double y[2] = {cx >= 0 ? r : -r, cy >= 0 ? r : -r};
     int b2[2] = {-1, -1};
     for (int j = 0; j < i; ++j) {
-      const double nx = ax_[j], ny = ay_[j];
+      const double nx = in_plane_[j].ax, ny = in_plane_[j].ay, bj = in_plane_[j].b;
       if (std::fabs(nx) + std::fabs(ny) < kParallel) {
-        if (b_[j] > kTol) {
+        if (bj > kTol) {
           witness[0] = i;
           witness[1] = j;
           witness[2] = witness[3] = -1;
@@ -114,7 +106,7 @@ class FloatSeidel {
         }
         continue;
       }
-      if (nx * y[0] + ny * y[1] + b_[j] <= kTol) continue;
+      if (nx * y[0] + ny * y[1] + bj <= kTol) continue;
       // Optimum on the line A_j . y + B_j = 0: y0 + s t, s bounded by the constraints before j.
       const double l2 = nx * nx + ny * ny, l = std::sqrt(l2);
       double t[2] = {-ny / l, nx / l};
@@ -122,7 +114,7 @@ class FloatSeidel {
         t[0] = -t[0];
         t[1] = -t[1];
       }
-      const double y0[2] = {-b_[j] * nx / l2, -b_[j] * ny / l2};
+      const double y0[2] = {-bj * nx / l2, -bj * ny / l2};
       double hi = HUGE_VAL, lo = -HUGE_VAL;
       int hi_id = -1, lo_id = -1;
       auto bound_by = [&](double ak0, double ak1, double bk, int id) {
@@ -148,7 +140,7 @@ class FloatSeidel {
       bound_by(-1, 0, -r, -1);
       bound_by(0, 1, -r, -1);
       bound_by(0, -1, -r, -1);
-      for (int k = 0; k < j; ++k) bound_by(ax_[k], ay_[k], b_[k], k);
+      for (int k = 0; k < j; ++k) bound_by(in_plane_[k].ax, in_plane_[k].ay, in_plane_[k].b, k);
       if (lo > hi + kTol) {
         witness[0] = i;
         witness[1] = j;
@@ -170,7 +162,12 @@ class FloatSeidel {
 
   double s_[3], c_[3], tie_[3], bound_;
   std::vector<Plane4> pl_;  // the three box planes, then the constraints
-  std::vector<double> ax_, ay_, b_;
+  // The constraints before the current one in its plane's frame (one array, not three: a small
+  // LP's allocations cost about as much as its arithmetic).
+  struct Line2 {
+    double ax, ay, b;
+  };
+  std::vector<Line2> in_plane_;
 };
 
 }  // namespace

@@ -18,7 +18,10 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   // Coordinates to ~1e-30 relative (so the output is rounded once, from nearly exact values),
   // and local coordinates relative to the first vertex for area and volume: far from the origin
   // (offset >> size) the differences keep their accuracy.
-  std::vector<double> hi(3 * V), lo(3 * V), local(3 * V), local_lo(3 * V);
+  // (One allocation for the four arrays: on a small kernel the allocations are a visible part
+  // of the assembly.)
+  std::vector<double> coords(12 * V);
+  double *hi = coords.data(), *lo = hi + 3 * V, *local = lo + 3 * V, *local_lo = local + 3 * V;
   for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &hi[3 * i], &lo[3 * i]);
   out.vertices.resize(3 * V);
   for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = std::ldexp(hi[i], unscale_exp);
@@ -113,13 +116,14 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   out.triangles.reserve(3 * (corners - std::min(corners, 2 * facets.size())));
 
   bool announce = true, ok = true;
-  std::vector<uint32_t> next(V, kNoVertex), touched, loop;
-  touched.reserve(V);
-  loop.reserve(V);
+  // Per vertex: the next one along the facet being walked; the facet's tails (at most V) and
+  // its loop (at most V + 1: a walk that misses its start stops one step past the tails), in
+  // one allocation.
+  std::vector<uint32_t> walk(3 * V + 1, kNoVertex);
+  uint32_t *next = walk.data(), *touched = next + V, *loop = touched + V;
   for (const auto& [begin, end] : facets) {
     const uint32_t h = grouped[begin].h;
-    touched.clear();
-    loop.clear();
+    size_t num_touched = 0, loop_size = 0;
     bool valid = true;
     for (uint32_t i = begin; i < end; ++i) {
       const TracedEdge& te = trace.edges[grouped[i].e];
@@ -135,26 +139,26 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
         break;
       }
       next[from] = to;
-      touched.push_back(from);
+      touched[num_touched++] = from;  // (no vertex twice: next[from] was unset)
     }
     if (valid) {
       uint32_t start = touched[0], v = start;
       do {
-        loop.push_back(v);
+        loop[loop_size++] = v;
         v = next[v];
-      } while (v != kNoVertex && v != start && loop.size() <= touched.size());
-      valid = v == start && loop.size() == touched.size();
+      } while (v != kNoVertex && v != start && loop_size <= num_touched);
+      valid = v == start && loop_size == num_touched;
     }
-    for (uint32_t t : touched) next[t] = kNoVertex;
+    for (size_t t = 0; t < num_touched; ++t) next[touched[t]] = kNoVertex;
     if (!valid) {
       // A stopped run leaves facets open; a complete run must not.
       if (trace.complete) ok = false;
       continue;
     }
     uint32_t fid = uint32_t(out.face_sizes.size());
-    out.face_sizes.push_back(uint32_t(loop.size()));
-    out.face_indices.insert(out.face_indices.end(), loop.begin(), loop.end());
-    for (size_t i = 1; i + 1 < loop.size(); ++i) {
+    out.face_sizes.push_back(uint32_t(loop_size));
+    out.face_indices.insert(out.face_indices.end(), loop, loop + loop_size);
+    for (size_t i = 1; i + 1 < loop_size; ++i) {
       out.triangles.push_back(loop[0]);
       out.triangles.push_back(loop[i]);
       out.triangles.push_back(loop[i + 1]);
@@ -163,8 +167,8 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       StepEvent ev;
       ev.kind = StepEvent::Kind::Face;
       ev.id = fid;
-      ev.loop = out.face_indices.data() + (out.face_indices.size() - loop.size());
-      ev.loop_size = uint32_t(loop.size());
+      ev.loop = out.face_indices.data() + (out.face_indices.size() - loop_size);
+      ev.loop_size = uint32_t(loop_size);
       announce = emit_face(ev);
     }
   }

@@ -12,10 +12,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <optional>
-#include <queue>
 
 #include "compiler_hints.h"
 #include "flat_map.h"
@@ -180,18 +180,25 @@ class VertexIndex {
 // with planes that never hit a ray (n = 0) and are never near (d = -1, no error). (Culling's
 // PlaneArrays is a view of coefficients with their raw error bounds, for the support test.)
 struct CertifyPlanes {
-  std::vector<double> ax, ay, az, ad;
-  std::vector<double> bn1, ben, be0;  // per plane: |n|_1, coefficient error of n, of d + rounding
+  // Seven arrays of `size` doubles in one allocation (a small trace builds these once, and
+  // seven allocations were a tenth of its calls to malloc).
+  std::vector<double> buf;
+  size_t size = 0;
+  double *ax = nullptr, *ay = nullptr, *az = nullptr, *ad = nullptr;
+  double *bn1 = nullptr, *ben = nullptr, *be0 = nullptr;  // per plane: |n|_1, error of n, of d + rounding
+
+  CertifyPlanes() = default;
+  CertifyPlanes(const CertifyPlanes&) = delete;  // the pointers point into buf
+  CertifyPlanes& operator=(const CertifyPlanes&) = delete;
 
   void build(const PlaneSet& ps, const std::vector<uint32_t>& list) {
     const size_t n = list.size(), padded = (n + kLanes - 1) / kLanes * kLanes;
-    ax.assign(padded, 0);
-    ay.assign(padded, 0);
-    az.assign(padded, 0);
-    ad.assign(padded, -1);
-    bn1.assign(padded, 0);
-    ben.assign(padded, 0);
-    be0.assign(padded, 0);
+    size = padded;
+    buf.assign(7 * padded, 0);
+    double* arrays[7];
+    for (size_t a = 0; a < 7; ++a) arrays[a] = buf.data() + a * padded;
+    ax = arrays[0], ay = arrays[1], az = arrays[2], ad = arrays[3], bn1 = arrays[4], ben = arrays[5], be0 = arrays[6];
+    std::fill(ad, ad + padded, -1.0);
     for (size_t i = 0; i < n; ++i) {
       uint32_t l = list[i];
       ax[i] = ps.nx()[l];
@@ -213,8 +220,7 @@ struct CertifyPlanes {
     out.clear();
     const VertexFilterTerms t = vertex_filter_terms(w.x);
     const double p[3] = {w.x[0].v, w.x[1].v, w.x[2].v};
-    near_planes(ax.data(), ay.data(), az.data(), ad.data(), bn1.data(), ben.data(), be0.data(), ax.size(), p, t.c1,
-                t.c2, out);
+    near_planes(ax, ay, az, ad, bn1, ben, be0, size, p, t.c1, t.c2, out);
   }
 };
 
@@ -269,8 +275,7 @@ class Tracer {
   Tracer(const PlaneSet& ps, const std::vector<uint32_t>& active, const TraceOptions& opt)
       : ps_(ps), active_(active), opt_(opt), mark_(ps.size(), 0) {
     arr_.build(ps, active);
-    on_head_.assign(active.size(), kNoPlane);
-    on_tail_.assign(active.size(), kNoPlane);
+    on_list_.assign(active.size(), {kNoVertex, kNoVertex});
     slot_.assign(ps.size(), kNoPlane);
     for (size_t i = 0; i < active.size(); ++i) slot_[active[i]] = uint32_t(i);
     // Room for a small kernel up front (every call starts with empty vectors, and growing them
@@ -278,16 +283,18 @@ class Tracer {
     constexpr size_t kVertices = 32;
     res_.vertices.reserve(kVertices);
     res_.edges.reserve(3 * kVertices / 2);
-    on_vertex_.reserve(3 * kVertices);
-    on_next_.reserve(3 * kVertices);
+    on_entry_.reserve(3 * kVertices);
     rays_.reserve(3 * kVertices);
     line_pool_.reserve(6 * kVertices);
     tight_.reserve(16);
     line_.reserve(16);
     cand_.reserve(16);
-    std::vector<std::pair<double, uint32_t>> queued;
-    queued.reserve(3 * kVertices);
-    queue_ = decltype(queue_)(std::greater<>(), std::move(queued));
+    seen_.reserve(16);
+    rate_.reserve(16);
+    saved_.reserve(16);
+    // Only a trace towards a point orders its rays by distance; otherwise they are taken in
+    // discovery order (a plain cursor over rays_, no heap).
+    if (opt_.has_from) by_distance_.reserve(3 * kVertices);
   }
 
   TraceResult run(const VertexGeom& start) {
@@ -364,7 +371,7 @@ class Tracer {
 
   // Traces the queued rays (skipping lines already traced) until none is left.
   TraceResult trace_queued() {
-    while (!queue_.empty()) {
+    while (!queue_empty()) {
       uint32_t idx = pop();
       const Ray ray = rays_[idx];
       if (traced_.contains(ray.key)) continue;
@@ -375,8 +382,8 @@ class Tracer {
 
   // The known vertex whose tight set holds planes a, b and c, or kNoVertex.
   uint32_t known_vertex_on(uint32_t a, uint32_t b, uint32_t c) const {
-    for (uint32_t e = on_head_[slot_[a]]; e != kNoVertex; e = on_next_[e]) {
-      const uint32_t v = on_vertex_[e];
+    for (uint32_t e = on_list_[slot_[a]].head; e != kNoVertex; e = on_entry_[e].next) {
+      const uint32_t v = on_entry_[e].vertex;
       const auto& G = res_.vertices[v].tight;
       if (std::binary_search(G.begin(), G.end(), b) && std::binary_search(G.begin(), G.end(), c)) return v;
     }
@@ -394,14 +401,13 @@ class Tracer {
 
   // Appends v to the known vertices on the active plane in `slot` (insertion order kept).
   void link_vertex_on(uint32_t slot, uint32_t v) {
-    const uint32_t e = uint32_t(on_vertex_.size());
-    on_vertex_.push_back(v);
-    on_next_.push_back(kNoVertex);
-    if (on_head_[slot] == kNoVertex)
-      on_head_[slot] = e;
+    const uint32_t e = uint32_t(on_entry_.size());
+    on_entry_.push_back({v, kNoVertex});
+    if (on_list_[slot].head == kNoVertex)
+      on_list_[slot].head = e;
     else
-      on_next_[on_tail_[slot]] = e;
-    on_tail_[slot] = e;
+      on_entry_[on_list_[slot].tail].next = e;
+    on_list_[slot].tail = e;
   }
 
   void queue_rays(uint32_t v) {
@@ -485,21 +491,25 @@ class Tracer {
       }
   }
 
+  // Rays wait in rays_ itself: without a point to trace towards, breadth-first (discovery
+  // order, the order a heap keyed by the ray's index gives); with one, nearest vertex first,
+  // ties by index.
   void push(const Ray& r) {
     uint32_t idx = uint32_t(rays_.size());
-    double prio = 0;
-    if (opt_.has_from) {
-      const VertexGeom& g = res_.vertices[r.from].geom;
-      for (int k = 0; k < 3; ++k) prio += (g.x[k].v - opt_.from[k]) * (g.x[k].v - opt_.from[k]);
-    } else {
-      prio = double(idx);  // breadth-first: discovery order
-    }
     rays_.push_back(r);
-    queue_.push({prio, idx});
+    if (!opt_.has_from) return;
+    const VertexGeom& g = res_.vertices[r.from].geom;
+    double prio = 0;
+    for (int k = 0; k < 3; ++k) prio += (g.x[k].v - opt_.from[k]) * (g.x[k].v - opt_.from[k]);
+    by_distance_.push_back({prio, idx});
+    std::push_heap(by_distance_.begin(), by_distance_.end(), std::greater<>());
   }
+  bool queue_empty() const { return opt_.has_from ? by_distance_.empty() : next_ray_ == rays_.size(); }
   uint32_t pop() {
-    uint32_t idx = queue_.top().second;
-    queue_.pop();
+    if (!opt_.has_from) return next_ray_++;
+    std::pop_heap(by_distance_.begin(), by_distance_.end(), std::greater<>());
+    const uint32_t idx = by_distance_.back().second;
+    by_distance_.pop_back();
     return idx;
   }
 
@@ -547,7 +557,7 @@ class Tracer {
     }
     const double p[3] = {x, y, z};
     const size_t n = active_.size();
-    size_t bi = nearest_hit(arr_.ax.data(), arr_.ay.data(), arr_.az.data(), arr_.ad.data(), arr_.ax.size(), p, u);
+    size_t bi = nearest_hit(arr_.ax, arr_.ay, arr_.az, arr_.ad, arr_.size, p, u);
     for (size_t k = 0; k < G.size(); ++k) {
       uint32_t i = slot_[G[k]];
       arr_.ax[i] = saved_[k][0];
@@ -660,14 +670,22 @@ class Tracer {
   std::vector<uint32_t> line_pool_;     // the line planes of every queued ray, concatenated
   // Known vertices on each active plane: linked lists by slot (head, tail) over entries
   // (vertex, next), in insertion order.
-  std::vector<uint32_t> on_head_, on_tail_, on_vertex_, on_next_;
+  struct OnList {
+    uint32_t head, tail;
+  };
+  struct OnEntry {
+    uint32_t vertex, next;
+  };
+  std::vector<OnList> on_list_;    // by slot
+  std::vector<OnEntry> on_entry_;  // (pairs, not parallel arrays: half the allocations)
   std::vector<uint32_t> slot_;
   std::vector<std::array<double, 4>> saved_;
   TraceResult res_;
   VertexIndex vertex_ids_;
   U64Set traced_{48};  // line keys of traced edges (room for a small kernel's, as reserved above)
   std::vector<Ray> rays_;
-  std::priority_queue<std::pair<double, uint32_t>, std::vector<std::pair<double, uint32_t>>, std::greater<>> queue_;
+  uint32_t next_ray_ = 0;                                 // the next ray to trace, without `from`
+  std::vector<std::pair<double, uint32_t>> by_distance_;  // a min-heap of rays, with `from`
 };
 
 }  // namespace
@@ -685,10 +703,15 @@ TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>&
 }
 
 std::vector<uint32_t> facet_planes(const TraceResult& trace) {
+  // (Sized first: growing the arrays step by step was a tenth of a small kernel's allocations.)
+  size_t total = 0;
+  for (const TracedEdge& e : trace.edges) total += e.planes.size();
   std::vector<uint32_t> planes;
+  planes.reserve(total);
   for (const TracedEdge& e : trace.edges) planes.insert(planes.end(), e.planes.begin(), e.planes.end());
   std::sort(planes.begin(), planes.end());
   std::vector<uint32_t> facets;
+  facets.reserve(total / 3 + 1);  // (a facet holds three edges or more)
   for (size_t i = 0, j; i < planes.size(); i = j) {
     for (j = i; j < planes.size() && planes[j] == planes[i]; ++j) {}
     if (j - i >= 3) facets.push_back(planes[i]);

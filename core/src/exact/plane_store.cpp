@@ -92,18 +92,18 @@ void PlaneSet::pop_last() {
 const PlaneCoef<Expansion>& PlaneSet::exact(uint32_t i) const {
   if (const PlaneCoef<Expansion>* cached = exact_.find(i)) return *cached;
   {
-    auto p = std::make_unique<PlaneCoef<Expansion>>();
+    PlaneCoef<Expansion> p;
     if (explicit_plane(i)) {
       // n . x + d = 0 in coordinates times 2^shift: n . x' + 2^shift d = 0.
-      p->n[0] = Expansion(nx_[i]);
-      p->n[1] = Expansion(ny_[i]);
-      p->n[2] = Expansion(nz_[i]);
-      p->d = Expansion(std::ldexp(d_[i], exact_shift_));
+      p.n[0] = Expansion(nx_[i]);
+      p.n[1] = Expansion(ny_[i]);
+      p.n[2] = Expansion(nz_[i]);
+      p.d = Expansion(std::ldexp(d_[i], exact_shift_));
     } else {
       Scaled a(point(rep_[i][0]), exact_shift_), b(point(rep_[i][1]), exact_shift_), c(point(rep_[i][2]), exact_shift_);
-      *p = plane_from_points<Expansion>(a.v, b.v, c.v);
-      for (auto& c : p->n) c.compress();
-      p->d.compress();
+      p = plane_from_points<Expansion>(a.v, b.v, c.v);
+      for (auto& c : p.n) c.compress();
+      p.d.compress();
     }
     return exact_.insert(i, std::move(p));
   }
@@ -126,11 +126,11 @@ PlaneCoef<exact::ApproxDD> dd_plane(const double* a, const double* b, const doub
 const PlaneCoef<exact::ApproxDD>& PlaneSet::dd(uint32_t i) const {
   if (const PlaneCoef<exact::ApproxDD>* cached = dd_.find(i)) return *cached;
   {
-    auto p = std::make_unique<PlaneCoef<exact::ApproxDD>>();
+    PlaneCoef<exact::ApproxDD> p;
     if (explicit_plane(i)) {
-      *p = {{nx_[i], ny_[i], nz_[i]}, d_[i]};  // exact doubles
+      p = {{nx_[i], ny_[i], nz_[i]}, d_[i]};  // exact doubles
     } else {
-      *p = plane_from_points<exact::ApproxDD>(point(rep_[i][0]), point(rep_[i][1]), point(rep_[i][2]));
+      p = plane_from_points<exact::ApproxDD>(point(rep_[i][0]), point(rep_[i][1]), point(rep_[i][2]));
     }
     return dd_.insert(i, std::move(p));
   }
