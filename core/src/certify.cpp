@@ -68,33 +68,27 @@ bool certify_no_contact(const Setup& s, Error& error, std::string& message, std:
   return false;
 }
 
-bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out) {
-  bool full_dimensional = s.mesh.boundary_edges == 0 && tr.vertices.size() >= 4;
+namespace {
+
+// Whether a traced kernel of a closed surface is bounded and full-dimensional: no box plane
+// holds a vertex, and no plane and its opposite both hold the first one (a flat kernel).
+bool full_dimensional(const Setup& s, const TraceResult& tr) {
+  if (s.mesh.boundary_edges > 0 || tr.vertices.size() < 4) return false;
   for (const TracedVertex& v : tr.vertices)
-    for (uint32_t p : v.tight) full_dimensional &= !s.is_box[p];  // unbounded
-  if (full_dimensional) {
-    const PlaneIds& tight = tr.vertices[0].tight;  // flat: a plane and its opposite hold it
-    for (uint32_t p : tight) {
-      const uint32_t o = s.planes->opposite(p);
-      if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) full_dimensional = false;
-    }
+    for (uint32_t p : v.tight)
+      if (s.is_box[p]) return false;
+  const PlaneIds& tight = tr.vertices[0].tight;
+  for (uint32_t p : tight) {
+    const uint32_t o = s.planes->opposite(p);
+    if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) return false;
   }
-  if (!full_dimensional) return certify_no_contact(s, out.error, out.message, out.warnings);
-  const EmbeddingCheck check = check_embedding(s.mesh, *s.planes, tr);
-  if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
-  if (check.outcome == EmbeddingCheck::Outcome::Undecided)
-    return certify_no_contact(s, out.error, out.message, out.warnings);
-  refuse_crossing(s.mesh, check, out.error, out.message);
-  return false;
+  return true;
 }
 
-// find_kernel_point's certificate, without a trace: the ray degree from the centroid of kernel
-// vertices that LPs in more directions reach (strictly inside the kernel once they span it):
-// three more, opposite the first's corner of a tetrahedron, then six along the axes; else the
-// exact contact test (flat kernels, open meshes, a centroid on a facet).
-bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
-  if (s.lp.outcome != LpResult::Outcome::Optimal || s.mesh.boundary_edges > 0)
-    return certify_no_contact(s, r.error, r.message, r.warnings);
+// The ray degree from the centroid of kernel vertices that LPs in more directions reach
+// (strictly inside the kernel once they span it): three more, opposite the first's corner of a
+// tetrahedron, then six along the axes. Undecided when neither centroid is strictly inside.
+EmbeddingCheck degree_from_lp_vertices(const Setup& s, const Options& options) {
   static const double kDirections[][3] = {
       {1, -1.03125, -0.96875}, {-0.96875, 1, -1.03125}, {-1.03125, -0.96875, 1},  // tetrahedron
       {1, 0.25, 0.0625},       {-1, -0.25, -0.0625},    {0.0625, 1, 0.25},
@@ -104,6 +98,7 @@ bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
     if (!s.is_box[i]) planes.push_back(i);
   double sum[3] = {s.lp.vertex.x[0].v, s.lp.vertex.x[1].v, s.lp.vertex.x[2].v};
   int vertices = 1;
+  EmbeddingCheck check;
   for (size_t i = 0; i < std::size(kDirections); ++i) {
     const LpResult lp = solve_lp(*s.planes, s.active, kDirections[i], kLpBound, options.seed);
     if (lp.outcome == LpResult::Outcome::Optimal) {
@@ -112,14 +107,47 @@ bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
     }
     if (i != 2 && i + 1 != std::size(kDirections)) continue;
     const double c[3] = {sum[0] / vertices, sum[1] / vertices, sum[2] / vertices};
-    const EmbeddingCheck check = check_embedding_at(s.mesh, *s.planes, planes, c);
-    if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
-    if (check.outcome == EmbeddingCheck::Outcome::CrossesItself) {
-      refuse_crossing(s.mesh, check, r.error, r.message);
-      return false;
-    }
+    check = check_embedding_at(s.mesh, *s.planes, planes, c);
+    if (check.outcome != EmbeddingCheck::Outcome::Undecided) return check;
   }
-  return certify_no_contact(s, r.error, r.message, r.warnings);
+  return check;
+}
+
+// The verdict of a ray degree, or of the contact test when the degree is undecided.
+bool certify_by(const Setup& s, const EmbeddingCheck& check, Error& error, std::string& message,
+                std::vector<Warning>& warnings) {
+  if (check.outcome == EmbeddingCheck::Outcome::Embedded) return true;
+  if (check.outcome == EmbeddingCheck::Outcome::Undecided) return certify_no_contact(s, error, message, warnings);
+  refuse_crossing(s.mesh, check, error, message);
+  return false;
+}
+
+}  // namespace
+
+// Both entry points look for a point inside the kernel the same two ways, in the order their
+// own work makes cheap (compute_kernel: its trace first; find_kernel_point: more LPs first), and
+// fall back to the contact test only when both fail. The degree does not depend on the point (it
+// is the surface's winding number about it, constant inside the kernel), so the two entry points
+// give the same verdict on every mesh.
+bool certify_embedding(const Setup& s, const Options& options, const TraceResult& tr, Kernel& out) {
+  if (!full_dimensional(s, tr)) return certify_no_contact(s, out.error, out.message, out.warnings);
+  EmbeddingCheck check = check_embedding(s.mesh, *s.planes, tr);
+  if (check.outcome == EmbeddingCheck::Outcome::Undecided) check = degree_from_lp_vertices(s, options);
+  return certify_by(s, check, out.error, out.message, out.warnings);
+}
+
+bool certify_kernel_point(Setup& s, const Options& options, KernelPoint& r) {
+  if (s.lp.outcome != LpResult::Outcome::Optimal || s.mesh.boundary_edges > 0)
+    return certify_no_contact(s, r.error, r.message, r.warnings);
+  EmbeddingCheck check = degree_from_lp_vertices(s, options);
+  if (check.outcome == EmbeddingCheck::Outcome::Undecided) {
+    // The kernel traced as compute_kernel traces it (same options, no events): its point.
+    const CulledTrace ct = trace_kernel(s, options);
+    if (ct.trace.internal_error || !full_dimensional(s, ct.trace))
+      return certify_no_contact(s, r.error, r.message, r.warnings);
+    check = check_embedding(s.mesh, *s.planes, ct.trace);
+  }
+  return certify_by(s, check, r.error, r.message, r.warnings);
 }
 
 }  // namespace kergen

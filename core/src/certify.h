@@ -7,12 +7,15 @@
 // - a kernel, mesh of several pieces: refuse_nested_shells. A point that sees every piece from
 //   inside lies inside every piece: a second solid inside the first, which no solid's surface is.
 // - a traced bounded full-dimensional kernel of a closed surface: certify_embedding, the ray
-//   degree from a point inside it (embedding.h): 1 exactly when the surface is embedded.
+//   degree from a point inside it (embedding.h): 1 exactly when the surface is embedded. The
+//   degree is the surface's winding number about the point, the same for every point inside the
+//   kernel, so the point may come from the trace or from a few more LPs.
 // - a flat or unbounded kernel, an open mesh, an undecided ray: certify_no_contact, the exact
 //   test that no two faces meet away from the vertices and edges they share (self_contact.h);
 //   there is no point strictly inside such a kernel to cast a ray from.
 // - find_kernel_point's yes, which has no trace: certify_kernel_point, the ray degree from the
-//   centroid of a few more LP vertices, else the contact test.
+//   centroid of a few more LP vertices, else from the traced kernel's, else the contact test.
+//   Both entry points try the same two points (in opposite orders), so they agree on every mesh.
 // A failed certificate turns the answer into Error::SelfIntersection, its message saying where.
 #pragma once
 
@@ -44,9 +47,10 @@ void refuse_nested_shells(const PreparedMesh& m, Error& error, std::string& mess
 bool certify_no_contact(const Setup& s, Error& error, std::string& message, std::vector<Warning>& warnings);
 
 // The traced kernel `tr`: a bounded, full-dimensional kernel of a closed surface by the ray
-// degree from a point inside it (embedding.h), any other by certify_no_contact. False, with
-// out.error and out.message set, when the surface crosses itself.
-bool certify_embedding(const Setup& s, const TraceResult& tr, Kernel& out);
+// degree from a point inside it (embedding.h; the traced kernel's, else LP vertices'), any other
+// by certify_no_contact. False, with out.error and out.message set, when the surface crosses
+// itself.
+bool certify_embedding(const Setup& s, const Options& options, const TraceResult& tr, Kernel& out);
 
 // find_kernel_point's certificate, without a trace (see certify.cpp). False, with r.error and
 // r.message set, when the surface crosses itself.

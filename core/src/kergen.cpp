@@ -31,23 +31,18 @@ bool trace_certified(const Setup& s, const Options& options, int unscale_exp, Cu
                      Kernel& out) {
   const auto t = Clock::now();
   report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
-  TraceOptions topt;
   ReplayOptions ropt;
   ropt.on_step = &options.on_step;
   ropt.max_steps = options.max_steps;
   ropt.steps = &steps;
   ropt.unscale_exp = unscale_exp;
   if (options.has_from) {
-    topt.has_from = ropt.has_from = true;
-    for (int k = 0; k < 3; ++k) topt.from[k] = ropt.from[k] = s.mesh.to_scaled(options.from[k]);
+    ropt.has_from = true;
+    for (int k = 0; k < 3; ++k) ropt.from[k] = s.mesh.to_scaled(options.from[k]);
   }
-  std::vector<uint32_t> mesh_planes;
-  mesh_planes.reserve(s.planes->size());
-  for (uint32_t i = 0; i < s.planes->size(); ++i)
-    if (!s.is_box[i]) mesh_planes.push_back(i);
-  ct = trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
+  ct = trace_kernel(s, options);
   TraceResult& tr = ct.trace;
-  if (!tr.internal_error && !certify_embedding(s, tr, out)) return false;
+  if (!tr.internal_error && !certify_embedding(s, options, tr, out)) return false;
   if (!tr.internal_error && (options.on_step || options.max_steps)) replay_steps(*s.planes, ct.start_vertex, tr, ropt);
   out.stats.active_planes = 0;
   for (uint32_t p : ct.active) out.stats.active_planes += !s.is_box[p];

@@ -95,4 +95,17 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   solve_start_lp(options, s, stats);
 }
 
+CulledTrace trace_kernel(const Setup& s, const Options& options) {
+  TraceOptions topt;
+  if (options.has_from) {
+    topt.has_from = true;
+    for (int k = 0; k < 3; ++k) topt.from[k] = s.mesh.to_scaled(options.from[k]);
+  }
+  std::vector<uint32_t> mesh_planes;
+  mesh_planes.reserve(s.planes->size());
+  for (uint32_t i = 0; i < s.planes->size(); ++i)
+    if (!s.is_box[i]) mesh_planes.push_back(i);
+  return trace_with_culling(*s.planes, mesh_planes, s.box, s.lp.vertex, topt, options.seed);
+}
+
 }  // namespace kergen

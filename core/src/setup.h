@@ -12,6 +12,7 @@
 #include "kergen/kergen.h"
 #include "lp.h"
 #include "mesh_prep.h"
+#include "plane_culling.h"
 
 namespace kergen {
 
@@ -31,5 +32,9 @@ struct Setup {
 // after validation when s.mesh.error is set, and before the planes when face culling proves the
 // kernel empty (s.rejected_early, with that LP's result in s.lp).
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats);
+
+// The kernel traced from the LP's vertex over the mesh's planes (plane culling, then cuts), in
+// the order Options::from asks for; no step events (step_replay.h replays them from it).
+CulledTrace trace_kernel(const Setup& s, const Options& options);
 
 }  // namespace kergen

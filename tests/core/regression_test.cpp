@@ -60,6 +60,15 @@ kergen::Kernel compute_checked(const kergen::ReadResult& r, const std::string& n
 // Class A: zero coordinates turned into tiny non-zero ones (a translation by 1e-300 of the
 // scaled mesh, or unit coordinates next to 1e300 ones) -> "internal error: kernel tracing could
 // not certify a vertex" / "traced kernel edges do not close into a polytope".
+// find_kernel_point refused what compute_kernel answered (SELF_INTERSECTION vs OK): polygons
+// that touch themselves at a vertex, whose kernels the ray degree certifies while the contact
+// test, reached by find_kernel_point when its LP vertices spanned only a facet, counts the touch.
+// Both entry points now look for a point inside the kernel the same two ways.
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_20f75c54) { replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0x2f, 0xff}); }
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_284545a5) { replay_kernel_input({0x04, 0x04, 0x00, 0x00, 0x3b, 0x27}); }
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_6271f6e4) { replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0xbf, 0x33}); }
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_801aec4a) { replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0xfe, 0xff}); }
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_a8cfeac6) { replay_kernel_input({0x04, 0x27, 0x14, 0x27, 0x3b, 0x27}); }
 TEST(RegressionFuzzKernel, TinyOffsetInternalError_0a157a7f) { replay_kernel_input({0xf7, 0xfa, 0xf6, 0xc2}); }
 TEST(RegressionFuzzKernel, TinyOffsetInternalError_11fbad1b) { replay_kernel_input({0x04, 0x04, 0x96, 0x3a}); }
 TEST(RegressionFuzzKernel, TinyOffsetInternalError_1a874763) { replay_kernel_input({0x84, 0x4a, 0x2d, 0x2a}); }
