@@ -64,11 +64,33 @@ kergen::Kernel compute_checked(const kergen::ReadResult& r, const std::string& n
 // that touch themselves at a vertex, whose kernels the ray degree certifies while the contact
 // test, reached by find_kernel_point when its LP vertices spanned only a facet, counts the touch.
 // Both entry points now look for a point inside the kernel the same two ways.
-TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_20f75c54) { replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0x2f, 0xff}); }
-TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_284545a5) { replay_kernel_input({0x04, 0x04, 0x00, 0x00, 0x3b, 0x27}); }
-TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_6271f6e4) { replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0xbf, 0x33}); }
-TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_801aec4a) { replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0xfe, 0xff}); }
-TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_a8cfeac6) { replay_kernel_input({0x04, 0x27, 0x14, 0x27, 0x3b, 0x27}); }
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_20f75c54) {
+  replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0x2f, 0xff});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_284545a5) {
+  replay_kernel_input({0x04, 0x04, 0x00, 0x00, 0x3b, 0x27});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_6271f6e4) {
+  replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0xbf, 0x33});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_801aec4a) {
+  replay_kernel_input({0x04, 0x00, 0x00, 0x00, 0xfe, 0xff});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_a8cfeac6) {
+  replay_kernel_input({0x04, 0x27, 0x14, 0x27, 0x3b, 0x27});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_290f6ca0) {
+  replay_kernel_input({0x94, 0x93, 0x96, 0x09, 0xd1, 0xff});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_62547309) {
+  replay_kernel_input({0xf4, 0xb6, 0xdb, 0xa4, 0xa4, 0xdb});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_6f29b279) {
+  replay_kernel_input({0x04, 0x06, 0x04, 0xf8, 0xf8, 0x03});
+}
+TEST(RegressionFuzzKernel, KernelPointCertifiedLikeTheKernel_adbaa240) {
+  replay_kernel_input({0xc4, 0x18, 0x7c, 0xff, 0x29, 0xff});
+}
 TEST(RegressionFuzzKernel, TinyOffsetInternalError_0a157a7f) { replay_kernel_input({0xf7, 0xfa, 0xf6, 0xc2}); }
 TEST(RegressionFuzzKernel, TinyOffsetInternalError_11fbad1b) { replay_kernel_input({0x04, 0x04, 0x96, 0x3a}); }
 TEST(RegressionFuzzKernel, TinyOffsetInternalError_1a874763) { replay_kernel_input({0x84, 0x4a, 0x2d, 0x2a}); }
