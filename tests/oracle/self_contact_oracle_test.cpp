@@ -1,7 +1,7 @@
 // The exact contact test (core/src/self_contact.*) against CGAL. Random pairs and small sets of
-// triangles, and simple polygons against triangles, with corners on a small integer grid (and
-// halves), so that coplanar faces, collinear sides, a corner on a side or inside a face and
-// equal positions under two ids are frequent. Faces share 0, 1 or 2 vertex ids.
+// triangles, simple polygons against triangles and against each other, with corners on a small
+// integer grid (and halves), so that coplanar faces, collinear sides, a corner on a side or inside
+// a face and equal positions under two ids are frequent. Faces share 0, 1 or 2 vertex ids.
 //
 // The reference: the exact common part of two closed triangles (CGAL::intersection on Epeck, a
 // convex set given by its corners) is a contact unless every corner of it lies in the simplex
@@ -418,6 +418,122 @@ TEST(OracleSelfContact, PolygonAgainstTriangle) {
     std::printf("  %d shared ids: %zu pairs, %zu contacts\n", k, tally.by_shared[k], tally.contacts_by_shared[k]);
   EXPECT_EQ(tally.mismatches, 0u);
   EXPECT_GT(non_convex, 1000u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GT(tally.contacts_by_shared[k], 200u) << k;
+    EXPECT_GT(tally.by_shared[k] - tally.contacts_by_shared[k], 200u) << k;
+  }
+}
+
+// Two simple polygons (4 or 5 corners each): the second in the first's plane or in another plane
+// through the corners they share (0, 1, or 2 adjacent corners of the first, adjacent in the
+// second too), its other corners on the grid -2..4 of its plane.
+TEST(OracleSelfContact, PolygonPairs) {
+  Draw d(7);
+  Tally tally;
+  size_t same_plane = 0;
+  while (tally.compared < 6000) {
+    bool convex = false;
+    const std::vector<K::Point_2> a = simple_polygon(d, convex);
+    const uint32_t n = uint32_t(a.size());
+    std::array<double, 3> o, u, v;
+    do {
+      for (int k = 0; k < 3; ++k) {
+        o[k] = d.in(0, 2);
+        u[k] = d.in(-1, 1);
+        v[k] = d.in(-1, 1);
+      }
+    } while (u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 && u[0] * v[1] - u[1] * v[0] == 0);
+    std::vector<double> pos;
+    auto embed = [](const std::array<double, 3>& o, const std::array<double, 3>& u, const std::array<double, 3>& v,
+                    const K::Point_2& p) {
+      const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y());
+      return std::array<double, 3>{o[0] + x * u[0] + y * v[0], o[1] + x * u[1] + y * v[1], o[2] + x * u[2] + y * v[2]};
+    };
+    for (const K::Point_2& p : a) {
+      const std::array<double, 3> q = embed(o, u, v, p);
+      pos.insert(pos.end(), q.begin(), q.end());
+    }
+    // The second polygon's frame and the shared corners in it.
+    const int shared = d.below(3);
+    const uint32_t first = uint32_t(d.below(int(n))), second = (first + 1) % n;
+    const bool flat = d.chance(50);
+    std::array<double, 3> o2 = o, u2 = u, v2 = v;
+    std::vector<K::Point_2> b;
+    std::vector<uint32_t> b_ids;
+    if (flat) {
+      if (shared >= 1) b = {a[first]};
+      if (shared == 2) b.push_back(a[second]);
+    } else {
+      o2 = {pos[3 * first], pos[3 * first + 1], pos[3 * first + 2]};
+      do {
+        for (int k = 0; k < 3; ++k) {
+          u2[k] = shared == 2 ? pos[3 * second + k] - o2[k] : d.in(-1, 1);
+          v2[k] = d.in(-1, 1);
+        }
+      } while (u2[1] * v2[2] - u2[2] * v2[1] == 0 && u2[2] * v2[0] - u2[0] * v2[2] == 0 &&
+               u2[0] * v2[1] - u2[1] * v2[0] == 0);
+      if (shared >= 1) b = {K::Point_2(0, 0)};
+      if (shared == 2) b.push_back(K::Point_2(1, 0));
+    }
+    if (shared >= 1) b_ids.push_back(first);
+    if (shared == 2) b_ids.push_back(second);
+    const int m = d.in(4, 5);
+    while (int(b.size()) < m) b.emplace_back(d.in(-2, 4), d.in(-2, 4));
+    const Polygon b_polygon(b.begin(), b.end());
+    if (!b_polygon.is_simple() || b_polygon.area() == 0) {
+      ++tally.skipped;
+      continue;
+    }
+    for (size_t i = b_ids.size(); i < b.size(); ++i) {
+      b_ids.push_back(uint32_t(pos.size() / 3));
+      const std::array<double, 3> q = embed(o2, u2, v2, b[i]);
+      pos.insert(pos.end(), q.begin(), q.end());
+    }
+    if (d.chance(50)) {  // the second loop the other way round (the shared corners stay adjacent)
+      std::reverse(b.begin(), b.end());
+      std::reverse(b_ids.begin(), b_ids.end());
+    }
+    RefFace first_face{{}, triangulation(a)}, second_face{b_ids, {}};
+    for (uint32_t i = 0; i < n; ++i) first_face.ids.push_back(i);
+    for (const auto& t : triangulation(b)) second_face.pieces.push_back({b_ids[t[0]], b_ids[t[1]], b_ids[t[2]]});
+    // Representative corners: the lowest corner of each loop (x, then y) and its neighbours.
+    const uint32_t la = uint32_t(std::min_element(a.begin(), a.end()) - a.begin());
+    const uint32_t lb = uint32_t(std::min_element(b.begin(), b.end()) - b.begin()), k = uint32_t(b.size());
+    const std::array<uint32_t, 3> rep_a = {(la + n - 1) % n, la, (la + 1) % n};
+    const std::array<uint32_t, 3> rep_b = {b_ids[(lb + k - 1) % k], b_ids[lb], b_ids[(lb + 1) % k]};
+    const size_t before = tally.contacts;
+    const bool expected = faces_meet(pos, first_face, second_face);
+    const kergen::FaceContact got =
+        kergen::find_face_contact(prepared(pos, {first_face.ids, second_face.ids}, {rep_a, rep_b}));
+    ++tally.compared;
+    tally.contacts += expected;
+    ++tally.by_shared[shared];
+    tally.contacts_by_shared[shared] += tally.contacts - before;
+    same_plane += flat;
+    if (got.outcome != (expected ? Outcome::Found : Outcome::None)) {
+      ++tally.mismatches;
+      std::string text;
+      for (size_t w = 0; w < pos.size() / 3; ++w) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, " v%zu=(%g,%g,%g)", w, pos[3 * w], pos[3 * w + 1], pos[3 * w + 2]);
+        text += buf;
+      }
+      text += " second [";
+      for (uint32_t w : b_ids) text += " " + std::to_string(w);
+      ADD_FAILURE() << "polygon pair: CGAL says " << (expected ? "contact" : "none") << ", find_face_contact says "
+                    << (got.outcome == Outcome::Found  ? "Found"
+                        : got.outcome == Outcome::None ? "None"
+                                                       : "Undecided")
+                    << ";" << text << " ]";
+      if (tally.mismatches > 10) break;
+    }
+  }
+  std::printf("polygon pairs: %zu compared (%zu in one plane), %zu contacts, %zu mismatches\n", tally.compared,
+              same_plane, tally.contacts, tally.mismatches);
+  for (int k = 0; k < 3; ++k)
+    std::printf("  %d shared ids: %zu pairs, %zu contacts\n", k, tally.by_shared[k], tally.contacts_by_shared[k]);
+  EXPECT_EQ(tally.mismatches, 0u);
+  EXPECT_GT(same_plane, 2000u);
   for (int k = 0; k < 3; ++k) {
     EXPECT_GT(tally.contacts_by_shared[k], 200u) << k;
     EXPECT_GT(tally.by_shared[k] - tally.contacts_by_shared[k], 200u) << k;
