@@ -281,6 +281,19 @@ TEST_P(BadInput, Row) {
   kergen::Options o;
   if (row["options"].has("maxFaces")) o.max_faces = size_t(row["options"]["maxFaces"].num);
   if (row["options"].has("repair")) o.repair = row["options"]["repair"].b;
+  if (row["options"].has("allowOpen")) o.allow_open = row["options"]["allowOpen"].b;
+  if (row["options"].has("open")) {
+    // The package's `open`: 'clip' is allowOpen; 'perpendicular' is OpenBoundary::Perpendicular.
+    const std::string open = row["options"]["open"].str;
+    bool known = false;
+    for (kergen::OpenBoundary b : {kergen::OpenBoundary::Clip, kergen::OpenBoundary::Perpendicular})
+      if (open == kergen::open_boundary_name(b)) {
+        o.open_boundary = b;
+        o.allow_open |= b == kergen::OpenBoundary::Clip;
+        known = true;
+      }
+    ASSERT_TRUE(known) << "unknown open option " << open;
+  }
   const kergen::Kernel k = kergen::compute_kernel(view, o);
   if (std::getenv("KERGEN_PRINT_MESSAGES")) std::printf("ROW %s: %s\n", row["name"].str.c_str(), k.message.c_str());
   expect_outcome(row["expect"], k.error, k.message, &k);
@@ -325,6 +338,16 @@ TEST(BadInputTable, CoversTheRequiredCases) {
                             "mesh_two_components",
                             "mesh_inverted",
                             "mesh_flat",
+                            "mesh_wound_twice",
+                            "mesh_open_wound_twice",
+                            "mesh_crossing_cubes",
+                            "mesh_nested_alike",
+                            "mesh_cube_with_void",
+                            "mesh_t_junction",
+                            "mesh_t_junction_repaired",
+                            "mesh_bowl",
+                            "mesh_bowl_allow_open",
+                            "mesh_bowl_perpendicular",
                             "bad_empty2",
                             "bad_invalidvertex",
                             "bad_back_to_back",

@@ -56,6 +56,8 @@ for (const row of table.rows.filter((r) => r.mesh)) {
     const options = m.faceSizes ? { faceSizes: m.faceSizes } : {};
     if (row.options && row.options.maxFaces !== undefined) options.maxFaces = row.options.maxFaces;
     if (row.options && row.options.repair !== undefined) options.repair = row.options.repair;
+    if (row.options && row.options.allowOpen !== undefined) options.allowOpen = row.options.allowOpen;
+    if (row.options && row.options.open !== undefined) options.open = row.options.open;
     check(row, row.expect, await outcome(positions, indices, options));
     // The same verdict for the cheaper entry point.
     if (row.expect.code !== 'OK' && !row.compute_kernel_only) {
