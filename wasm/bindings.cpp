@@ -133,6 +133,11 @@ struct Out {
   const std::vector<uint32_t>* witness_faces = nullptr;
   const std::string* bytes = nullptr;
 
+  void set_mesh(const kergen::Mesh& m) {
+    vertices = &m.positions;
+    face_indices = &m.indices;
+    face_sizes = &m.face_sizes;
+  }
   void set_kernel(const kergen::Kernel& k) {
     vertices = &k.vertices;
     edges = &k.edges;
@@ -213,6 +218,19 @@ uintptr_t error_block(const char* code, const std::string& message) {
   return pack(o);
 }
 
+// Runs an entry's body: a C++ exception becomes an error block (thrown in JS as a KergenError),
+// never a trap that would leave the module unusable.
+template <class Body>
+uintptr_t guarded(Body&& body) {
+  try {
+    return body();
+  } catch (const std::bad_alloc&) {
+    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
+  } catch (const std::exception& e) {
+    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
+  }
+}
+
 // The request block as a MeshView (it points into the block, which index.js frees after the call).
 kergen::MeshView mesh_view(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   const double* positions = reinterpret_cast<const double*>(request) + kOptionSlots;
@@ -266,7 +284,7 @@ void put_xyz(const std::array<double, 3>& p, double* out) {
 // → result block address.
 uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes, val on_step,
                   val on_progress) {
-  try {
+  return guarded([&]() -> uintptr_t {
     kergen::Options options = read_options(request);
     if (!on_progress.isNull() && !on_progress.isUndefined()) {
       options.on_progress = [&on_progress](const kergen::Progress& p) {
@@ -306,17 +324,13 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
     o.warnings = &k.warnings;
     o.set_kernel(k);
     return pack(o);
-  } catch (const std::bad_alloc&) {
-    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
-  } catch (const std::exception& e) {
-    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
-  }
+  });
 }
 
 // findPoint(request, numPositionValues, numIndices, numFaceSizes) → result block address
 // (starShaped, the point in the kernel point slots, witness faces, warnings).
 uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
-  try {
+  return guarded([&]() -> uintptr_t {
     const kergen::KernelPoint p =
         kergen::find_kernel_point(mesh_view(request, num_values, num_indices, num_face_sizes), read_options(request));
     if (p.error != kergen::Error::Ok) return error_block(kergen::error_name(p.error), p.message);
@@ -328,17 +342,13 @@ uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indice
     o.witness_faces = &p.witness_faces;
     o.warnings = &p.warnings;
     return pack(o);
-  } catch (const std::bad_alloc&) {
-    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
-  } catch (const std::exception& e) {
-    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
-  }
+  });
 }
 
 // readMesh(request, numBytes, numNameBytes, format) → result block address: the mesh as vertices
 // (positions), face indices and face sizes (none = all triangles), or the reader's error.
 uintptr_t read_mesh(uintptr_t request, uint32_t num_bytes, uint32_t num_name_bytes, uint32_t format) {
-  try {
+  return guarded([&]() -> uintptr_t {
     const char* bytes = reinterpret_cast<const char*>(request);
     const kergen::ReadResult r =
         kergen::read_mesh(std::string_view(bytes, num_bytes), static_cast<kergen::MeshFormat>(format),
@@ -346,15 +356,9 @@ uintptr_t read_mesh(uintptr_t request, uint32_t num_bytes, uint32_t num_name_byt
     if (!r.ok()) return error_block(kergen::error_name(r.error), r.message);
     Out o;
     o.head[kHead_ok] = 1;
-    o.vertices = &r.mesh.positions;
-    o.face_indices = &r.mesh.indices;
-    o.face_sizes = &r.mesh.face_sizes;
+    o.set_mesh(r.mesh);
     return pack(o);
-  } catch (const std::bad_alloc&) {
-    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
-  } catch (const std::exception& e) {
-    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
-  }
+  });
 }
 
 // writeMesh(request, numPositionValues, numIndices, numFaceSizes, format, kernelType) → result
@@ -363,7 +367,7 @@ uintptr_t read_mesh(uintptr_t request, uint32_t num_bytes, uint32_t num_name_byt
 // request holds, written as kergen::kernel_mesh makes it.
 uintptr_t write_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes,
                      uint32_t format, int32_t kernel_type) {
-  try {
+  return guarded([&]() -> uintptr_t {
     const kergen::MeshView v = mesh_view(request, num_values, num_indices, num_face_sizes);
     kergen::Mesh mesh;
     std::vector<uint32_t> face_sizes(v.face_sizes, v.face_sizes + v.num_faces);
@@ -384,11 +388,7 @@ uintptr_t write_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indice
     const std::string file = kergen::write_mesh(mesh, static_cast<kergen::MeshFormat>(format));
     o.bytes = &file;
     return pack(o);
-  } catch (const std::bad_alloc&) {
-    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
-  } catch (const std::exception& e) {
-    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
-  }
+  });
 }
 
 // repair(request, numPositionValues, numIndices, numFaceSizes) → result block address: the mesh
@@ -396,7 +396,7 @@ uintptr_t write_mesh(uintptr_t request, uint32_t num_values, uint32_t num_indice
 // warnings; the name slot holds validation's verdict on it (error_name: "OK", "OPEN_MESH", ...) and
 // the message slot its message. An error block when the input is malformed (no mesh to return).
 uintptr_t repair(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
-  try {
+  return guarded([&]() -> uintptr_t {
     const kergen::RepairedMesh r =
         kergen::repair_mesh(mesh_view(request, num_values, num_indices, num_face_sizes), read_options(request));
     if (r.mesh.num_faces() == 0) return error_block(kergen::error_name(r.error), r.message);
@@ -405,15 +405,9 @@ uintptr_t repair(uintptr_t request, uint32_t num_values, uint32_t num_indices, u
     o.name = kergen::error_name(r.error);
     o.message = r.message;
     o.warnings = &r.warnings;
-    o.vertices = &r.mesh.positions;
-    o.face_indices = &r.mesh.indices;
-    o.face_sizes = &r.mesh.face_sizes;
+    o.set_mesh(r.mesh);
     return pack(o);
-  } catch (const std::bad_alloc&) {
-    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
-  } catch (const std::exception& e) {
-    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
-  }
+  });
 }
 
 // Heap figures for leak tests and diagnostics: { heapSize: bytes of wasm memory,

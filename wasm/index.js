@@ -563,23 +563,29 @@ export async function computeKernel(positions, indices, options = {}) {
   return computeKernelSync(positions, indices, options);
 }
 
-/**
- * Tests star-shapedness and returns one kernel point (a kernel vertex) without tracing the whole
- * kernel: validation + planes + one linear program, expected O(n). Synchronous variant.
- */
-export function findKernelPointSync(positions, indices, options = {}) {
-  const fn = 'findKernelPoint';
+// The checked arguments written into a request, the module's `entry` (request, counts) called on
+// it, its result block read; throws the call's error, if any (the entries without callbacks).
+function callMeshEntry(fn, entry, positions, indices, options) {
   const m = requireModule(fn);
   const opts = checkOptions(fn, options);
   const faceSizes = options && options.faceSizes != null ? options.faceSizes : null;
   checkMesh(fn, positions, indices, faceSizes);
   const raw = callWasm(fn, () => {
     const request = writeRequest(m, positions, indices, faceSizes, opts);
-    const block = m.findPoint(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0);
+    const block = m[entry](request, positions.length, indices.length, faceSizes ? faceSizes.length : 0);
     m._free(request);
     return readResult(m, block);
   });
   throwIfError(raw);
+  return raw;
+}
+
+/**
+ * Tests star-shapedness and returns one kernel point (a kernel vertex) without tracing the whole
+ * kernel: validation + planes + one linear program, expected O(n). Synchronous variant.
+ */
+export function findKernelPointSync(positions, indices, options = {}) {
+  const raw = callMeshEntry('findKernelPoint', 'findPoint', positions, indices, options);
   return { starShaped: raw.starShaped, point: raw.kernelPoint, witnessFaces: raw.witnessFaces, warnings: raw.warnings };
 }
 
@@ -734,18 +740,7 @@ export function writeMesh(meshOrKernel, format) {
  * for saving it (writeMesh). Synchronous (init() must have finished). See index.d.ts.
  */
 export function repairMeshSync(positions, indices, options = {}) {
-  const fn = 'repairMesh';
-  const m = requireModule(fn);
-  const opts = checkOptions(fn, options);
-  const faceSizes = options && options.faceSizes != null ? options.faceSizes : null;
-  checkMesh(fn, positions, indices, faceSizes);
-  const raw = callWasm(fn, () => {
-    const request = writeRequest(m, positions, indices, faceSizes, opts);
-    const block = m.repair(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0);
-    m._free(request);
-    return readResult(m, block);
-  });
-  throwIfError(raw);
+  const raw = callMeshEntry('repairMesh', 'repair', positions, indices, options);
   // As readMeshSync's: each array has a buffer of its own.
   return {
     positions: raw.vertices.slice(),
