@@ -11,69 +11,65 @@
 
 namespace kergen {
 
-bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, Kernel& out,
-                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume) {
-  scaled_volume = 0;
-  const size_t V = trace.vertices.size(), E = trace.edges.size();
-  // Coordinates to ~1e-30 relative (so the output is rounded once, from nearly exact values),
-  // and local coordinates relative to the first vertex for area and volume: far from the origin
-  // (offset >> size) the differences keep their accuracy.
-  // (One allocation for the four arrays: on a small kernel the allocations are a visible part
-  // of the assembly.)
-  std::vector<double> coords(12 * V);
-  double *hi = coords.data(), *lo = hi + 3 * V, *local = lo + 3 * V, *local_lo = local + 3 * V;
-  for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &hi[3 * i], &lo[3 * i]);
+namespace {
+
+// The vertices' coordinates: hi + lo to ~1e-30 relative (so the output is rounded once, from
+// nearly exact values), and local + local_lo, the same relative to the first vertex, for area
+// and volume: far from the origin (offset >> size) the differences keep their accuracy. (One
+// allocation for the four arrays: on a small kernel the allocations are a visible part of the
+// assembly.)
+struct VertexCoordinates {
+  explicit VertexCoordinates(size_t V) : storage(12 * V) {
+    hi = storage.data();
+    lo = hi + 3 * V;
+    local = lo + 3 * V;
+    local_lo = local + 3 * V;
+  }
+  std::vector<double> storage;
+  double *hi, *lo, *local, *local_lo;
+};
+
+// Fills `c` and the output vertices (rounded once, to nearest).
+void round_vertices(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, VertexCoordinates& c, Kernel& out) {
+  const size_t V = trace.vertices.size();
+  for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &c.hi[3 * i], &c.lo[3 * i]);
   out.vertices.resize(3 * V);
-  for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = std::ldexp(hi[i], unscale_exp);
+  for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = std::ldexp(c.hi[i], unscale_exp);
   for (size_t i = 0; i < V; ++i)
     for (int k = 0; k < 3; ++k) {
       // Knuth's two-sum of a = hi_i and b = -hi_0: s + err == a + b exactly.
-      const double a = hi[3 * i + k], b = -hi[k];
+      const double a = c.hi[3 * i + k], b = -c.hi[k];
       const double s = a + b, bb = s - a, err = (a - (s - bb)) + (b - bb);
       // local + local_lo: the difference to ~1e-30 (the volume of a nearly flat kernel cancels
       // far below the rounding of one double).
-      const double tail = err + (lo[3 * i + k] - lo[k]);
-      local[3 * i + k] = s + tail;
-      local_lo[3 * i + k] = tail - (local[3 * i + k] - s);
+      const double tail = err + (c.lo[3 * i + k] - c.lo[k]);
+      c.local[3 * i + k] = s + tail;
+      c.local_lo[3 * i + k] = tail - (c.local[3 * i + k] - s);
     }
-  out.edges.resize(2 * E);
-  for (size_t i = 0; i < E; ++i) {
-    out.edges[2 * i] = trace.edges[i].a;
-    out.edges[2 * i + 1] = trace.edges[i].b;
-  }
+}
 
-  if (V == 0) {
-    out.type = KernelType::Empty;
-    return true;
-  }
-  if (V == 1) {
-    out.type = KernelType::Point;
-    return true;
-  }
-  if (V == 2 && E <= 1) {
-    out.type = KernelType::Segment;
-    return true;
-  }
-
-  // Flat: some opposite pair is tight at a vertex (then it is tight everywhere).
-  uint32_t flat_plane = kNoPlane;
-  for (uint32_t p : trace.vertices[0].tight) {
+// Flat: some opposite pair is tight at a vertex (then it is tight everywhere); the lower of the
+// two, or kNoPlane.
+uint32_t flat_plane_of(const PlaneSet& ps, const TraceResult& trace) {
+  const PlaneIds& tight = trace.vertices[0].tight;
+  for (uint32_t p : tight) {
     uint32_t o = ps.opposite(p);
-    if (o != kNoPlane && std::binary_search(trace.vertices[0].tight.begin(), trace.vertices[0].tight.end(), o)) {
-      flat_plane = std::min(p, o);
-      break;
-    }
+    if (o != kNoPlane && std::binary_search(tight.begin(), tight.end(), o)) return std::min(p, o);
   }
-  out.type = flat_plane != kNoPlane ? KernelType::Polygon : KernelType::Polyhedron;
+  return kNoPlane;
+}
 
-  // (plane, edge) pairs grouped by plane, edges increasing within a group, each with another
-  // plane s through the edge, not h or its opposite: found in this pass over the edges in order,
-  // since per facet their plane lists are scattered reads. The grouping is a counting sort over
-  // plane ids when the pairs are numerous enough to pay for one count per plane, a sort
-  // otherwise (a small kernel of a large mesh stays output-sized).
-  struct PlaneEdge {
-    uint32_t h, e, s;
-  };
+struct PlaneEdge {
+  uint32_t h, e, s;
+};
+
+// (plane, edge) pairs grouped by plane, edges increasing within a group, each with another
+// plane s through the edge, not h or its opposite: found in this pass over the edges in order,
+// since per facet their plane lists are scattered reads. The grouping is a counting sort over
+// plane ids when the pairs are numerous enough to pay for one count per plane, a sort otherwise
+// (a small kernel of a large mesh stays output-sized).
+std::vector<PlaneEdge> plane_edges_by_plane(const PlaneSet& ps, const TraceResult& trace) {
+  const size_t E = trace.edges.size();
   auto pair_at = [&](uint32_t e, uint32_t h) {
     uint32_t s = kNoPlane;
     for (uint32_t c : trace.edges[e].planes)
@@ -100,10 +96,16 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       for (uint32_t h : trace.edges[e].planes) grouped.push_back(pair_at(e, h));
     std::stable_sort(grouped.begin(), grouped.end(), [](const PlaneEdge& x, const PlaneEdge& y) { return x.h < y.h; });
   }
-  // Facets: planes holding three or more edges (the flat plane alone for a polygon), increasing.
-  std::vector<std::pair<uint32_t, uint32_t>> facets;  // [begin, end) in grouped
-  facets.reserve(grouped.size() / 3 + 1);             // (each has three edges or more)
-  size_t corners = 0;
+  return grouped;
+}
+
+// Facets: planes holding three or more edges (the flat plane alone for a polygon), increasing,
+// as [begin, end) ranges of `grouped`; `corners` counts their edges.
+std::vector<std::pair<uint32_t, uint32_t>> facet_ranges(const std::vector<PlaneEdge>& grouped, uint32_t flat_plane,
+                                                        size_t& corners) {
+  std::vector<std::pair<uint32_t, uint32_t>> facets;
+  facets.reserve(grouped.size() / 3 + 1);  // (each has three edges or more)
+  corners = 0;
   for (uint32_t i = 0, j; i < grouped.size(); i = j) {
     for (j = i; j < grouped.size() && grouped[j].h == grouped[i].h; ++j) {}
     if (flat_plane != kNoPlane ? grouped[i].h == flat_plane : j - i >= 3) {
@@ -111,10 +113,16 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       corners += j - i;
     }
   }
-  out.face_sizes.reserve(facets.size());
-  out.face_indices.reserve(corners);
-  out.triangles.reserve(3 * (corners - std::min(corners, 2 * facets.size())));
+  return facets;
+}
 
+// Each facet's edges oriented exactly and walked into one CCW loop, appended to the output faces
+// and triangles (and announced while `emit_face` wants more). False when a complete trace leaves
+// a facet that is not one closed loop (a stopped run leaves facets open).
+bool walk_facets(const PlaneSet& ps, const TraceResult& trace, const std::vector<PlaneEdge>& grouped,
+                 const std::vector<std::pair<uint32_t, uint32_t>>& facets,
+                 const std::function<bool(const StepEvent&)>& emit_face, Kernel& out) {
+  const size_t V = trace.vertices.size();
   bool announce = true, ok = true;
   // Per vertex: the next one along the facet being walked; the facet's tails (at most V) and
   // its loop (at most V + 1: a walk that misses its start stops one step past the tails), in
@@ -151,7 +159,6 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
     }
     for (size_t t = 0; t < num_touched; ++t) next[touched[t]] = kNoVertex;
     if (!valid) {
-      // A stopped run leaves facets open; a complete run must not.
       if (trace.complete) ok = false;
       continue;
     }
@@ -172,27 +179,57 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
       announce = emit_face(ev);
     }
   }
+  return ok;
+}
 
-  // Area and volume (divergence theorem about the vertex centroid), in the scaled units of the
-  // plane set so that huge or tiny inputs neither overflow nor underflow before the ratio.
-  auto P = [&](uint32_t v, int k) { return local[3 * size_t(v) + k]; };
-  double c[3] = {0, 0, 0};
+// Six times the volume summed again in double-double, from the local coordinates to ~1e-30, about
+// vertex 0 (the local origin, exactly). Every term is then the volume of a tetrahedron spanned by
+// a kernel vertex and a face triangle, not negative in exact arithmetic (the kernel is convex),
+// so a negative computed term is rounding and counts as 0: the sum is never negative.
+double vol6_double_double(const VertexCoordinates& c, const std::vector<uint32_t>& triangles) {
+  using exact::ApproxDD;
+  auto PD = [&](uint32_t v, int k) { return ApproxDD(c.local[3 * size_t(v) + k], c.local_lo[3 * size_t(v) + k], 0); };
+  ApproxDD sum(0);
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    uint32_t a = triangles[t], b = triangles[t + 1], d = triangles[t + 2];
+    if (a == 0 || b == 0 || d == 0) continue;  // (a face through vertex 0: volume 0)
+    ApproxDD u[3], w[3], r[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = PD(b, k) - PD(a, k);
+      w[k] = PD(d, k) - PD(a, k);
+      r[k] = PD(a, k);
+    }
+    const ApproxDD n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const ApproxDD term = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+    if (term.hi + term.lo > 0) sum = sum + term;
+  }
+  return sum.hi + sum.lo;
+}
+
+// Area and six times the volume (divergence theorem about the vertex centroid), in the scaled
+// units of the plane set so that huge or tiny inputs neither overflow nor underflow before the
+// ratio.
+void area_and_vol6(const VertexCoordinates& c, size_t V, const std::vector<uint32_t>& triangles, double& area,
+                   double& vol6) {
+  auto P = [&](uint32_t v, int k) { return c.local[3 * size_t(v) + k]; };
+  double centre[3] = {0, 0, 0};
   for (uint32_t i = 0; i < V; ++i)
-    for (int k = 0; k < 3; ++k) c[k] += P(i, k) / double(V);
+    for (int k = 0; k < 3; ++k) centre[k] += P(i, k) / double(V);
   // The double pass's error, over eps: the rounding of the terms (vol6_abs) and the rounding of
   // the local coordinates themselves (below eps max|local| = eps reach each), which the edge
   // vectors u, w and the arm r inherit: a kernel far thinner than its distance from vertex 0
   // (a needle under a far apex) has edges below that rounding, and terms of no correct digit.
   double reach = 0;
-  for (size_t i = 0; i < 3 * V; ++i) reach = std::max(reach, std::fabs(local[i]));
-  double area = 0, vol6 = 0, vol6_abs = 0, coordinate_error = 0;
-  for (size_t t = 0; t < out.triangles.size(); t += 3) {
-    uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
+  for (size_t i = 0; i < 3 * V; ++i) reach = std::max(reach, std::fabs(c.local[i]));
+  double vol6_abs = 0, coordinate_error = 0;
+  area = vol6 = 0;
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    uint32_t a = triangles[t], b = triangles[t + 1], d = triangles[t + 2];
     double u[3], w[3], r[3];
     for (int k = 0; k < 3; ++k) {
       u[k] = P(b, k) - P(a, k);
       w[k] = P(d, k) - P(a, k);
-      r[k] = P(a, k) - c[k];
+      r[k] = P(a, k) - centre[k];
     }
     double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
     area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -206,33 +243,52 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
     coordinate_error += reach * (4 * (u1 + w1) * r1 + 2 * n1);
   }
   // A nearly flat kernel's volume is far below the rounding of its terms (a tetrahedron of volume
-  // 1e-17 with unit edges came out negative): then it is summed again in double-double, from the
-  // local coordinates to ~1e-30, about vertex 0 (the local origin, exactly). Every term is then
-  // the volume of a tetrahedron spanned by a kernel vertex and a face triangle, not negative in
-  // exact arithmetic (the kernel is convex), so a negative computed term is rounding and counts
-  // as 0: the sum is never negative. (A kernel smaller than the coordinates' resolution, e.g.
-  // three vertices within 1e-30 of each other, had volume -1e-68 against a true ~1e-83; a needle
-  // of base 1e-10 under an apex 1e6 away, whose terms cancel in no sum, had volume 1.4e-3
-  // against a true 3.1e-18 before the coordinates' rounding counted.)
-  if (!(vol6 > 1e-6 * (vol6_abs + coordinate_error))) {
-    using exact::ApproxDD;
-    auto PD = [&](uint32_t v, int k) { return ApproxDD(local[3 * size_t(v) + k], local_lo[3 * size_t(v) + k], 0); };
-    ApproxDD sum(0);
-    for (size_t t = 0; t < out.triangles.size(); t += 3) {
-      uint32_t a = out.triangles[t], b = out.triangles[t + 1], d = out.triangles[t + 2];
-      if (a == 0 || b == 0 || d == 0) continue;  // (a face through vertex 0: volume 0)
-      ApproxDD u[3], w[3], r[3];
-      for (int k = 0; k < 3; ++k) {
-        u[k] = PD(b, k) - PD(a, k);
-        w[k] = PD(d, k) - PD(a, k);
-        r[k] = PD(a, k);
-      }
-      const ApproxDD n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      const ApproxDD term = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
-      if (term.hi + term.lo > 0) sum = sum + term;
-    }
-    vol6 = sum.hi + sum.lo;
+  // 1e-17 with unit edges came out negative): then it is summed again in double-double. (A kernel
+  // smaller than the coordinates' resolution, e.g. three vertices within 1e-30 of each other, had
+  // volume -1e-68 against a true ~1e-83; a needle of base 1e-10 under an apex 1e6 away, whose
+  // terms cancel in no sum, had volume 1.4e-3 against a true 3.1e-18 before the coordinates'
+  // rounding counted.)
+  if (!(vol6 > 1e-6 * (vol6_abs + coordinate_error))) vol6 = vol6_double_double(c, triangles);
+}
+
+}  // namespace
+
+bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, Kernel& out,
+                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume) {
+  scaled_volume = 0;
+  const size_t V = trace.vertices.size(), E = trace.edges.size();
+  VertexCoordinates coords(V);
+  round_vertices(ps, trace, unscale_exp, coords, out);
+  out.edges.resize(2 * E);
+  for (size_t i = 0; i < E; ++i) {
+    out.edges[2 * i] = trace.edges[i].a;
+    out.edges[2 * i + 1] = trace.edges[i].b;
   }
+  if (V == 0) {
+    out.type = KernelType::Empty;
+    return true;
+  }
+  if (V == 1) {
+    out.type = KernelType::Point;
+    return true;
+  }
+  if (V == 2 && E <= 1) {
+    out.type = KernelType::Segment;
+    return true;
+  }
+  const uint32_t flat_plane = flat_plane_of(ps, trace);
+  out.type = flat_plane != kNoPlane ? KernelType::Polygon : KernelType::Polyhedron;
+
+  const std::vector<PlaneEdge> grouped = plane_edges_by_plane(ps, trace);
+  size_t corners = 0;
+  const auto facets = facet_ranges(grouped, flat_plane, corners);
+  out.face_sizes.reserve(facets.size());
+  out.face_indices.reserve(corners);
+  out.triangles.reserve(3 * (corners - std::min(corners, 2 * facets.size())));
+  bool ok = walk_facets(ps, trace, grouped, facets, emit_face, out);
+
+  double area = 0, vol6 = 0;
+  area_and_vol6(coords, V, out.triangles, area, vol6);
   scaled_volume = (out.type == KernelType::Polyhedron && trace.complete) ? vol6 / 6 : 0;
   out.area = std::ldexp(area, 2 * unscale_exp);
   out.volume = std::ldexp(scaled_volume, 3 * unscale_exp);
