@@ -39,7 +39,7 @@ export type CoreErrorCode =
   | 'PARSE_ERROR'
   /** Coordinates span too many orders of magnitude for exact evaluation (e.g. 1 next to 1e-60). */
   | 'COORDINATE_RANGE'
-  /** The surface crosses itself (a ray from inside the half-spaces' intersection crosses it more than once). */
+  /** The surface crosses or touches itself (a ray from inside the half-spaces' intersection crosses it more than once; or, for flat or unbounded kernels and open meshes, two faces meet away from what they share). */
   | 'SELF_INTERSECTION';
 
 /** Every `KergenError.code` this package produces. */

@@ -94,7 +94,8 @@ enum class OpenBoundary : int {
   // at least 1/32), and every predicate on it is exact, as on the faces' planes. A boundary edge
   // whose face has no area (dropped: Warning::Kind::DegenerateFacesDropped) gets no wall. The
   // walls count as planes in Stats (distinct_planes, active_planes), not as input faces. Like any
-  // open mesh, the surface is not certified against crossing itself (compute_kernel).
+  // open mesh, the surface (without its walls) is certified not to cross or touch itself by the
+  // exact contact test (Error::SelfIntersection).
   Perpendicular = 1,
 };
 const char* open_boundary_name(OpenBoundary o);  // "clip", "perpendicular" (CLI --open, JS `open`)
