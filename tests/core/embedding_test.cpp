@@ -80,24 +80,16 @@ TEST(Embedding, SurfaceWoundTwiceIsRefused) {
 }
 
 TEST(Embedding, EveryFullDimensionalKernelOfTheSharedMeshesIsCertified) {
-  const fs::path root = KERGEN_SHARED_MESHES;
-  if (!fs::exists(root)) GTEST_SKIP() << "shared meshes not found at " << root;
   size_t certified = 0, meshes = 0;
-  for (const char* dir : {"fixtures", "princeton", "refinements", "polyhedra/tet10", "polyhedra/tet20",
-                          "polyhedra/tet30", "polyhedra/voro"}) {
-    if (!fs::exists(root / dir)) continue;
-    for (const auto& entry : fs::directory_iterator(root / dir)) {
-      if (kergen::format_from_path(entry.path().string()) == kergen::MeshFormat::Unknown) continue;
-      const kergen::ReadResult r = kergen::read_mesh_file(entry.path().string());
-      if (!r.ok()) continue;
-      kergen::KernelType type = kergen::KernelType::Empty;
-      const kergen::EmbeddingCheck c = certificate(r.mesh, type);
-      if (type != kergen::KernelType::Polyhedron) continue;
-      ++meshes;
-      EXPECT_EQ(c.outcome, kergen::EmbeddingCheck::Outcome::Embedded) << entry.path() << ": degree " << c.crossings;
-      certified += c.outcome == kergen::EmbeddingCheck::Outcome::Embedded;
-    }
-  }
+  const bool found = kergen_test::for_each_shared_mesh([&](const fs::path& path, const Mesh& mesh) {
+    kergen::KernelType type = kergen::KernelType::Empty;
+    const kergen::EmbeddingCheck c = certificate(mesh, type);
+    if (type != kergen::KernelType::Polyhedron) return;
+    ++meshes;
+    EXPECT_EQ(c.outcome, kergen::EmbeddingCheck::Outcome::Embedded) << path << ": degree " << c.crossings;
+    certified += c.outcome == kergen::EmbeddingCheck::Outcome::Embedded;
+  });
+  if (!found) GTEST_SKIP() << "shared meshes not found at " << KERGEN_SHARED_MESHES;
   std::printf("%zu of %zu full-dimensional kernels certified with degree 1\n", certified, meshes);
   EXPECT_GT(meshes, 3000u);
 }

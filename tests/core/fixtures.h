@@ -5,12 +5,14 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <random>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "kergen/io.h"
 #include "kergen/kergen.h"
 
 namespace kergen_test {
@@ -393,5 +395,27 @@ inline GeodesicSphere geodesic_sphere(int n) {
   }
   return g;
 }
+
+#ifdef KERGEN_SHARED_MESHES
+// Calls fn(path, mesh) for every readable mesh file of the shared sets that the whole-set tests
+// sweep (fixtures, princeton, refinements, the four polyhedra sets); false when the shared
+// meshes are not there (the caller skips).
+template <class Fn>
+bool for_each_shared_mesh(Fn&& fn) {
+  namespace fs = std::filesystem;
+  const fs::path root = KERGEN_SHARED_MESHES;
+  if (!fs::exists(root)) return false;
+  for (const char* dir : {"fixtures", "princeton", "refinements", "polyhedra/tet10", "polyhedra/tet20",
+                          "polyhedra/tet30", "polyhedra/voro"}) {
+    if (!fs::exists(root / dir)) continue;
+    for (const auto& entry : fs::directory_iterator(root / dir)) {
+      if (kergen::format_from_path(entry.path().string()) == kergen::MeshFormat::Unknown) continue;
+      const kergen::ReadResult r = kergen::read_mesh_file(entry.path().string());
+      if (r.ok()) fn(entry.path(), r.mesh);
+    }
+  }
+  return true;
+}
+#endif
 
 }  // namespace kergen_test

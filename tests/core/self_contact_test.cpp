@@ -160,24 +160,16 @@ TEST(SelfContact, OpenSurfaceWoundTwiceIsRefused) {
 }
 
 TEST(SelfContact, NoContactOnAnySharedMeshValidationAccepts) {
-  const fs::path root = KERGEN_SHARED_MESHES;
-  if (!fs::exists(root)) GTEST_SKIP() << "shared meshes not found at " << root;
   size_t meshes = 0, faces = 0;
-  for (const char* dir : {"fixtures", "princeton", "refinements", "polyhedra/tet10", "polyhedra/tet20",
-                          "polyhedra/tet30", "polyhedra/voro"}) {
-    if (!fs::exists(root / dir)) continue;
-    for (const auto& entry : fs::directory_iterator(root / dir)) {
-      if (kergen::format_from_path(entry.path().string()) == kergen::MeshFormat::Unknown) continue;
-      const kergen::ReadResult r = kergen::read_mesh_file(entry.path().string());
-      if (!r.ok()) continue;
-      const kergen::PreparedMesh m = kergen::prepare_mesh(r.mesh.view(), kergen::Options{});
-      if (m.error != kergen::Error::Ok) continue;
-      const FaceContact c = kergen::find_face_contact(m);
-      EXPECT_EQ(c.outcome, Outcome::None) << entry.path() << ": faces " << c.face_a << ", " << c.face_b;
-      ++meshes;
-      faces += m.num_faces();
-    }
-  }
+  const bool found = kergen_test::for_each_shared_mesh([&](const fs::path& path, const Mesh& mesh) {
+    const kergen::PreparedMesh m = kergen::prepare_mesh(mesh.view(), kergen::Options{});
+    if (m.error != kergen::Error::Ok) return;
+    const FaceContact c = kergen::find_face_contact(m);
+    EXPECT_EQ(c.outcome, Outcome::None) << path << ": faces " << c.face_a << ", " << c.face_b;
+    ++meshes;
+    faces += m.num_faces();
+  });
+  if (!found) GTEST_SKIP() << "shared meshes not found at " << KERGEN_SHARED_MESHES;
   std::printf("%zu meshes (%zu faces) without contact\n", meshes, faces);
   EXPECT_GT(meshes, 3000u);
 }
