@@ -22,24 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using kergen::Mesh;
 
-// A bipyramid over a polygon of n corners that winds `turns` times around the z axis: for odd n
-// and turns = 2 every face is still seen from inside at the origin, and the surface is a double
-// cover of the sphere around it.
-Mesh wound_bipyramid(int n, int turns) {
-  Mesh m;
-  m.positions = {0, 0, 1, 0, 0, -1};
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * turns * i / n;
-    m.positions.insert(m.positions.end(), {std::cos(a), std::sin(a), 0.0});
-  }
-  for (uint32_t i = 0; i < uint32_t(n); ++i) {
-    const uint32_t v = 2 + i, w = 2 + (i + 1) % n;
-    m.indices.insert(m.indices.end(), {0, v, w});
-    m.indices.insert(m.indices.end(), {1, w, v});
-  }
-  return m;
-}
-
 // The certificate of a mesh's kernel, through the same pipeline as compute_kernel (without face
 // culling, which does not change the kernel).
 kergen::EmbeddingCheck certificate(const Mesh& m, kergen::KernelType& type) {
@@ -64,19 +46,19 @@ kergen::EmbeddingCheck certificate(const Mesh& m, kergen::KernelType& type) {
 
 TEST(Embedding, SurfaceWoundTwiceIsRefused) {
   for (int n : {5, 7, 9, 31}) {
-    const kergen::Kernel once = kergen::compute_kernel(wound_bipyramid(n, 1).view());
+    const kergen::Kernel once = kergen::compute_kernel(kergen_test::wound_bipyramid(n, 1).view());
     ASSERT_TRUE(once.ok()) << once.message;
     EXPECT_EQ(once.type, kergen::KernelType::Polyhedron);
-    const kergen::Kernel twice = kergen::compute_kernel(wound_bipyramid(n, 2).view());
+    const kergen::Kernel twice = kergen::compute_kernel(kergen_test::wound_bipyramid(n, 2).view());
     EXPECT_EQ(twice.error, kergen::Error::SelfIntersection) << n << ": " << twice.message;
     EXPECT_NE(twice.message.find("crosses it 2 times"), std::string::npos) << twice.message;
     kergen::KernelType type;
-    const kergen::EmbeddingCheck c = certificate(wound_bipyramid(n, 2), type);
+    const kergen::EmbeddingCheck c = certificate(kergen_test::wound_bipyramid(n, 2), type);
     EXPECT_EQ(c.outcome, kergen::EmbeddingCheck::Outcome::CrossesItself);
     EXPECT_EQ(c.crossings, 2);
   }
   // Three turns of a polygon of 7 corners (a {7/3} star), likewise.
-  EXPECT_EQ(kergen::compute_kernel(wound_bipyramid(7, 3).view()).error, kergen::Error::SelfIntersection);
+  EXPECT_EQ(kergen::compute_kernel(kergen_test::wound_bipyramid(7, 3).view()).error, kergen::Error::SelfIntersection);
 }
 
 TEST(Embedding, EveryFullDimensionalKernelOfTheSharedMeshesIsCertified) {

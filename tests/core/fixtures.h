@@ -396,6 +396,24 @@ inline GeodesicSphere geodesic_sphere(int n) {
   return g;
 }
 
+// A bipyramid over a polygon of n corners that winds `turns` times around the z axis: for odd n
+// and turns = 2 every face is still seen from inside at the origin, and the surface is a double
+// cover of the sphere around it. `open`: without the first top face (an open surface).
+inline Mesh wound_bipyramid(int n, int turns, bool open = false) {
+  Mesh m;
+  m.positions = {0, 0, 1, 0, 0, -1};
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * turns * i / n;
+    m.positions.insert(m.positions.end(), {std::cos(a), std::sin(a), 0.0});
+  }
+  for (uint32_t i = 0; i < uint32_t(n); ++i) {
+    const uint32_t v = 2 + i, w = 2 + (i + 1) % n;
+    if (!(open && i == 0)) m.indices.insert(m.indices.end(), {0, v, w});
+    m.indices.insert(m.indices.end(), {1, w, v});
+  }
+  return m;
+}
+
 #ifdef KERGEN_SHARED_MESHES
 // Calls fn(path, mesh) for every readable mesh file of the shared sets that the whole-set tests
 // sweep (fixtures, princeton, refinements, the four polyhedra sets); false when the shared

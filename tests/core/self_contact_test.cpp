@@ -121,28 +121,12 @@ TEST(SelfContact, VertexOnASideIsSharedWithItWhereAZeroAreaFaceWasDropped) {
   EXPECT_EQ(contact(folded, {{0, 1, 2}, {3, 0, 4}, {1, 3, 4}}, true), Outcome::Found);
 }
 
-// A bipyramid over a polygon of n corners winding `turns` times around the z axis.
-Mesh wound_bipyramid(int n, int turns, bool open = false) {
-  Mesh m;
-  m.positions = {0, 0, 1, 0, 0, -1};
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * turns * i / n;
-    m.positions.insert(m.positions.end(), {std::cos(a), std::sin(a), 0.0});
-  }
-  for (uint32_t i = 0; i < uint32_t(n); ++i) {
-    const uint32_t v = 2 + i, w = 2 + (i + 1) % n;
-    if (!(open && i == 0)) m.indices.insert(m.indices.end(), {0, v, w});
-    m.indices.insert(m.indices.end(), {1, w, v});
-  }
-  return m;
-}
-
 TEST(SelfContact, FindKernelPointRefusesASurfaceWoundTwice) {
   for (int n : {5, 7, 9, 31}) {
-    const kergen::KernelPoint once = kergen::find_kernel_point(wound_bipyramid(n, 1).view());
+    const kergen::KernelPoint once = kergen::find_kernel_point(kergen_test::wound_bipyramid(n, 1).view());
     ASSERT_TRUE(once.error == kergen::Error::Ok) << once.message;
     EXPECT_TRUE(once.star_shaped);
-    const kergen::KernelPoint twice = kergen::find_kernel_point(wound_bipyramid(n, 2).view());
+    const kergen::KernelPoint twice = kergen::find_kernel_point(kergen_test::wound_bipyramid(n, 2).view());
     EXPECT_EQ(twice.error, kergen::Error::SelfIntersection) << n << ": " << twice.message;
     EXPECT_FALSE(twice.star_shaped);
   }
@@ -152,9 +136,9 @@ TEST(SelfContact, OpenSurfaceWoundTwiceIsRefused) {
   kergen::Options o;
   o.allow_open = true;
   for (int n : {5, 7, 9}) {
-    const kergen::Kernel once = kergen::compute_kernel(wound_bipyramid(n, 1, true).view(), o);
+    const kergen::Kernel once = kergen::compute_kernel(kergen_test::wound_bipyramid(n, 1, true).view(), o);
     ASSERT_TRUE(once.ok()) << once.message;
-    const kergen::Kernel twice = kergen::compute_kernel(wound_bipyramid(n, 2, true).view(), o);
+    const kergen::Kernel twice = kergen::compute_kernel(kergen_test::wound_bipyramid(n, 2, true).view(), o);
     EXPECT_EQ(twice.error, kergen::Error::SelfIntersection) << n << ": " << twice.message;
   }
 }
