@@ -44,12 +44,11 @@ void dump_kernel(FILE* out, const char* label, const kergen::Kernel& k) {
   print_ids(out, "face_indices", k.face_indices);
   print_ids(out, "face_sizes", k.face_sizes);
   print_ids(out, "triangles", k.triangles);
-  std::fprintf(out, "volume %a area %a shape_volume %a ratio %a\n", k.volume, k.area, k.shape_volume,
-               k.volume_ratio);
+  std::fprintf(out, "volume %a area %a shape_volume %a ratio %a\n", k.volume, k.area, k.shape_volume, k.volume_ratio);
   print_ids(out, "witness", k.witness_faces);
-  std::fprintf(out, "kernel_point %d %a %a %a deepest %d %a %a %a r %a\n", int(k.has_kernel_point),
-               k.kernel_point[0], k.kernel_point[1], k.kernel_point[2], int(k.has_deepest_point),
-               k.deepest_point[0], k.deepest_point[1], k.deepest_point[2], k.inscribed_radius);
+  std::fprintf(out, "kernel_point %d %a %a %a deepest %d %a %a %a r %a\n", int(k.has_kernel_point), k.kernel_point[0],
+               k.kernel_point[1], k.kernel_point[2], int(k.has_deepest_point), k.deepest_point[0], k.deepest_point[1],
+               k.deepest_point[2], k.inscribed_radius);
   print_warnings(out, k.warnings);
   for (const auto& f : kergen::stats_fields(k.stats))
     if (std::strncmp(f.name, "ms_", 3) != 0) std::fprintf(out, "stat %s %a\n", f.name, f.value);
@@ -74,8 +73,8 @@ void dump_file(FILE* out, const std::string& path, bool from_first) {
     dump_kernel(out, "compute_from", kergen::compute_kernel(view, from));
   }
   kergen::KernelPoint p = kergen::find_kernel_point(view, options);
-  std::fprintf(out, "point %s star=%d %a %a %a msg=%s\n", kergen::error_name(p.error), int(p.star_shaped),
-               p.point[0], p.point[1], p.point[2], p.message.c_str());
+  std::fprintf(out, "point %s star=%d %a %a %a msg=%s\n", kergen::error_name(p.error), int(p.star_shaped), p.point[0],
+               p.point[1], p.point[2], p.message.c_str());
   print_ids(out, "point_witness", p.witness_faces);
   print_warnings(out, p.warnings);
   kergen::Validation v = kergen::validate_mesh(view, options);

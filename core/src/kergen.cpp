@@ -8,16 +8,16 @@
 #include <utility>
 #include <vector>
 
-#include "certify.h"
-#include "deepest_point.h"
+#include "certify/certify.h"
 #include "exact/vertex.h"
-#include "plane_culling.h"
-#include "polytope.h"
-#include "prepare_input.h"
+#include "input/prepare_input.h"
+#include "output/deepest_point.h"
+#include "output/polytope.h"
+#include "output/step_replay.h"
 #include "progress.h"
 #include "setup.h"
-#include "step_replay.h"
-#include "tracer.h"
+#include "solve/plane_culling.h"
+#include "solve/tracer.h"
 
 namespace kergen {
 

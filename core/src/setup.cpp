@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "face_culling.h"
-#include "open_boundary.h"
-#include "plane_classes.h"
-#include "prepare_input.h"
+#include "input/open_boundary.h"
+#include "input/prepare_input.h"
+#include "planes/face_culling.h"
+#include "planes/plane_classes.h"
 #include "progress.h"
 
 namespace kergen {

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "exact/plane_store.h"
+#include "input/mesh_prep.h"
 #include "kergen/kergen.h"
-#include "lp.h"
-#include "mesh_prep.h"
-#include "plane_culling.h"
+#include "solve/lp.h"
+#include "solve/plane_culling.h"
 
 namespace kergen {
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "fixtures.h"
-#include "mesh_prep.h"  // (core/src: the walls as the library builds them)
-#include "open_boundary.h"
+#include "input/mesh_prep.h"  // (core/src: the walls as the library builds them)
+#include "input/open_boundary.h"
 
 namespace kergen_test {
 

@@ -2,7 +2,7 @@
 // against CGAL: the oracle gets the same half-spaces, the surface's faces and the walls the
 // library builds (their exact input points), as triangles taken as half-spaces only
 // (OracleOptions::half_spaces_only). The walls' construction itself is checked in
-// tests/core/open_boundary_test.cpp (perpendicular within 2e-14 radians, exactly z = 0 for a
+// tests/core/input/open_boundary_test.cpp (perpendicular within 2e-14 radians, exactly z = 0 for a
 // lipped bowl).
 #include <gtest/gtest.h>
 

@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "self_contact.h"
+#include "certify/self_contact.h"
 
 namespace {
 

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "exact/expansion.h"
-#include "raw_vector.h"
-#include "sparse_cache.h"
+#include "util/raw_vector.h"
+#include "util/sparse_cache.h"
 
 namespace kergen {
 

@@ -65,7 +65,7 @@ export function halfSpaces(positions, loops, orientation = 1) {
 }
 
 // The core's split of a convex polygon that is not planar (see triangulate_polygon in
-// core/src/mesh_prep.cpp), restated in double precision: a fan from the first corner, then every
+// core/src/input/mesh_prep.cpp), restated in double precision: a fan from the first corner, then every
 // diagonal where the surface folds inward is flipped while both new triangles keep a positive
 // area in the projection along the dominant axis of the Newell normal. Folds of rounding size
 // may be judged differently here, but they move a plane by far less than the checks' tolerance.
@@ -77,19 +77,24 @@ function splitPolygon(positions, loop) {
   const P = (v) => vtx(positions, v);
   const nw = [0, 0, 0];
   for (let i = 0; i < k; i++) {
-    const a = P(loop[i]), b = P(loop[(i + 1) % k]);
+    const a = P(loop[i]),
+      b = P(loop[(i + 1) % k]);
     nw[0] += (a[1] - b[1]) * (a[2] + b[2]);
     nw[1] += (a[2] - b[2]) * (a[0] + b[0]);
     nw[2] += (a[0] - b[0]) * (a[1] + b[1]);
   }
   let axis = 0;
   for (let c = 1; c < 3; c++) if (Math.abs(nw[c]) > Math.abs(nw[axis])) axis = c;
-  const u = (axis + 1) % 3, w = (axis + 2) % 3, s = nw[axis] >= 0 ? 1 : -1;
+  const u = (axis + 1) % 3,
+    w = (axis + 2) % 3,
+    s = nw[axis] >= 0 ? 1 : -1;
   const area2 = (a, b, c) => {
-    const pa = P(a), pb = P(b), pc = P(c);
+    const pa = P(a),
+      pb = P(b),
+      pc = P(c);
     return s * ((pb[u] - pa[u]) * (pc[w] - pa[w]) - (pb[w] - pa[w]) * (pc[u] - pa[u]));
   };
-  for (let i = 0; i < k; i++) if (area2(loop[(i + k - 1) % k], loop[i], loop[(i + 1) % k]) < 0) return tris;  // non-convex
+  for (let i = 0; i < k; i++) if (area2(loop[(i + k - 1) % k], loop[i], loop[(i + 1) % k]) < 0) return tris; // non-convex
   const orient = (a, b, c, p) => dot(cross(sub(P(b), P(a)), sub(P(c), P(a))), sub(P(p), P(a)));
   let changed = true;
   let flips = 0;
@@ -97,11 +102,18 @@ function splitPolygon(positions, loop) {
     changed = false;
     for (let i = 0; i < tris.length; i++) {
       for (let e = 0; e < 3; e++) {
-        const x = tris[i][e], y = tris[i][(e + 1) % 3], p = tris[i][(e + 2) % 3];
-        let j = -1, g = -1;
+        const x = tris[i][e],
+          y = tris[i][(e + 1) % 3],
+          p = tris[i][(e + 2) % 3];
+        let j = -1,
+          g = -1;
         for (let t = 0; t < tris.length && j < 0; t++) {
           if (t === i) continue;
-          for (let h = 0; h < 3; h++) if (tris[t][h] === y && tris[t][(h + 1) % 3] === x) { j = t; g = h; }
+          for (let h = 0; h < 3; h++)
+            if (tris[t][h] === y && tris[t][(h + 1) % 3] === x) {
+              j = t;
+              g = h;
+            }
         }
         if (j < 0) continue;
         const q = tris[j][(g + 2) % 3];
@@ -181,7 +193,11 @@ export function box(lo = [0, 0, 0], hi = [1, 1, 1], { quads = false } = {}) {
     [1, 3, 7, 5], // x = hi
   ];
   if (quads) {
-    return { positions: Float64Array.from(positions), indices: Uint32Array.from(q.flat()), faceSizes: Uint32Array.from(q.map(() => 4)) };
+    return {
+      positions: Float64Array.from(positions),
+      indices: Uint32Array.from(q.flat()),
+      faceSizes: Uint32Array.from(q.map(() => 4)),
+    };
   }
   const tri = q.flatMap(([a, b, c, d]) => [a, b, c, a, c, d]);
   return { positions: Float64Array.from(positions), indices: Uint32Array.from(tri), faceSizes: null };
@@ -190,32 +206,74 @@ export function box(lo = [0, 0, 0], hi = [1, 1, 1], { quads = false } = {}) {
 /** Plus-shaped prism: arms of half-width w reaching to ±r, height h. Kernel: [-w,w]²×[0,h]. */
 export function plusPrism(w, r, h = 1) {
   const poly = [
-    [w, -r], [w, -w], [r, -w], [r, w], [w, w], [w, r],
-    [-w, r], [-w, w], [-r, w], [-r, -w], [-w, -w], [-w, -r],
+    [w, -r],
+    [w, -w],
+    [r, -w],
+    [r, w],
+    [w, w],
+    [w, r],
+    [-w, r],
+    [-w, w],
+    [-r, w],
+    [-r, -w],
+    [-w, -w],
+    [-w, -r],
   ];
   return extrude(poly, 0, h);
 }
 
 /** L-shaped prism over (0,0)-(2,0)-(2,1)-(1,1)-(1,2)-(0,2), height 1. Kernel: the unit cube. */
 export function lPrism() {
-  return extrude([[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]], 0, 1);
+  return extrude(
+    [
+      [0, 0],
+      [2, 0],
+      [2, 1],
+      [1, 1],
+      [1, 2],
+      [0, 2],
+    ],
+    0,
+    1,
+  );
 }
 
 /** U-shaped prism: not star-shaped (the two arms' tips cannot see each other's far walls). */
 export function uPrism() {
-  return extrude([[0, 0], [3, 0], [3, 3], [2, 3], [2, 1], [1, 1], [1, 3], [0, 3]], 0, 1);
+  return extrude(
+    [
+      [0, 0],
+      [3, 0],
+      [3, 3],
+      [2, 3],
+      [2, 1],
+      [1, 1],
+      [1, 3],
+      [0, 3],
+    ],
+    0,
+    1,
+  );
 }
 
 /** Moves / scales a mesh: p' = p * s + t. */
 export function transform({ positions, indices, faceSizes }, s, t = [0, 0, 0]) {
   const p = Float64Array.from(positions, (v, i) => v * s + t[i % 3]);
-  return { positions: p, indices: Uint32Array.from(indices), faceSizes: faceSizes ? Uint32Array.from(faceSizes) : null };
+  return {
+    positions: p,
+    indices: Uint32Array.from(indices),
+    faceSizes: faceSizes ? Uint32Array.from(faceSizes) : null,
+  };
 }
 
 /** Reverses every face (inward orientation). */
 export function flip({ positions, indices, faceSizes }) {
   const loops = faceLoops(indices, faceSizes).map((l) => l.slice().reverse());
-  return { positions: Float64Array.from(positions), indices: Uint32Array.from(loops.flat()), faceSizes: faceSizes ? Uint32Array.from(faceSizes) : null };
+  return {
+    positions: Float64Array.from(positions),
+    indices: Uint32Array.from(loops.flat()),
+    faceSizes: faceSizes ? Uint32Array.from(faceSizes) : null,
+  };
 }
 
 export { vtx, sub, cross, dot, norm };

@@ -1,0 +1,157 @@
+// The input as the kernel sees it (prepare_input.h): Options::weld and Options::repair run first
+// when the input allows them, then validation (mesh_prep.h), whose verdict is completed here: the
+// pieces of a mesh of several shells judged, and an open mesh's refusal naming open_boundary.
+#include "input/prepare_input.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+
+#include "input/repair.h"
+#include "input/shells.h"
+#include "input/weld.h"
+
+namespace kergen {
+
+namespace {
+
+// Whether Options::weld can run on the input as given: finite coordinates, indices in range,
+// face sizes that add up, no face of fewer than three corners. Otherwise validation reports the
+// input's defect as given (welding would hide or change it).
+bool weldable(const MeshView& m) {
+  if (m.num_vertices == 0 || (m.face_sizes == nullptr && m.num_indices % 3 != 0)) return false;
+  for (size_t i = 0; i < 3 * m.num_vertices; ++i)
+    if (!std::isfinite(m.positions[i])) return false;
+  for (size_t i = 0; i < m.num_indices; ++i)
+    if (m.indices[i] >= m.num_vertices) return false;
+  if (m.face_sizes) {
+    size_t sum = 0;
+    for (size_t f = 0; f < m.num_faces; ++f) {
+      if (m.face_sizes[f] < 3) return false;
+      sum += m.face_sizes[f];
+    }
+    if (sum != m.num_indices) return false;
+  }
+  return true;
+}
+
+// A closed mesh of several pieces (shells.h): refused when two pieces cross or touch, else
+// prepared with a warning (the kernel is then empty, or the pieces are nested alike: the entry
+// points refuse that once the LP has found a point).
+PreparedMesh judge_shells(PreparedMesh m) {
+  if (m.error != Error::Ok || m.shells < 2) return m;
+  const std::string pieces = std::to_string(m.shells) + " separate pieces";
+  if (find_shell_contact(m).found) {
+    m.error = Error::SelfIntersection;
+    m.message = "the mesh has " + pieces + " and two of them cross or touch each other: no solid has that surface";
+    return m;
+  }
+  m.warnings.push_back({Warning::Kind::SeparateShells, m.shells,
+                        "the mesh has " + pieces +
+                            " that neither cross nor touch (disjoint solids, or a solid and a void inside it): no "
+                            "point sees all of them from inside"});
+  return m;
+}
+
+// An open mesh refused: the message also names the other way of accepting it.
+PreparedMesh mention_open_boundary(PreparedMesh m) {
+  if (m.error == Error::OpenMesh)
+    m.message += "; Options::open_boundary bounds such a surface's kernel by walls at its boundary edges";
+  return m;
+}
+
+// A copy of the arrays `m` views (what Mesh::view would give back).
+Mesh copy_of(const MeshView& m) {
+  Mesh out;
+  out.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
+  out.indices.assign(m.indices, m.indices + m.num_indices);
+  if (m.face_sizes) out.face_sizes.assign(m.face_sizes, m.face_sizes + m.num_faces);
+  return out;
+}
+
+// What Options::weld and Options::repair did, one warning per kind of change, in the order they
+// were made (reported before validation's own warnings).
+std::vector<Warning> weld_and_repair_warnings(const WeldResult& w, const RepairCounts& repaired) {
+  std::vector<Warning> done;
+  if (w.merged_vertices || w.dropped_faces) {
+    char tolerance[32];
+    std::snprintf(tolerance, sizeof tolerance, "%.3g", w.tolerance);
+    std::string message = std::to_string(w.merged_vertices) + " vertices were merged into others within " + tolerance;
+    if (w.dropped_faces) message += ", and " + std::to_string(w.dropped_faces) + " faces that collapsed were dropped";
+    done.push_back({Warning::Kind::VerticesWelded, w.merged_vertices, message});
+  }
+  if (repaired.duplicate_faces)
+    done.push_back({Warning::Kind::DuplicateFacesRemoved, repaired.duplicate_faces,
+                    std::to_string(repaired.duplicate_faces) + " faces repeating another face were removed"});
+  if (repaired.cancelling_faces)
+    done.push_back({Warning::Kind::CancellingFacesRemoved, repaired.cancelling_faces,
+                    std::to_string(repaired.cancelling_faces) +
+                        " faces were removed in pairs of opposite orientation on the same corners"});
+  if (repaired.t_junctions)
+    done.push_back({Warning::Kind::TJunctionsSplit, repaired.t_junctions,
+                    std::to_string(repaired.t_junctions) +
+                        " vertices lying on the edge of another face were inserted into it (T-junctions split)"});
+  return done;
+}
+
+}  // namespace
+
+PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated) {
+  if (options.open_boundary == OpenBoundary::Perpendicular && !options.allow_open) {
+    Options accepting = options;
+    accepting.allow_open = true;
+    return prepare_input(mesh, accepting, validated);
+  }
+  const bool weld = options.weld >= 0;
+  const bool can_weld = weldable(mesh);
+  if ((!weld && !options.repair) || !can_weld) {
+    if (validated && can_weld) *validated = copy_of(mesh);
+    return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true)));
+  }
+  WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
+  RepairCounts repaired;
+  std::vector<uint32_t> repair_kept;
+  if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
+  PreparedMesh m = mention_open_boundary(judge_shells(prepare_mesh(w.mesh.view(), options, true)));
+  // Faces are named by their index in the input (the witness): through the repair, then the weld.
+  m.welded_source = std::move(w.source_face);
+  if (options.repair) {
+    for (uint32_t& f : repair_kept) f = m.welded_source[f];
+    m.welded_source = std::move(repair_kept);
+  }
+  m.input_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
+  m.dropped_faces += w.dropped_faces + repaired.duplicate_faces + repaired.cancelling_faces;
+  // The merged vertices are no face's any more: only the input's own unused ones are reported.
+  for (size_t i = 0; i < m.warnings.size(); ++i)
+    if (m.warnings[i].kind == Warning::Kind::UnusedVertices) {
+      const size_t unused = m.warnings[i].count - std::min(m.warnings[i].count, w.merged_vertices);
+      if (unused == 0)
+        m.warnings.erase(m.warnings.begin() + long(i));
+      else
+        m.warnings[i] = unused_vertices_warning(unused);
+      break;
+    }
+  const std::vector<Warning> done = weld_and_repair_warnings(w, repaired);
+  m.warnings.insert(m.warnings.begin(), done.begin(), done.end());
+  if (validated) *validated = std::move(w.mesh);
+  return m;
+}
+
+Mesh without_unused_vertices(Mesh mesh) {
+  const size_t nv = mesh.num_vertices();
+  std::vector<uint32_t> new_id(nv, 0);
+  for (uint32_t v : mesh.indices) new_id[v] = 1;
+  uint32_t kept = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    if (!new_id[v]) continue;
+    for (int k = 0; k < 3; ++k) mesh.positions[3 * size_t(kept) + k] = mesh.positions[3 * v + k];
+    new_id[v] = kept++;
+  }
+  mesh.positions.resize(3 * size_t(kept));
+  for (uint32_t& v : mesh.indices) v = new_id[v];
+  return mesh;
+}
+
+}  // namespace kergen

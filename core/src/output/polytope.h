@@ -1,0 +1,20 @@
+// From traced vertices and edges to the output polytope: type, facets as CCW loops, volume, area.
+#pragma once
+
+#include <functional>
+
+#include "kergen/kergen.h"
+#include "solve/tracer.h"
+
+namespace kergen {
+
+// Fills type, vertices (times 2^unscale_exp), edges, face_indices/face_sizes, triangles, volume and
+// area of `out`. A plane is a facet iff it holds >= 3 edges; its loop is walked counter-clockwise
+// seen from outside, decided exactly per edge. `emit_face` is called per facet, in order; it
+// returns false to stop (the remaining facets are still assembled but not announced).
+// `scaled_volume` receives the volume in the plane set's units. Returns false if the traced edges do not close into a
+// valid polytope (internal error).
+bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, Kernel& out,
+                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume);
+
+}  // namespace kergen
