@@ -40,8 +40,20 @@ function meshList(tmp) {
   const list = [
     { name: 'princeton/325.off', file: path.join(shared, 'princeton/325.off') },
     { name: 'refinements/vase6.off', file: path.join(shared, 'refinements/vase6.off') },
-    { name: 'UV sphere 199k (OFF)', file: path.join(tmp, 'sphere-199k.off'), make: (f) => writeOFF(f, radialSphere(250, 400, () => 1)) },
-    { name: 'bumpy sphere 1M (binary STL)', file: path.join(tmp, 'bumpy-1m.stl'), make: (f) => writeBinarySTL(f, bumpySphere(1000, 501)) },
+    {
+      name: 'UV sphere 199k (OFF)',
+      file: path.join(tmp, 'sphere-199k.off'),
+      make: (f) =>
+        writeOFF(
+          f,
+          radialSphere(250, 400, () => 1),
+        ),
+    },
+    {
+      name: 'bumpy sphere 1M (binary STL)',
+      file: path.join(tmp, 'bumpy-1m.stl'),
+      make: (f) => writeBinarySTL(f, bumpySphere(1000, 501)),
+    },
   ];
   return list.filter((m) => !only || m.name.includes(only));
 }
@@ -55,7 +67,9 @@ const median = (xs) => {
 // a small sample first: the worker and its wasm module are loaded, as on a page in use.
 async function dropOnce(page, base, url, name, stream) {
   await page.goto(`${base}?sample=l-prism${stream ? '' : '&stream=0'}`, { waitUntil: 'load' });
-  await page.waitForFunction(() => document.getElementById('status').dataset.state === 'done', null, { timeout: 60000 });
+  await page.waitForFunction(() => document.getElementById('status').dataset.state === 'done', null, {
+    timeout: 60000,
+  });
   await page.click('#jump-end');
   await page.waitForTimeout(300);
   return dropAndMeasure(page, url, name, { timeout: timeoutMs });
@@ -64,7 +78,8 @@ async function dropOnce(page, base, url, name, stream) {
 async function measure(page, base, mesh, served) {
   const url = `/__files/${path.basename(mesh.file)}`;
   served.set(url, mesh.file);
-  const streamed = [], plain = [];
+  const streamed = [],
+    plain = [];
   for (let i = 0; i < runs; i++) {
     streamed.push(await dropOnce(page, base, url, path.basename(mesh.file), true));
     plain.push(await dropOnce(page, base, url, path.basename(mesh.file), false));
@@ -72,26 +87,49 @@ async function measure(page, base, mesh, served) {
   const last = streamed.at(-1);
   if (last.state !== 'done') throw new Error(`${mesh.name}: ${last.state} ${last.statusText} ${last.message ?? ''}`);
   return {
-    mesh: mesh.name, inputFaces: last.inputFaces, status: last.status, kernel: `${last.vertices}/${last.edges}/${last.faces}`, steps: last.steps,
-    shownMs: median(streamed.map((r) => r.shownMs)), workerMs: median(streamed.map((r) => r.workerMs)),
-    workerNoStreamMs: median(plain.map((r) => r.workerMs)), longestMs: Math.max(...streamed.map((r) => r.longest)),
-    longestNoStreamMs: Math.max(...plain.map((r) => r.longest)), runs,
+    mesh: mesh.name,
+    inputFaces: last.inputFaces,
+    status: last.status,
+    kernel: `${last.vertices}/${last.edges}/${last.faces}`,
+    steps: last.steps,
+    shownMs: median(streamed.map((r) => r.shownMs)),
+    workerMs: median(streamed.map((r) => r.workerMs)),
+    workerNoStreamMs: median(plain.map((r) => r.workerMs)),
+    longestMs: Math.max(...streamed.map((r) => r.longest)),
+    longestNoStreamMs: Math.max(...plain.map((r) => r.longest)),
+    runs,
   };
 }
 
 function printTable(rows) {
   const f = (ms) => (Number.isFinite(ms) ? (ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(2)} s`) : 'n/a');
-  console.log('| mesh | input faces | kernel V/E/F | steps | drop → kernel shown | worker compute (streaming) | worker compute (no onStep) | longest main-thread task (streaming / no onStep) |');
+  console.log(
+    '| mesh | input faces | kernel V/E/F | steps | drop → kernel shown | worker compute (streaming) | worker compute (no onStep) | longest main-thread task (streaming / no onStep) |',
+  );
   console.log('|---|---:|---:|---:|---:|---:|---:|---:|');
   for (const r of rows) {
     if (r.skipped) console.log(`| ${r.mesh} | skipped: ${r.skipped} | | | | | | |`);
-    else console.log(`| ${r.mesh} | ${r.inputFaces.toLocaleString('en-US')} | ${r.kernel} | ${r.steps.toLocaleString('en-US')} | ${f(r.shownMs)} | ${f(r.workerMs)} | ${f(r.workerNoStreamMs)} | ${f(r.longestMs)} / ${f(r.longestNoStreamMs)} |`);
+    else
+      console.log(
+        `| ${r.mesh} | ${r.inputFaces.toLocaleString('en-US')} | ${r.kernel} | ${r.steps.toLocaleString('en-US')} | ${f(r.shownMs)} | ${f(r.workerMs)} | ${f(r.workerNoStreamMs)} | ${f(r.longestMs)} / ${f(r.longestNoStreamMs)} |`,
+      );
   }
 }
 
 async function main() {
   if (!fs.existsSync(path.join(repo, 'web/dist/index.html'))) {
-    const r = spawnSync(process.execPath, [path.join(repo, 'node_modules/vite/bin/vite.js'), 'build', '--config', 'web/vite.config.js', '--logLevel', 'warn'], { cwd: repo, stdio: 'inherit' });
+    const r = spawnSync(
+      process.execPath,
+      [
+        path.join(repo, 'node_modules/vite/bin/vite.js'),
+        'build',
+        '--config',
+        'web/vite.config.js',
+        '--logLevel',
+        'warn',
+      ],
+      { cwd: repo, stdio: 'inherit' },
+    );
     if (r.status !== 0) throw new Error('vite build failed');
   }
   const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-browser-bench-'));

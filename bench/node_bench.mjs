@@ -27,7 +27,16 @@ if (!process.argv.includes('--liftoff')) v8.setFlagsFromString('--no-liftoff');
 const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 
 function parseArgs(argv) {
-  const a = { runs: 5, rounds: 3, json: false, quick: false, liftoff: false, native: '', meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'), files: [] };
+  const a = {
+    runs: 5,
+    rounds: 3,
+    json: false,
+    quick: false,
+    liftoff: false,
+    native: '',
+    meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'),
+    files: [],
+  };
   let runsGiven = false;
   for (let i = 0; i < argv.length; ++i) {
     const s = argv[i];
@@ -35,35 +44,48 @@ function parseArgs(argv) {
       if (i + 1 >= argv.length) throw new Error(`${s} needs a value`);
       return argv[++i];
     };
-    if (s === '--runs') { a.runs = Math.max(1, parseInt(next(), 10) || 1); runsGiven = true; }
-    else if (s === '--rounds') a.rounds = Math.max(1, parseInt(next(), 10) || 1);
+    if (s === '--runs') {
+      a.runs = Math.max(1, parseInt(next(), 10) || 1);
+      runsGiven = true;
+    } else if (s === '--rounds') a.rounds = Math.max(1, parseInt(next(), 10) || 1);
     else if (s === '--json') a.json = true;
     else if (s === '--liftoff') a.liftoff = true;
     else if (s === '--quick') a.quick = true;
     else if (s === '--native') a.native = next();
     else if (s === '--meshes') a.meshes = next();
     else if (s === '-h' || s === '--help') {
-      console.log('usage: node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick] [--liftoff] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]');
+      console.log(
+        'usage: node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick] [--liftoff] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]',
+      );
       process.exit(0);
     } else if (s.startsWith('-')) throw new Error(`unknown option ${s}`);
     else a.files.push(s);
   }
-  if (a.quick && !runsGiven) { a.runs = 1; a.rounds = 1; }
+  if (a.quick && !runsGiven) {
+    a.runs = 1;
+    a.rounds = 1;
+  }
   return a;
 }
 
 // Minimal OFF reader (the benchmark's own): comments and polygons; no per-face colours (the word
 // stream has no line breaks), which the shared mesh sets do not use.
 function readOff(file) {
-  const words = fs.readFileSync(file, 'utf8').replace(/#[^\n]*/g, ' ').split(/\s+/).filter(Boolean);
+  const words = fs
+    .readFileSync(file, 'utf8')
+    .replace(/#[^\n]*/g, ' ')
+    .split(/\s+/)
+    .filter(Boolean);
   let p = 0;
   if (!/^OFF$/i.test(words[p])) throw new Error(`${file}: not an OFF file`);
   ++p;
-  const nv = +words[p++], nf = +words[p++];
-  ++p;  // edge count
+  const nv = +words[p++],
+    nf = +words[p++];
+  ++p; // edge count
   const positions = new Float64Array(3 * nv);
   for (let i = 0; i < 3 * nv; ++i) positions[i] = +words[p++];
-  const indices = [], faceSizes = [];
+  const indices = [],
+    faceSizes = [];
   let allTriangles = true;
   for (let f = 0; f < nf; ++f) {
     const k = +words[p++];
@@ -71,16 +93,30 @@ function readOff(file) {
     if (k !== 3) allTriangles = false;
     for (let j = 0; j < k; ++j) indices.push(+words[p++]);
   }
-  return { positions, indices: Uint32Array.from(indices), faceSizes: allTriangles ? null : Uint32Array.from(faceSizes), faces: nf };
+  return {
+    positions,
+    indices: Uint32Array.from(indices),
+    faceSizes: allTriangles ? null : Uint32Array.from(faceSizes),
+    faces: nf,
+  };
 }
 
 function defaultList(a) {
   const rel = [];
-  if (a.quick) rel.push('princeton/350.off', 'princeton/200.off', 'refinements/spiral1.off', 'refinements/vase1.off', 'polyhedra/tet10/0.off', 'polyhedra/voro/0.off');
+  if (a.quick)
+    rel.push(
+      'princeton/350.off',
+      'princeton/200.off',
+      'refinements/spiral1.off',
+      'refinements/vase1.off',
+      'polyhedra/tet10/0.off',
+      'polyhedra/voro/0.off',
+    );
   else {
     for (const p of ['325', '326', '337', '350', '1', '10', '100', '200', '300']) rel.push(`princeton/${p}.off`);
     for (const s of ['spiral', 'vase']) for (let i = 1; i <= 6; ++i) rel.push(`refinements/${s}${i}.off`);
-    for (const d of ['tet10', 'tet20', 'tet30', 'voro']) for (const i of ['0', '500']) rel.push(`polyhedra/${d}/${i}.off`);
+    for (const d of ['tet10', 'tet20', 'tet30', 'voro'])
+      for (const i of ['0', '500']) rel.push(`polyhedra/${d}/${i}.off`);
   }
   return rel.map((r) => ({ file: path.join(a.meshes, r), label: r }));
 }
@@ -111,16 +147,23 @@ async function main() {
   // change of machine speed during the benchmark (shared hosts) does not skew the ratio.
   const nativeRow = (file) => {
     if (!a.native) return null;
-    const out = execFileSync(a.native, ['--json', '--no-epick', '--no-epeck', '--runs', String(a.runs), file],
-      { encoding: 'utf8', maxBuffer: 1 << 26, stdio: ['ignore', 'pipe', 'ignore'] });
+    const out = execFileSync(a.native, ['--json', '--no-epick', '--no-epeck', '--runs', String(a.runs), file], {
+      encoding: 'utf8',
+      maxBuffer: 1 << 26,
+      stdio: ['ignore', 'pipe', 'ignore'],
+    });
     const line = out.split('\n').find(Boolean);
     return line ? JSON.parse(line) : null;
   };
 
   const wasmStat = fs.statSync(wasmPath);
   if (!a.json) {
-    console.log(`# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.rounds} x ${a.runs} run(s), alternating with native | V8 ${a.liftoff ? 'default tiering (Liftoff first)' : 'optimizing tier only (--no-liftoff)'} | ms, parse excluded`);
-    console.log('| mesh | faces | kernel | V | E | F | wasm | native | wasm/native | validate | planes | lp | trace | assemble |');
+    console.log(
+      `# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.rounds} x ${a.runs} run(s), alternating with native | V8 ${a.liftoff ? 'default tiering (Liftoff first)' : 'optimizing tier only (--no-liftoff)'} | ms, parse excluded`,
+    );
+    console.log(
+      '| mesh | faces | kernel | V | E | F | wasm | native | wasm/native | validate | planes | lp | trace | assemble |',
+    );
     console.log('|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|');
   }
   for (const { file, label } of list) {
@@ -128,20 +171,27 @@ async function main() {
     try {
       mesh = readOff(file);
     } catch (e) {
-      console.log(a.json ? JSON.stringify({ mesh: label, error: String(e.message) }) : `| ${label} | | ERROR ${e.message} |`);
+      console.log(
+        a.json ? JSON.stringify({ mesh: label, error: String(e.message) }) : `| ${label} | | ERROR ${e.message} |`,
+      );
       continue;
     }
     const options = mesh.faceSizes ? { faceSizes: mesh.faceSizes } : {};
-    const times = [], results = [];
-    let result = null, error = null;
+    const times = [],
+      results = [];
+    let result = null,
+      error = null;
     // Warm-up, not timed: 20 calls, and on small meshes more, up to 300 ms in all. The wasm code is
     // optimized from the start (above), but the wrapper's JavaScript is not: V8 optimizes it only
     // after many calls, and until then it added up to ~0.1 ms per call (tet10/0 timed right
     // after start-up: 0.16 ms, after a large mesh: 0.05 ms).
     try {
       const w0 = performance.now();
-      for (let w = 0; w < 20 || (w < 20000 && performance.now() - w0 < 300); ++w) kergen.computeKernelSync(mesh.positions, mesh.indices, options);
-    } catch { /* reported by the timed runs */ }
+      for (let w = 0; w < 20 || (w < 20000 && performance.now() - w0 < 300); ++w)
+        kergen.computeKernelSync(mesh.positions, mesh.indices, options);
+    } catch {
+      /* reported by the timed runs */
+    }
     // Rounds alternate the native runs (a child process, median of --runs) with as many wasm
     // runs: the machine's speed drifts over seconds, and alternating spreads the drift over both.
     // Reported: the median of all wasm runs and the median of the rounds' native medians.
@@ -170,19 +220,39 @@ async function main() {
     }
     const natMs = nativeMs.length ? median(nativeMs) : NaN;
     if (a.json) {
-      const o = { mesh: label, node: process.version, v8_tiering: a.liftoff ? "default" : "no-liftoff", runs: a.runs, rounds: a.rounds, faces: mesh.faces, wasm_ms: ms };
+      const o = {
+        mesh: label,
+        node: process.version,
+        v8_tiering: a.liftoff ? 'default' : 'no-liftoff',
+        runs: a.runs,
+        rounds: a.rounds,
+        faces: mesh.faces,
+        wasm_ms: ms,
+      };
       if (error) o.error = `${error.code ?? ''} ${error.message}`;
-      else Object.assign(o, { type: result.status, V: result.vertices.length / 3, E: result.edges.length / 2, F: result.faceSizes.length, volume: result.volume, stats: result.stats });
+      else
+        Object.assign(o, {
+          type: result.status,
+          V: result.vertices.length / 3,
+          E: result.edges.length / 2,
+          F: result.faceSizes.length,
+          volume: result.volume,
+          stats: result.stats,
+        });
       if (Number.isFinite(natMs)) Object.assign(o, { native_ms: natMs, wasm_over_native: ms / natMs });
       console.log(JSON.stringify(o));
       continue;
     }
     if (error) {
-      console.log(`| ${label} | ${mesh.faces} | ERROR | | | | ${fmt(ms)} | ${fmt(natMs)} | | | | | | | ${error.code ?? ''} ${error.message} |`);
+      console.log(
+        `| ${label} | ${mesh.faces} | ERROR | | | | ${fmt(ms)} | ${fmt(natMs)} | | | | | | | ${error.code ?? ''} ${error.message} |`,
+      );
       continue;
     }
     const s = result.stats;
-    console.log(`| ${label} | ${mesh.faces} | ${result.status} | ${result.vertices.length / 3} | ${result.edges.length / 2} | ${result.faceSizes.length} | ${fmt(ms)} | ${fmt(natMs)} | ${Number.isFinite(natMs) ? fmt(ms / natMs) + 'x' : '-'} | ${fmt(s.msValidate)} | ${fmt(s.msPlanes)} | ${fmt(s.msLp)} | ${fmt(s.msTrace)} | ${fmt(s.msAssemble)} |`);
+    console.log(
+      `| ${label} | ${mesh.faces} | ${result.status} | ${result.vertices.length / 3} | ${result.edges.length / 2} | ${result.faceSizes.length} | ${fmt(ms)} | ${fmt(natMs)} | ${Number.isFinite(natMs) ? fmt(ms / natMs) + 'x' : '-'} | ${fmt(s.msValidate)} | ${fmt(s.msPlanes)} | ${fmt(s.msLp)} | ${fmt(s.msTrace)} | ${fmt(s.msAssemble)} |`,
+    );
   }
 }
 

@@ -18,7 +18,11 @@ import fs from 'node:fs';
 import path from 'node:path';
 
 // The rotation of the tests' fixture turned() (tests/core/fixtures.h), about (0.3, 0.2, 0.1).
-const R = [[0.36, 0.48, -0.8], [-0.8, 0.6, 0], [0.48, 0.64, 0.6]];
+const R = [
+  [0.36, 0.48, -0.8],
+  [-0.8, 0.6, 0],
+  [0.48, 0.64, 0.6],
+];
 function turn([x, y, z]) {
   const p = [x - 0.3, y - 0.2, z - 0.1];
   return R.map((r) => r[0] * p[0] + r[1] * p[1] + r[2] * p[2]);
@@ -45,16 +49,46 @@ function tessellatedCube(n) {
   };
   // Per face: origin corner and two in-face axes u, v with u x v = the outward normal.
   const sides = [
-    [[n, 0, 0], [0, 1, 0], [0, 0, 1]], [[0, 0, 0], [0, 0, 1], [0, 1, 0]],
-    [[0, n, 0], [0, 0, 1], [1, 0, 0]], [[0, 0, 0], [1, 0, 0], [0, 0, 1]],
-    [[0, 0, n], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [0, 1, 0], [1, 0, 0]],
+    [
+      [n, 0, 0],
+      [0, 1, 0],
+      [0, 0, 1],
+    ],
+    [
+      [0, 0, 0],
+      [0, 0, 1],
+      [0, 1, 0],
+    ],
+    [
+      [0, n, 0],
+      [0, 0, 1],
+      [1, 0, 0],
+    ],
+    [
+      [0, 0, 0],
+      [1, 0, 0],
+      [0, 0, 1],
+    ],
+    [
+      [0, 0, n],
+      [1, 0, 0],
+      [0, 1, 0],
+    ],
+    [
+      [0, 0, 0],
+      [0, 1, 0],
+      [1, 0, 0],
+    ],
   ];
   const faces = [];
   for (const [o, u, v] of sides) {
     const P = (a, b) => id(o[0] + a * u[0] + b * v[0], o[1] + a * u[1] + b * v[1], o[2] + a * u[2] + b * v[2]);
     for (let i = 0; i < n; i++) {
       for (let j = 0; j < n; j++) {
-        const a = P(i, j), b = P(i + 1, j), c = P(i + 1, j + 1), d = P(i, j + 1);
+        const a = P(i, j),
+          b = P(i + 1, j),
+          c = P(i + 1, j + 1),
+          d = P(i, j + 1);
         faces.push([a, b, c], [a, c, d]);
       }
     }
@@ -67,7 +101,8 @@ function turnedPrism(poly) {
   const k = poly.length;
   const points = [];
   for (const z of [0, 1]) for (const [x, y] of poly) points.push(turn([x, y, z]));
-  const bottom = [], top = [];
+  const bottom = [],
+    top = [];
   for (let i = 0; i < k; i++) {
     bottom.push(k - 1 - i);
     top.push(k + i);
@@ -83,7 +118,8 @@ function turnedPrism(poly) {
 function gear(k) {
   const poly = [];
   for (let i = 0; i < k; i++) {
-    const r = i % 2 ? 0.8 : 1, t = (2 * Math.PI * i) / k;
+    const r = i % 2 ? 0.8 : 1,
+      t = (2 * Math.PI * i) / k;
     poly.push([r * Math.cos(t), r * Math.sin(t)]);
   }
   return poly;
@@ -112,7 +148,9 @@ function star(k) {
 
 // Three turns between r = 1 + t outside and r = t - 1.5 (at least 0.3) inside.
 function spiral(k) {
-  const half = Math.floor(k / 2), outside = [], inside = [];
+  const half = Math.floor(k / 2),
+    outside = [],
+    inside = [];
   for (let i = 0; i < half; i++) {
     const t = (3 * 2 * Math.PI * i) / (half - 1);
     outside.push([(1 + t) * Math.cos(t), (1 + t) * Math.sin(t)]);
@@ -128,15 +166,25 @@ if (args.length === 0 || args[0].startsWith('-')) {
   process.exit(2);
 }
 const outDir = args[0];
-const cubes = [], polygons = { gear: [], star: [], spiral: [] };
+const cubes = [],
+  polygons = { gear: [], star: [], spiral: [] };
 let list = cubes;
 for (const a of args.slice(1)) {
-  if (a.startsWith('--') && a.slice(2) in polygons) { list = polygons[a.slice(2)]; continue; }
+  if (a.startsWith('--') && a.slice(2) in polygons) {
+    list = polygons[a.slice(2)];
+    continue;
+  }
   const v = parseInt(a, 10);
-  if (!(v >= 1) || String(v) !== a) { console.error(`not a size: ${a}`); process.exit(2); }
+  if (!(v >= 1) || String(v) !== a) {
+    console.error(`not a size: ${a}`);
+    process.exit(2);
+  }
   list.push(v);
 }
-if (cubes.length === 0 && Object.values(polygons).every((l) => l.length === 0)) { cubes.push(16, 64); polygons.gear.push(128, 4096); }
+if (cubes.length === 0 && Object.values(polygons).every((l) => l.length === 0)) {
+  cubes.push(16, 64);
+  polygons.gear.push(128, 4096);
+}
 fs.mkdirSync(outDir, { recursive: true });
 for (const n of cubes) {
   const { points, faces } = tessellatedCube(n);
@@ -147,8 +195,14 @@ for (const n of cubes) {
 const shapes = { gear, star, spiral };
 for (const [name, sizes] of Object.entries(polygons)) {
   for (const k of sizes) {
-    if (name === 'gear' && (k < 4 || k % 2)) { console.error(`a gear needs an even number of corners >= 4: ${k}`); process.exit(2); }
-    if (name !== 'gear' && k < 8) { console.error(`a ${name} needs at least 8 corners: ${k}`); process.exit(2); }
+    if (name === 'gear' && (k < 4 || k % 2)) {
+      console.error(`a gear needs an even number of corners >= 4: ${k}`);
+      process.exit(2);
+    }
+    if (name !== 'gear' && k < 8) {
+      console.error(`a ${name} needs at least 8 corners: ${k}`);
+      process.exit(2);
+    }
     const { points, faces } = turnedPrism(shapes[name](k));
     const file = path.join(outDir, `turned_${name}_${k}.off`);
     writeOff(file, points, faces);

@@ -26,13 +26,17 @@ export function bumpySphere(nu = 1000, nv = 501) {
   const indices = new Uint32Array(3 * 2 * nu * (nv - 1));
   let t = 0;
   for (let i = 0; i < nu; i++) {
-    indices.set([0, id(1, i), id(1, i + 1)], t); t += 3;
-    indices.set([1, id(nv - 1, i + 1), id(nv - 1, i)], t); t += 3;
+    indices.set([0, id(1, i), id(1, i + 1)], t);
+    t += 3;
+    indices.set([1, id(nv - 1, i + 1), id(nv - 1, i)], t);
+    t += 3;
   }
   for (let j = 1; j + 1 < nv; j++) {
     for (let i = 0; i < nu; i++) {
-      indices.set([id(j, i), id(j + 1, i), id(j + 1, i + 1)], t); t += 3;
-      indices.set([id(j, i), id(j + 1, i + 1), id(j, i + 1)], t); t += 3;
+      indices.set([id(j, i), id(j + 1, i), id(j + 1, i + 1)], t);
+      t += 3;
+      indices.set([id(j, i), id(j + 1, i + 1), id(j, i + 1)], t);
+      t += 3;
     }
   }
   return { positions, indices };
@@ -48,7 +52,10 @@ if (import.meta.url === pathToFileURL(process.argv[1]).href) {
   const fd = fs.openSync(out, 'w');
   fs.writeSync(fd, `OFF\n${positions.length / 3} ${indices.length / 3} 0\n`);
   let buf = [];
-  const flush = () => { fs.writeSync(fd, buf.join('')); buf = []; };
+  const flush = () => {
+    fs.writeSync(fd, buf.join(''));
+    buf = [];
+  };
   for (let v = 0; v < positions.length; v += 3) {
     buf.push(`${positions[v]} ${positions[v + 1]} ${positions[v + 2]}\n`);
     if (buf.length > 65536) flush();

@@ -11,7 +11,10 @@ import { fileURLToPath } from 'node:url';
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const BEGIN = '<!-- size-table:begin (written by scripts/size-table.mjs) -->';
 const END = '<!-- size-table:end -->';
-const FILES = [['dist/kergen.wasm', '`dist/kergen.wasm`'], ['dist/kergen.mjs', '`dist/kergen.mjs` (glue)']];
+const FILES = [
+  ['dist/kergen.wasm', '`dist/kergen.wasm`'],
+  ['dist/kergen.mjs', '`dist/kergen.mjs` (glue)'],
+];
 
 const bytes = (n) => `${n.toLocaleString('en-US')} B`;
 

@@ -4,6 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 echo "== format (clang-format)"; bash scripts/format.sh --check
+echo "== lint (ESLint, Prettier)"; bash scripts/lint.sh
 echo "== native build"; bash scripts/build-native.sh
 echo "== native tests (ctest)"; ctest --test-dir build --output-on-failure -j2 -LE long
 echo "== wasm build"; bash scripts/build-wasm.sh

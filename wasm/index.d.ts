@@ -255,7 +255,10 @@ export interface KernelPointResult {
   warnings: KernelWarning[];
 }
 
-export type KernelPointOptions = Pick<KernelOptions, 'from' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'>;
+export type KernelPointOptions = Pick<
+  KernelOptions,
+  'from' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'
+>;
 
 export interface MemoryStats {
   /** Bytes of WebAssembly memory (grows, never shrinks). */
@@ -272,17 +275,37 @@ export function init(options?: InitOptions): Promise<void>;
 export function isInitialized(): boolean;
 
 /** Computes the kernel of a closed mesh. */
-export function computeKernel(positions: PositionsInput, indices: IndicesInput, options?: KernelOptions): Promise<KernelResult>;
+export function computeKernel(
+  positions: PositionsInput,
+  indices: IndicesInput,
+  options?: KernelOptions,
+): Promise<KernelResult>;
 /** Synchronous computeKernel; requires a finished init(). */
-export function computeKernelSync(positions: PositionsInput, indices: IndicesInput, options?: KernelOptions): KernelResult;
+export function computeKernelSync(
+  positions: PositionsInput,
+  indices: IndicesInput,
+  options?: KernelOptions,
+): KernelResult;
 
 /** Star-shapedness and one kernel point, without tracing the kernel (expected O(n)). */
-export function findKernelPoint(positions: PositionsInput, indices: IndicesInput, options?: KernelPointOptions): Promise<KernelPointResult>;
+export function findKernelPoint(
+  positions: PositionsInput,
+  indices: IndicesInput,
+  options?: KernelPointOptions,
+): Promise<KernelPointResult>;
 /** Synchronous findKernelPoint; requires a finished init(). */
-export function findKernelPointSync(positions: PositionsInput, indices: IndicesInput, options?: KernelPointOptions): KernelPointResult;
+export function findKernelPointSync(
+  positions: PositionsInput,
+  indices: IndicesInput,
+  options?: KernelPointOptions,
+): KernelPointResult;
 
 /** True when the kernel is non-empty. */
-export function isStarShaped(positions: PositionsInput, indices: IndicesInput, options?: KernelPointOptions): Promise<boolean>;
+export function isStarShaped(
+  positions: PositionsInput,
+  indices: IndicesInput,
+  options?: KernelPointOptions,
+): Promise<boolean>;
 
 /** Mesh file formats readMesh reads. */
 export type MeshFormat = 'off' | 'obj' | 'stl' | 'ply';
@@ -338,7 +361,10 @@ export function readMeshSync(bytes: MeshBytes, options?: ReadMeshOptions): MeshD
 export function writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Uint8Array;
 
 /** What repairMesh accepts: the options that change the mesh the kernel is computed on. */
-export type RepairMeshOptions = Pick<KernelOptions, 'weld' | 'repair' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'>;
+export type RepairMeshOptions = Pick<
+  KernelOptions,
+  'weld' | 'repair' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'
+>;
 
 /**
  * The mesh computeKernel computes the kernel on, as repairMesh returns it. Faces keep their
@@ -363,9 +389,17 @@ export interface RepairedMesh extends MeshData {
  * KergenError only for malformed input (indices out of range, non-finite coordinates, faces of
  * fewer than three corners), which leaves no mesh to return.
  */
-export function repairMesh(positions: PositionsInput, indices: IndicesInput, options?: RepairMeshOptions): Promise<RepairedMesh>;
+export function repairMesh(
+  positions: PositionsInput,
+  indices: IndicesInput,
+  options?: RepairMeshOptions,
+): Promise<RepairedMesh>;
 /** Synchronous repairMesh; requires a finished init(). */
-export function repairMeshSync(positions: PositionsInput, indices: IndicesInput, options?: RepairMeshOptions): RepairedMesh;
+export function repairMeshSync(
+  positions: PositionsInput,
+  indices: IndicesInput,
+  options?: RepairMeshOptions,
+): RepairedMesh;
 
 /** Wasm heap figures (requires a finished init()). */
 export function memoryStats(): MemoryStats;

@@ -10,7 +10,6 @@ import { KergenError } from './errors.js';
 
 export { KergenError };
 
-
 // Kept in variables (not literals) so that bundlers neither resolve nor emit them for the web.
 const NODE_FS = 'node:fs/promises';
 const NODE_URL = 'node:url';
@@ -49,7 +48,8 @@ async function readWasmInNode(source) {
 // server's HTML fallback is reported with the URL and the HTTP status, not as a CompileError
 // ("expected magic word").
 async function fetchWasm(href) {
-  const fail = (what, cause) => new KergenError('WASM_LOAD_FAILED', `could not load kergen.wasm from ${href}: ${what}`, { cause });
+  const fail = (what, cause) =>
+    new KergenError('WASM_LOAD_FAILED', `could not load kergen.wasm from ${href}: ${what}`, { cause });
   let response;
   try {
     response = await fetch(href, { credentials: 'same-origin' });
@@ -105,7 +105,11 @@ export function init(options = {}) {
       (err) => {
         loading = null;
         if (err instanceof KergenError) throw err;
-        throw new KergenError('WASM_LOAD_FAILED', `could not load kergen.wasm: ${err && err.message ? err.message : err}`, { cause: err });
+        throw new KergenError(
+          'WASM_LOAD_FAILED',
+          `could not load kergen.wasm: ${err && err.message ? err.message : err}`,
+          { cause: err },
+        );
       },
     );
   }
@@ -119,18 +123,61 @@ export function isInitialized() {
 
 function requireModule(fn) {
   if (!wasm) {
-    throw new KergenError('NOT_INITIALIZED', `${fn}: the WebAssembly module is not loaded; await init() first (or use the async function)`);
+    throw new KergenError(
+      'NOT_INITIALIZED',
+      `${fn}: the WebAssembly module is not loaded; await init() first (or use the async function)`,
+    );
   }
   return wasm;
 }
 
 // The layout names this file uses (see W); a module without one of them is from another build.
 const WIRE_NAMES = {
-  option: ['fromX', 'fromY', 'fromZ', 'maxSteps', 'allowOpen', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed',
-    'weld', 'weldRelative', 'repair', 'openBoundary', 'slots'],
-  head: ['ok', 'complete', 'hasKernelPoint', 'hasDeepestPoint', 'starShaped', 'numWarnings', 'textBytes', 'numVertexValues',
-    'numEdgeValues', 'numFaceIndices', 'numFaces', 'numTriangleValues', 'numWitnessFaces', 'numBytes', 'words'],
-  scalar: ['volume', 'area', 'shapeVolume', 'volumeRatio', 'kernelPoint', 'deepestPoint', 'inscribedRadius', 'stats', 'count'],
+  option: [
+    'fromX',
+    'fromY',
+    'fromZ',
+    'maxSteps',
+    'allowOpen',
+    'deepestPoint',
+    'maxFaces',
+    'maxVertices',
+    'cullFaces',
+    'seed',
+    'weld',
+    'weldRelative',
+    'repair',
+    'openBoundary',
+    'slots',
+  ],
+  head: [
+    'ok',
+    'complete',
+    'hasKernelPoint',
+    'hasDeepestPoint',
+    'starShaped',
+    'numWarnings',
+    'textBytes',
+    'numVertexValues',
+    'numEdgeValues',
+    'numFaceIndices',
+    'numFaces',
+    'numTriangleValues',
+    'numWitnessFaces',
+    'numBytes',
+    'words',
+  ],
+  scalar: [
+    'volume',
+    'area',
+    'shapeVolume',
+    'volumeRatio',
+    'kernelPoint',
+    'deepestPoint',
+    'inscribedRadius',
+    'stats',
+    'count',
+  ],
   step: ['kind', 'id', 'a', 'b', 'loop', 'loopSize', 'position'],
 };
 const camelCase = (name) => name.replace(/_([a-z])/g, (_, c) => c.toUpperCase());
@@ -145,10 +192,15 @@ export function checkWireFormat(w) {
   for (const [group, names] of Object.entries(WIRE_NAMES)) {
     for (const n of names) if (typeof w?.[group]?.[n] !== 'number') missing.push(`${group}.${n}`);
   }
-  for (const list of ['stats', 'statuses', 'stepKinds', 'optionWords', 'openBoundaries']) if (!Array.isArray(w?.[list])) missing.push(list);
-  if (missing.length === 0 && !['vertex', 'edge', 'face'].every((k) => w.stepKinds.includes(k))) missing.push('stepKinds');
+  for (const list of ['stats', 'statuses', 'stepKinds', 'optionWords', 'openBoundaries'])
+    if (!Array.isArray(w?.[list])) missing.push(list);
+  if (missing.length === 0 && !['vertex', 'edge', 'face'].every((k) => w.stepKinds.includes(k)))
+    missing.push('stepKinds');
   if (missing.length) {
-    throw new KergenError('WASM_LOAD_FAILED', `kergen.wasm does not match this index.js (rebuild both): its wire format lacks ${missing.join(', ')}`);
+    throw new KergenError(
+      'WASM_LOAD_FAILED',
+      `kergen.wasm does not match this index.js (rebuild both): its wire format lacks ${missing.join(', ')}`,
+    );
   }
   return { ...w, statsKeys: w.stats.map(camelCase) };
 }
@@ -180,7 +232,8 @@ function checkIndexArray(fn, name, arr) {
   }
   for (let i = 0; i < arr.length; i++) {
     const v = arr[i];
-    if (typeof v !== 'number' || !Number.isInteger(v)) throw invalid(fn, `${name}[${i}] = ${String(v)} is not an integer`);
+    if (typeof v !== 'number' || !Number.isInteger(v))
+      throw invalid(fn, `${name}[${i}] = ${String(v)} is not an integer`);
     if (v < 0 || v > 0xffffffff) {
       const code = name === 'indices' ? 'INDEX_OUT_OF_RANGE' : 'INVALID_ARGUMENT';
       throw new KergenError(code, `${fn}: ${name}[${i}] = ${v} is outside 0 .. 2^32-1`);
@@ -195,7 +248,10 @@ function checkNotDetached(fn, name, arr) {
   try {
     new Uint8Array(arr.buffer);
   } catch {
-    throw invalid(fn, `${name} is a detached typed array (its buffer was transferred); pass a fresh array, or { copy: true } to the worker call that transferred it`);
+    throw invalid(
+      fn,
+      `${name} is a detached typed array (its buffer was transferred); pass a fresh array, or { copy: true } to the worker call that transferred it`,
+    );
   }
 }
 
@@ -223,7 +279,8 @@ function checkWeld(fn, weld) {
   const ok = (x) => typeof x === 'number' && Number.isFinite(x) && x >= 0;
   if (weld === true) return { distance: DEFAULT_RELATIVE_WELD, relative: true };
   if (ok(weld)) return { distance: weld, relative: false };
-  if (weld !== null && typeof weld === 'object' && ok(weld.relative)) return { distance: weld.relative, relative: true };
+  if (weld !== null && typeof weld === 'object' && ok(weld.relative))
+    return { distance: weld.relative, relative: true };
   throw invalid(fn, 'options.weld must be true, a non-negative distance or { relative: r } with r >= 0');
 }
 
@@ -232,7 +289,10 @@ function checkWeld(fn, weld) {
 function checkOpen(fn, open, allowOpen) {
   const code = W.openBoundaries.indexOf(open);
   if (typeof open !== 'string' || code < 0) {
-    throw invalid(fn, `options.open must be ${W.openBoundaries.map((o) => `'${o}'`).join(' or ')} (got ${String(open)})`);
+    throw invalid(
+      fn,
+      `options.open must be ${W.openBoundaries.map((o) => `'${o}'`).join(' or ')} (got ${String(open)})`,
+    );
   }
   if (allowOpen === false) throw invalid(fn, `options.open accepts open meshes; allowOpen: false contradicts it`);
   return { allowOpen: open === 'clip' ? true : allowOpen, openBoundary: code };
@@ -248,20 +308,26 @@ function checkOptions(fn, options) {
   const out = {};
   if (options.from != null) {
     const f = options.from;
-    if (!(Array.isArray(f) || ArrayBuffer.isView(f)) || f.length !== 3 || ![0, 1, 2].every((i) => typeof f[i] === 'number' && Number.isFinite(f[i]))) {
+    if (
+      !(Array.isArray(f) || ArrayBuffer.isView(f)) ||
+      f.length !== 3 ||
+      ![0, 1, 2].every((i) => typeof f[i] === 'number' && Number.isFinite(f[i]))
+    ) {
       throw invalid(fn, 'options.from must be [x, y, z] with finite numbers');
     }
     out.from = [f[0], f[1], f[2]];
   }
   if (options.maxSteps != null) {
     const m = options.maxSteps;
-    if (typeof m !== 'number' || !Number.isInteger(m) || m < 0) throw invalid(fn, 'options.maxSteps must be a non-negative integer');
+    if (typeof m !== 'number' || !Number.isInteger(m) || m < 0)
+      throw invalid(fn, 'options.maxSteps must be a non-negative integer');
     out.maxSteps = m;
   }
   for (const key of ['maxFaces', 'maxVertices', 'seed']) {
     if (options[key] != null) {
       const m = options[key];
-      if (typeof m !== 'number' || !Number.isSafeInteger(m) || m < 0) throw invalid(fn, `options.${key} must be a non-negative integer`);
+      if (typeof m !== 'number' || !Number.isSafeInteger(m) || m < 0)
+        throw invalid(fn, `options.${key} must be a non-negative integer`);
       out[key] = m;
     }
   }
@@ -273,8 +339,10 @@ function checkOptions(fn, options) {
   }
   if (options.weld != null && options.weld !== false) out.weld = checkWeld(fn, options.weld);
   if (options.open != null) Object.assign(out, checkOpen(fn, options.open, options.allowOpen));
-  if (options.onStep != null && typeof options.onStep !== 'function') throw invalid(fn, 'options.onStep must be a function');
-  if (options.onProgress != null && typeof options.onProgress !== 'function') throw invalid(fn, 'options.onProgress must be a function');
+  if (options.onStep != null && typeof options.onStep !== 'function')
+    throw invalid(fn, 'options.onStep must be a function');
+  if (options.onProgress != null && typeof options.onProgress !== 'function')
+    throw invalid(fn, 'options.onProgress must be a function');
   if (options.faceSizes != null && !(options.faceSizes instanceof Uint32Array || Array.isArray(options.faceSizes))) {
     throw invalid(fn, 'options.faceSizes must be a Uint32Array or an array of integers');
   }
@@ -293,7 +361,11 @@ function callWasm(fn, body) {
   } catch (err) {
     if (err instanceof KergenError) throw err;
     wasm = null;
-    throw new KergenError('INTERNAL_ERROR', `${fn}: the WebAssembly module failed: ${err && err.message ? err.message : err}`, { cause: err });
+    throw new KergenError(
+      'INTERNAL_ERROR',
+      `${fn}: the WebAssembly module failed: ${err && err.message ? err.message : err}`,
+      { cause: err },
+    );
   }
 }
 
@@ -548,7 +620,14 @@ export function computeKernelSync(positions, indices, options = {}) {
   }
   const raw = callWasm(fn, () => {
     const request = writeRequest(m, positions, indices, faceSizes, opts);
-    const block = m.compute(request, positions.length, indices.length, faceSizes ? faceSizes.length : 0, onStep, onProgress);
+    const block = m.compute(
+      request,
+      positions.length,
+      indices.length,
+      faceSizes ? faceSizes.length : 0,
+      onStep,
+      onProgress,
+    );
     m._free(request);
     return readResult(m, block);
   });
@@ -625,13 +704,17 @@ function bytesView(fn, bytes) {
   try {
     if (bytes instanceof Uint8Array) view = bytes;
     else if (bytes instanceof ArrayBuffer) view = new Uint8Array(bytes);
-    else if (typeof SharedArrayBuffer === 'function' && bytes instanceof SharedArrayBuffer) view = new Uint8Array(bytes);
+    else if (typeof SharedArrayBuffer === 'function' && bytes instanceof SharedArrayBuffer)
+      view = new Uint8Array(bytes);
     else if (ArrayBuffer.isView(bytes)) view = new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   } catch {
     throw invalid(fn, 'bytes is a detached ArrayBuffer (it was transferred); pass a fresh one');
   }
   if (!view) {
-    throw invalid(fn, 'bytes must be a Uint8Array, an ArrayBuffer or another ArrayBufferView (encode text with TextEncoder)');
+    throw invalid(
+      fn,
+      'bytes must be a Uint8Array, an ArrayBuffer or another ArrayBufferView (encode text with TextEncoder)',
+    );
   }
   checkNotDetached(fn, 'bytes', view);
   return view;
@@ -642,7 +725,12 @@ function checkReadOptions(fn, options) {
   if (typeof options !== 'object') throw invalid(fn, 'options must be an object');
   const { format, name } = options;
   if (format != null && (typeof format !== 'string' || format === '' || !FORMATS.includes(format))) {
-    throw invalid(fn, `options.format must be one of ${FORMATS.slice(1).map((f) => `'${f}'`).join(', ')} (got ${String(format)})`);
+    throw invalid(
+      fn,
+      `options.format must be one of ${FORMATS.slice(1)
+        .map((f) => `'${f}'`)
+        .join(', ')} (got ${String(format)})`,
+    );
   }
   if (name != null && typeof name !== 'string') throw invalid(fn, 'options.name must be a string');
   return { format: format ?? '', name: name ?? '<memory>' };
@@ -716,18 +804,29 @@ export function writeMesh(meshOrKernel, format) {
   checkMesh(fn, positions, indices, faceSizes);
   // A file the readers would refuse is not written: every value must be finite, every index a vertex.
   for (let i = 0; i < positions.length; i++) {
-    if (!Number.isFinite(positions[i])) throw new KergenError('NON_FINITE_COORDINATE', `${fn}: positions[${i}] = ${positions[i]}`);
+    if (!Number.isFinite(positions[i]))
+      throw new KergenError('NON_FINITE_COORDINATE', `${fn}: positions[${i}] = ${positions[i]}`);
   }
   const numVertices = positions.length / 3;
   for (let i = 0; i < indices.length; i++) {
     if (indices[i] >= numVertices) {
-      throw new KergenError('INDEX_OUT_OF_RANGE', `${fn}: indices[${i}] = ${indices[i]} but the mesh has ${numVertices} vertices`);
+      throw new KergenError(
+        'INDEX_OUT_OF_RANGE',
+        `${fn}: indices[${i}] = ${indices[i]} but the mesh has ${numVertices} vertices`,
+      );
     }
   }
   const raw = callWasm(fn, () => {
     const request = writeRequest(m, positions, indices, faceSizes, {});
     const numFaceSizes = faceSizes ? faceSizes.length : 0;
-    const block = m.writeMesh(request, positions.length, indices.length, numFaceSizes, FORMATS.indexOf(format), kernelType);
+    const block = m.writeMesh(
+      request,
+      positions.length,
+      indices.length,
+      numFaceSizes,
+      FORMATS.indexOf(format),
+      kernelType,
+    );
     m._free(request);
     return readResult(m, block);
   });

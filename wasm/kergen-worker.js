@@ -43,8 +43,14 @@ function packageFunction(name) {
 const now = typeof performance !== 'undefined' ? () => performance.now() : () => Date.now();
 
 function resultTransferables(result) {
-  const list = [result.vertices.buffer, result.edges.buffer, result.triangles.buffer, result.faceIndices.buffer, result.faceSizes.buffer,
-    result.witnessFaces.buffer];
+  const list = [
+    result.vertices.buffer,
+    result.edges.buffer,
+    result.triangles.buffer,
+    result.faceIndices.buffer,
+    result.faceSizes.buffer,
+    result.witnessFaces.buffer,
+  ];
   return list.filter((b) => b.byteLength > 0); // may repeat a buffer: see unique()
 }
 
@@ -52,7 +58,9 @@ function resultTransferables(result) {
 const unique = (buffers) => [...new Set(buffers)];
 
 function meshTransferables(mesh) {
-  return [mesh.positions.buffer, mesh.indices.buffer, mesh.faceSizes && mesh.faceSizes.buffer].filter((b) => b && b.byteLength > 0);
+  return [mesh.positions.buffer, mesh.indices.buffer, mesh.faceSizes && mesh.faceSizes.buffer].filter(
+    (b) => b && b.byteLength > 0,
+  );
 }
 
 const copyMesh = (mesh) => ({
@@ -117,7 +125,10 @@ async function handleComputeFile(msg) {
     self.postMessage({ type: 'mesh', id, mesh: early }, unique(meshTransferables(early)));
   }
   const result = computeWithEvents(id, mesh.positions, mesh.indices, mesh.faceSizes, msg);
-  self.postMessage({ type: 'result', id, result, mesh }, unique([...resultTransferables(result), ...meshTransferables(mesh)]));
+  self.postMessage(
+    { type: 'result', id, result, mesh },
+    unique([...resultTransferables(result), ...meshTransferables(mesh)]),
+  );
 }
 
 async function handleWriteMesh(msg) {
@@ -134,7 +145,12 @@ async function handleRepairMesh(msg) {
   self.postMessage({ type: 'result', id: msg.id, result: repaired }, unique(meshTransferables(repaired)));
 }
 
-const HANDLERS = { compute: handleCompute, computeFile: handleComputeFile, writeMesh: handleWriteMesh, repairMesh: handleRepairMesh };
+const HANDLERS = {
+  compute: handleCompute,
+  computeFile: handleComputeFile,
+  writeMesh: handleWriteMesh,
+  repairMesh: handleRepairMesh,
+};
 
 self.onmessage = (e) => {
   const msg = e.data;

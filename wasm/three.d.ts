@@ -32,7 +32,10 @@ export function geometryToMesh(geometry: GeometryInput): { positions: Float64Arr
  * Equal positions are welded by default (three.js geometries repeat vertices along seams, per
  * face or per triangle).
  */
-export function computeKernelOfGeometry(geometry: GeometryInput, options?: GeometryKernelOptions): Promise<KernelResult>;
+export function computeKernelOfGeometry(
+  geometry: GeometryInput,
+  options?: GeometryKernelOptions,
+): Promise<KernelResult>;
 
 /** The kernel as three.js geometries. */
 export interface KernelGeometries {

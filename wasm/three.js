@@ -32,7 +32,8 @@ function readPositions(fn, geometry) {
   if (!attr || typeof attr.getX !== 'function') {
     throw invalid(fn, "the geometry has no 'position' attribute");
   }
-  if (attr.itemSize < 3) throw invalid(fn, `the 'position' attribute has itemSize ${attr.itemSize}; a 3D mesh needs x, y, z`);
+  if (attr.itemSize < 3)
+    throw invalid(fn, `the 'position' attribute has itemSize ${attr.itemSize}; a 3D mesh needs x, y, z`);
   const n = attr.count;
   const out = new Float64Array(3 * n);
   const plain = !attr.isInterleavedBufferAttribute && !attr.normalized && attr.itemSize === 3;
@@ -68,7 +69,8 @@ function readIndices(fn, geometry, numVertices) {
   }
   for (let i = 0; i < n; i++) {
     const v = index.getX(i);
-    if (!Number.isInteger(v) || v < 0) throw new KergenError('INDEX_OUT_OF_RANGE', `${fn}: index ${i} is ${v}, not a vertex id`);
+    if (!Number.isInteger(v) || v < 0)
+      throw new KergenError('INDEX_OUT_OF_RANGE', `${fn}: index ${i} is ${v}, not a vertex id`);
     out[i] = v;
   }
   return out;
@@ -95,7 +97,8 @@ function meshOf(fn, geometry) {
 function geometryOptions(fn, options) {
   if (options == null) return { ...GEOMETRY_DEFAULTS };
   if (typeof options !== 'object') throw invalid(fn, 'options must be an object');
-  if (options.faceSizes != null) throw invalid(fn, 'options.faceSizes does not apply: a BufferGeometry is made of triangles');
+  if (options.faceSizes != null)
+    throw invalid(fn, 'options.faceSizes does not apply: a BufferGeometry is made of triangles');
   return { ...GEOMETRY_DEFAULTS, ...options };
 }
 
@@ -178,8 +181,14 @@ function facesGeometry(result) {
  */
 export function kernelToGeometry(result) {
   const fn = 'kernelToGeometry';
-  if (result === null || typeof result !== 'object' || !(result.vertices instanceof Float64Array) ||
-      !(result.edges instanceof Uint32Array) || !(result.faceIndices instanceof Uint32Array) || !(result.faceSizes instanceof Uint32Array)) {
+  if (
+    result === null ||
+    typeof result !== 'object' ||
+    !(result.vertices instanceof Float64Array) ||
+    !(result.edges instanceof Uint32Array) ||
+    !(result.faceIndices instanceof Uint32Array) ||
+    !(result.faceSizes instanceof Uint32Array)
+  ) {
     throw invalid(fn, 'result must be a kernel result (computeKernel, KernelWorker.compute)');
   }
   const edges = new BufferGeometry();

@@ -1,5 +1,15 @@
 // Type declarations for `kergen-wasm/worker`.
-import type { IndicesInput, KernelOptions, KernelResult, MeshData, MeshFormat, MeshInput, PositionsInput, RepairedMesh, RepairMeshOptions } from './index.js';
+import type {
+  IndicesInput,
+  KernelOptions,
+  KernelResult,
+  MeshData,
+  MeshFormat,
+  MeshInput,
+  PositionsInput,
+  RepairedMesh,
+  RepairMeshOptions,
+} from './index.js';
 
 export { KergenError } from './index.js';
 export type { KernelResult, StepEvent, KernelOptions, KergenErrorCode, PositionsInput, IndicesInput } from './index.js';
@@ -16,7 +26,7 @@ export interface KernelWorkerOptions {
  * while steps stream; 'done'.
  */
 export type ProgressPhase =
-  | 'loading' | 'reading' | 'computing' | 'validating' | 'planes' | 'lp' | 'tracing' | 'assembling' | 'done';
+  'loading' | 'reading' | 'computing' | 'validating' | 'planes' | 'lp' | 'tracing' | 'assembling' | 'done';
 
 export interface ProgressEvent {
   phase: ProgressPhase;
@@ -64,12 +74,19 @@ export class KernelWorker {
    * Reads a mesh file and computes its kernel, both in the worker; `bytes` is copied, or
    * transferred (detached here) with `transfer: true`. Parse errors reject with 'PARSE_ERROR' ("name:line: reason").
    */
-  computeFile(bytes: ArrayBuffer | Uint8Array, options?: WorkerComputeFileOptions): Promise<{ mesh: MeshData; result: KernelResult }>;
+  computeFile(
+    bytes: ArrayBuffer | Uint8Array,
+    options?: WorkerComputeFileOptions,
+  ): Promise<{ mesh: MeshData; result: KernelResult }>;
   /**
    * The mesh after weld and repair (repairMesh), in the worker; the inputs are copied, or
    * transferred with `transfer: true`.
    */
-  repairMesh(positions: PositionsInput, indices: IndicesInput, options?: RepairMeshOptions & { transfer?: boolean }): Promise<RepairedMesh>;
+  repairMesh(
+    positions: PositionsInput,
+    indices: IndicesInput,
+    options?: RepairMeshOptions & { transfer?: boolean },
+  ): Promise<RepairedMesh>;
   /** Writes a mesh or kernel result as file bytes in the worker (arrays are copied). */
   writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Promise<Uint8Array>;
   /**

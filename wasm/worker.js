@@ -32,7 +32,10 @@ function toTransferable(fn, name, arr, wantTransfer, transfer) {
   if (arr == null) return arr;
   if (!ArrayBuffer.isView(arr)) return arr; // plain arrays are structured-cloned
   if (isDetached(arr.buffer)) {
-    throw new KergenError('INVALID_ARGUMENT', `${fn}: ${name} is detached: its buffer was transferred to the worker by an earlier call with { transfer: true }`);
+    throw new KergenError(
+      'INVALID_ARGUMENT',
+      `${fn}: ${name} is detached: its buffer was transferred to the worker by an earlier call with { transfer: true }`,
+    );
   }
   if (arr.byteLength === 0) return arr;
   const whole = arr.byteOffset === 0 && arr.byteLength === arr.buffer.byteLength;
@@ -46,9 +49,15 @@ function toTransferable(fn, name, arr, wantTransfer, transfer) {
 // the opt-out when transferring was the default).
 function wantsTransfer(fn, options) {
   const { copy, transfer } = options;
-  if (transfer != null && typeof transfer !== 'boolean') throw new KergenError('INVALID_ARGUMENT', `${fn}: options.transfer must be a boolean`);
-  if (copy != null && typeof copy !== 'boolean') throw new KergenError('INVALID_ARGUMENT', `${fn}: options.copy must be a boolean`);
-  if (transfer && copy) throw new KergenError('INVALID_ARGUMENT', `${fn}: options.copy and options.transfer contradict each other (copying is the default)`);
+  if (transfer != null && typeof transfer !== 'boolean')
+    throw new KergenError('INVALID_ARGUMENT', `${fn}: options.transfer must be a boolean`);
+  if (copy != null && typeof copy !== 'boolean')
+    throw new KergenError('INVALID_ARGUMENT', `${fn}: options.copy must be a boolean`);
+  if (transfer && copy)
+    throw new KergenError(
+      'INVALID_ARGUMENT',
+      `${fn}: options.copy and options.transfer contradict each other (copying is the default)`,
+    );
   return transfer === true;
 }
 
@@ -83,7 +92,10 @@ export class KernelWorker {
 
   _spawn() {
     if (typeof Worker !== 'function') {
-      throw new KergenError('WORKER_ERROR', 'KernelWorker needs Web Workers (a browser, a worker or Deno); in Node call computeKernel() directly');
+      throw new KergenError(
+        'WORKER_ERROR',
+        'KernelWorker needs Web Workers (a browser, a worker or Deno); in Node call computeKernel() directly',
+      );
     }
     const worker = new Worker(new URL('./kergen-worker.js', import.meta.url), { type: 'module' });
     worker.onmessage = (e) => this._onMessage(e.data);
@@ -233,16 +245,27 @@ export class KernelWorker {
   computeFile(bytes, options = {}) {
     options = options || {};
     const { format, name, onMesh } = options;
-    if (onMesh != null && typeof onMesh !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', 'computeFile: options.onMesh must be a function'));
-    return this._submit('computeFile', 'computeFile', options, (transfer) => {
-      const view = bytes instanceof ArrayBuffer ? new Uint8Array(bytes) : bytes;
-      if (!(view instanceof Uint8Array)) throw new KergenError('INVALID_ARGUMENT', 'computeFile: bytes must be an ArrayBuffer or a Uint8Array');
-      const move = wantsTransfer('computeFile', options);
-      const message = { bytes: toTransferable('computeFile', 'bytes', view, move, transfer), wantMesh: typeof onMesh === 'function' };
-      if (format != null) message.format = String(format);
-      if (name != null) message.name = String(name);
-      return message;
-    }, { onMesh });
+    if (onMesh != null && typeof onMesh !== 'function')
+      return Promise.reject(new KergenError('INVALID_ARGUMENT', 'computeFile: options.onMesh must be a function'));
+    return this._submit(
+      'computeFile',
+      'computeFile',
+      options,
+      (transfer) => {
+        const view = bytes instanceof ArrayBuffer ? new Uint8Array(bytes) : bytes;
+        if (!(view instanceof Uint8Array))
+          throw new KergenError('INVALID_ARGUMENT', 'computeFile: bytes must be an ArrayBuffer or a Uint8Array');
+        const move = wantsTransfer('computeFile', options);
+        const message = {
+          bytes: toTransferable('computeFile', 'bytes', view, move, transfer),
+          wantMesh: typeof onMesh === 'function',
+        };
+        if (format != null) message.format = String(format);
+        if (name != null) message.name = String(name);
+        return message;
+      },
+      { onMesh },
+    );
   }
 
   /**
@@ -252,7 +275,7 @@ export class KernelWorker {
   writeMesh(meshOrKernel, format) {
     const m = meshOrKernel || {};
     // Only the arrays the writer reads; `faces` (views of faceIndices) would be cloned one by one.
-    const { faces, ...plain } = m;
+    const { faces: _faces, ...plain } = m;
     return this._submit('writeMesh', 'writeMesh', {}, () => ({ mesh: plain, format }));
   }
 
@@ -260,18 +283,42 @@ export class KernelWorker {
   _submit(fn, kind, options, build, callbacks = {}) {
     if (this._disposed) return Promise.reject(new KergenError('DISPOSED', 'this KernelWorker was disposed'));
     const { onStep, onProgress, ...rest } = options;
-    if (onStep != null && typeof onStep !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onStep must be a function`));
-    if (onProgress != null && typeof onProgress !== 'function') return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onProgress must be a function`));
+    if (onStep != null && typeof onStep !== 'function')
+      return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onStep must be a function`));
+    if (onProgress != null && typeof onProgress !== 'function')
+      return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onProgress must be a function`));
     const plain = {};
-    for (const key of ['from', 'maxSteps', 'allowOpen', 'open', 'deepestPoint', 'maxFaces', 'maxVertices', 'cullFaces', 'seed', 'weld', 'repair']) if (rest[key] !== undefined) plain[key] = rest[key];
+    for (const key of [
+      'from',
+      'maxSteps',
+      'allowOpen',
+      'open',
+      'deepestPoint',
+      'maxFaces',
+      'maxVertices',
+      'cullFaces',
+      'seed',
+      'weld',
+      'repair',
+    ])
+      if (rest[key] !== undefined) plain[key] = rest[key];
     if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
 
     const transfer = [];
     let message;
     try {
-      message = { type: kind, id: this._nextId++, wasmUrl: this._wasmUrl, ...build(transfer), options: plain, wantSteps: typeof onStep === 'function' };
+      message = {
+        type: kind,
+        id: this._nextId++,
+        wasmUrl: this._wasmUrl,
+        ...build(transfer),
+        options: plain,
+        wantSteps: typeof onStep === 'function',
+      };
     } catch (err) {
-      return Promise.reject(err instanceof KergenError ? err : new KergenError('INVALID_ARGUMENT', `${fn}: ${err.message}`));
+      return Promise.reject(
+        err instanceof KergenError ? err : new KergenError('INVALID_ARGUMENT', `${fn}: ${err.message}`),
+      );
     }
     // The worker is started again only here, by a call, after it failed to start or crashed.
     if (!this._worker) {

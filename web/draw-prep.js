@@ -8,9 +8,12 @@ import { Earcut } from 'three/src/extras/Earcut.js';
 // Returns { center, radius, maxAbs } of the finite positions' bounding box (maxAbs: the largest
 // coordinate magnitude, which places the package's clip box; see unbounded.js).
 function bounds(positions) {
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  const lo = [Infinity, Infinity, Infinity],
+    hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < positions.length; i += 3) {
-    const x = positions[i], y = positions[i + 1], z = positions[i + 2];
+    const x = positions[i],
+      y = positions[i + 1],
+      z = positions[i + 2];
     if (!(Number.isFinite(x) && Number.isFinite(y) && Number.isFinite(z))) continue;
     if (x < lo[0]) lo[0] = x;
     if (x > hi[0]) hi[0] = x;
@@ -31,15 +34,20 @@ function splitPolygon(positions, loop, out) {
   const k = loop.length;
   const n = [0, 0, 0];
   for (let i = 0; i < k; i++) {
-    const a = 3 * loop[i], b = 3 * loop[(i + 1) % k];
+    const a = 3 * loop[i],
+      b = 3 * loop[(i + 1) % k];
     for (let c = 0; c < 3; c++) {
-      const c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      const c1 = (c + 1) % 3,
+        c2 = (c + 2) % 3;
       n[c] += (positions[a + c1] - positions[b + c1]) * (positions[a + c2] + positions[b + c2]);
     }
   }
-  const ax = Math.abs(n[0]), ay = Math.abs(n[1]), az = Math.abs(n[2]);
+  const ax = Math.abs(n[0]),
+    ay = Math.abs(n[1]),
+    az = Math.abs(n[2]);
   const axis = ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
-  const u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const u = (axis + 1) % 3,
+    w = (axis + 2) % 3;
   const flat = new Array(2 * k);
   for (let i = 0; i < k; i++) {
     flat[2 * i] = positions[3 * loop[i] + u];
@@ -74,7 +82,8 @@ export function faceEdges(indices, faceSizes, nv) {
   for (let f = 0, at = 0; f < nFaces; f++) {
     const k = faceSizes ? faceSizes[f] : 3;
     for (let j = 0; j < k; j++) {
-      const a = indices[at + j], b = indices[at + ((j + 1) % k)];
+      const a = indices[at + j],
+        b = indices[at + ((j + 1) % k)];
       keys[n++] = a < b ? a * nv + b : b * nv + a;
     }
     at += k;
@@ -94,7 +103,8 @@ export function faceEdges(indices, faceSizes, nv) {
 // mean of its cell's vertices, and triangles that collapse are dropped. The shape stays within a
 // cell of the original, which is all a semi-transparent overlay needs.
 function cluster(pos, triangles, res) {
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  const lo = [Infinity, Infinity, Infinity],
+    hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < pos.length; i++) {
     const c = i % 3;
     if (pos[i] < lo[c]) lo[c] = pos[i];
@@ -106,7 +116,9 @@ function cluster(pos, triangles, res) {
   const remap = new Uint32Array(pos.length / 3);
   const sums = [];
   for (let v = 0; v < remap.length; v++) {
-    const ix = Math.floor((pos[3 * v] - lo[0]) / h), iy = Math.floor((pos[3 * v + 1] - lo[1]) / h), iz = Math.floor((pos[3 * v + 2] - lo[2]) / h);
+    const ix = Math.floor((pos[3 * v] - lo[0]) / h),
+      iy = Math.floor((pos[3 * v + 1] - lo[1]) / h),
+      iz = Math.floor((pos[3 * v + 2] - lo[2]) / h);
     const key = ix + n[0] * (iy + n[1] * iz);
     let id = cellOf.get(key);
     if (id === undefined) {
@@ -127,7 +139,9 @@ function cluster(pos, triangles, res) {
   const out = new Uint32Array(triangles.length);
   let m = 0;
   for (let t = 0; t < triangles.length; t += 3) {
-    const a = remap[triangles[t]], b = remap[triangles[t + 1]], c = remap[triangles[t + 2]];
+    const a = remap[triangles[t]],
+      b = remap[triangles[t + 1]],
+      c = remap[triangles[t + 2]];
     if (a === b || b === c || a === c) continue;
     out[m++] = a;
     out[m++] = b;
@@ -165,7 +179,17 @@ export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } 
   const faces = faceSizes ? faceSizes.length : indices.length / 3;
   let drawable = nv > 0;
   for (let i = 0; i < indices.length && drawable; i++) if (!(indices[i] < nv)) drawable = false;
-  if (!drawable) return { center, radius, maxAbs, faces, drawable, positions: new Float32Array(0), triangles: new Uint32Array(0), edges: null };
+  if (!drawable)
+    return {
+      center,
+      radius,
+      maxAbs,
+      faces,
+      drawable,
+      positions: new Float32Array(0),
+      triangles: new Uint32Array(0),
+      edges: null,
+    };
   const pos = new Float32Array(3 * nv);
   for (let i = 0; i < 3 * nv; i += 3) {
     pos[i] = positions[i] - center[0];
@@ -176,10 +200,29 @@ export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } 
   if (triangles.length / 3 > maxTriangles) {
     // Drawn simplified; `edges` then are the drawn triangles' edges.
     const s = simplify(pos, triangles, maxTriangles);
-    return { center, radius, maxAbs, faces, drawable, simplified: true, positions: s.positions, triangles: s.triangles,
-      edges: edges ? faceEdges(s.triangles, null, s.positions.length / 3) : null };
+    return {
+      center,
+      radius,
+      maxAbs,
+      faces,
+      drawable,
+      simplified: true,
+      positions: s.positions,
+      triangles: s.triangles,
+      edges: edges ? faceEdges(s.triangles, null, s.positions.length / 3) : null,
+    };
   }
-  return { center, radius, maxAbs, faces, drawable, simplified: false, positions: pos, triangles, edges: edges ? faceEdges(indices, faceSizes, nv) : null };
+  return {
+    center,
+    radius,
+    maxAbs,
+    faces,
+    drawable,
+    simplified: false,
+    positions: pos,
+    triangles,
+    edges: edges ? faceEdges(indices, faceSizes, nv) : null,
+  };
 }
 
 /** The buffers of a prepareDrawing() result, for a transfer list. */
@@ -197,14 +240,15 @@ export function boundaryEdges(indices, faceSizes, nv) {
   for (let f = 0, at = 0; f < nFaces; f++) {
     const k = faceSizes ? faceSizes[f] : 3;
     for (let j = 0; j < k; j++) {
-      const a = indices[at + j], b = indices[at + ((j + 1) % k)];
+      const a = indices[at + j],
+        b = indices[at + ((j + 1) % k)];
       if (a !== b) keys[n++] = a < b ? a * nv + b : b * nv + a;
     }
     at += k;
   }
   const sorted = keys.subarray(0, n).sort();
   const pairs = [];
-  for (let i = 0; i < n; ) {
+  for (let i = 0; i < n;) {
     let j = i + 1;
     while (j < n && sorted[j] === sorted[i]) j++;
     if (j - i === 1) pairs.push(Math.floor(sorted[i] / nv), sorted[i] % nv);
@@ -240,7 +284,11 @@ function samePositionIds(positions) {
 /** The open edges of a mesh, ready to draw: { count, lines (float32 segment ends, centred) }. */
 export function openEdgeLines(mesh, center) {
   const ids = samePositionIds(mesh.positions);
-  const pairs = boundaryEdges(mesh.indices.map((v) => ids[v]), mesh.faceSizes, mesh.positions.length / 3);
+  const pairs = boundaryEdges(
+    mesh.indices.map((v) => ids[v]),
+    mesh.faceSizes,
+    mesh.positions.length / 3,
+  );
   return { count: pairs.length / 2, lines: segmentPositions(mesh.positions, pairs, center) };
 }
 
@@ -258,7 +306,9 @@ export function faceHighlight(mesh, faceIds, center) {
   for (let f = 0, at = 0; f < nFaces && starts.size < wanted.size; at += faceSizes ? faceSizes[f] : 3, f++) {
     if (wanted.has(f)) starts.set(f, at);
   }
-  const tri = [], outline = [], centers = [];
+  const tri = [],
+    outline = [],
+    centers = [];
   for (const [f, at] of starts) {
     const k = faceSizes ? faceSizes[f] : 3;
     const loop = indices.subarray(at, at + k);
@@ -267,5 +317,9 @@ export function faceHighlight(mesh, faceIds, center) {
     for (let j = 0; j < k; j++) outline.push(loop[j], loop[(j + 1) % k]);
     for (let c = 0; c < 3; c++) centers.push(loop.reduce((sum, v) => sum + positions[3 * v + c], 0) / k - center[c]);
   }
-  return { triangles: segmentPositions(positions, tri, center), lines: segmentPositions(positions, outline, center), centers: Float32Array.from(centers) };
+  return {
+    triangles: segmentPositions(positions, tri, center),
+    lines: segmentPositions(positions, outline, center),
+    centers: Float32Array.from(centers),
+  };
 }

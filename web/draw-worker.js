@@ -18,7 +18,9 @@ self.onmessage = ({ data }) => {
     const drawing = prepareDrawing(data.mesh, { edges: data.edges, maxTriangles: data.maxTriangles });
     input = data.mesh;
     center = drawing.center;
-    drawn = drawing.simplified ? { positions: drawing.positions, indices: drawing.triangles, faceSizes: null } : data.mesh;
+    drawn = drawing.simplified
+      ? { positions: drawing.positions, indices: drawing.triangles, faceSizes: null }
+      : data.mesh;
     // Keep what `drawn` refers to whole: send copies of the arrays shared with it.
     if (drawing.triangles === drawn.indices) drawing.triangles = drawn.indices.slice();
     if (drawing.positions === drawn.positions) drawing.positions = drawn.positions.slice();

@@ -19,7 +19,9 @@ function externalUris(bytes) {
   } catch {
     return []; // the loader says what is wrong
   }
-  return [...(json.buffers ?? []), ...(json.images ?? [])].map((b) => b?.uri).filter((u) => typeof u === 'string' && !u.startsWith('data:'));
+  return [...(json.buffers ?? []), ...(json.images ?? [])]
+    .map((b) => b?.uri)
+    .filter((u) => typeof u === 'string' && !u.startsWith('data:'));
 }
 
 /**
@@ -30,7 +32,9 @@ function externalUris(bytes) {
 export async function readGltf(bytes, name) {
   const external = externalUris(bytes);
   if (external.length) {
-    throw new Error(`${name}: the glTF file refers to files beside it (${external.slice(0, 3).join(', ')}), which a single opened file does not bring along; use a .glb or a .gltf with embedded data`);
+    throw new Error(
+      `${name}: the glTF file refers to files beside it (${external.slice(0, 3).join(', ')}), which a single opened file does not bring along; use a .glb or a .gltf with embedded data`,
+    );
   }
   let gltf;
   try {
@@ -42,7 +46,8 @@ export async function readGltf(bytes, name) {
   if (!scene) throw new Error(`${name}: the file has no scene`);
   scene.updateMatrixWorld(true);
   const parts = [];
-  let nv = 0, ni = 0;
+  let nv = 0,
+    ni = 0;
   scene.traverse((o) => {
     // Meshes only (the loader turns strips and fans into triangle lists); points and lines are
     // not surfaces.
@@ -58,9 +63,11 @@ export async function readGltf(bytes, name) {
   const positions = new Float64Array(3 * nv);
   const indices = new Uint32Array(ni);
   const p = new Vector3();
-  let vBase = 0, iAt = 0;
+  let vBase = 0,
+    iAt = 0;
   for (const mesh of parts) {
-    const g = mesh.geometry, pos = g.attributes.position;
+    const g = mesh.geometry,
+      pos = g.attributes.position;
     for (let i = 0; i < pos.count; i++) {
       p.fromBufferAttribute(pos, i).applyMatrix4(mesh.matrixWorld);
       positions.set([p.x, p.y, p.z], 3 * (vBase + i));

@@ -30,16 +30,48 @@ const STREAM = PARAMS.get('stream') !== '0';
 
 const $ = (id) => document.getElementById(id);
 const ui = {
-  fileInput: $('file-input'), samples: $('samples'), viewport: $('viewport'), overlay: $('drop-overlay'),
-  busy: $('busy'), busyText: $('busy-text'), play: $('play'), jumpEnd: $('jump-end'), cancel: $('cancel'),
-  scrubber: $('scrubber'), stepLabel: $('step-label'), speed: $('speed'), speedLabel: $('speed-label'),
-  animV: $('anim-vertices'), animE: $('anim-edges'), animF: $('anim-faces'), status: $('status'),
-  message: $('message'), exportObj: $('export-obj'), exportStl: $('export-stl'), exportOff: $('export-off'),
-  fit: $('fit-view'), fitKernel: $('fit-kernel'), opacity: $('opacity'), opacityLabel: $('opacity-label'),
-  showEdges: $('show-edges'), edgesNote: $('edges-note'), openFile: $('open-file'), showInput: $('show-input'),
-  showBall: $('show-ball'), sectionOn: $('section-on'), sectionAxis: $('section-axis'), sectionKernel: $('section-kernel'),
-  sectionPos: $('section-pos'), sectionLabel: $('section-label'), shareUrl: $('share-url'), copyLink: $('copy-link'),
-  shareNote: $('share-note'), actions: $('actions'), retryOpen: $('retry-open'), retryWalls: $('retry-walls'), retryRepair: $('retry-repair'),
+  fileInput: $('file-input'),
+  samples: $('samples'),
+  viewport: $('viewport'),
+  overlay: $('drop-overlay'),
+  busy: $('busy'),
+  busyText: $('busy-text'),
+  play: $('play'),
+  jumpEnd: $('jump-end'),
+  cancel: $('cancel'),
+  scrubber: $('scrubber'),
+  stepLabel: $('step-label'),
+  speed: $('speed'),
+  speedLabel: $('speed-label'),
+  animV: $('anim-vertices'),
+  animE: $('anim-edges'),
+  animF: $('anim-faces'),
+  status: $('status'),
+  message: $('message'),
+  exportObj: $('export-obj'),
+  exportStl: $('export-stl'),
+  exportOff: $('export-off'),
+  fit: $('fit-view'),
+  fitKernel: $('fit-kernel'),
+  opacity: $('opacity'),
+  opacityLabel: $('opacity-label'),
+  showEdges: $('show-edges'),
+  edgesNote: $('edges-note'),
+  openFile: $('open-file'),
+  showInput: $('show-input'),
+  showBall: $('show-ball'),
+  sectionOn: $('section-on'),
+  sectionAxis: $('section-axis'),
+  sectionKernel: $('section-kernel'),
+  sectionPos: $('section-pos'),
+  sectionLabel: $('section-label'),
+  shareUrl: $('share-url'),
+  copyLink: $('copy-link'),
+  shareNote: $('share-note'),
+  actions: $('actions'),
+  retryOpen: $('retry-open'),
+  retryWalls: $('retry-walls'),
+  retryRepair: $('retry-repair'),
   playbar: $('playbar'),
 };
 
@@ -91,8 +123,23 @@ function setStat(id, text, value = text) {
 }
 
 function clearStats() {
-  for (const id of ['stat-input-faces', 'stat-open-edges', 'stat-planes', 'stat-status', 'stat-vertices', 'stat-edges', 'stat-faces',
-    'stat-volume', 'stat-area', 'stat-ratio', 'stat-kernel-point', 'stat-deepest', 'stat-time', 'stat-wall']) setStat(id, '—', '');
+  for (const id of [
+    'stat-input-faces',
+    'stat-open-edges',
+    'stat-planes',
+    'stat-status',
+    'stat-vertices',
+    'stat-edges',
+    'stat-faces',
+    'stat-volume',
+    'stat-area',
+    'stat-ratio',
+    'stat-kernel-point',
+    'stat-deepest',
+    'stat-time',
+    'stat-wall',
+  ])
+    setStat(id, '—', '');
 }
 
 // Shows the rows of the stats table that apply (the others are hidden, not shown as 0).
@@ -257,7 +304,8 @@ function showDrawing(d) {
   state.drawing = { center: d.center, maxAbs: d.maxAbs };
   ui.showEdges.checked = state.view.edges ?? d.faces <= EDGE_FACES;
   ui.edgesNote.textContent = d.faces > EDGE_FACES ? `(${fmtCount(d.faces)} faces: off by default)` : '';
-  if (d.simplified) ui.edgesNote.textContent += ` The view draws a simplified copy of the shape (${fmtCount(d.triangles.length / 3)} triangles); the kernel is computed on the real one.`;
+  if (d.simplified)
+    ui.edgesNote.textContent += ` The view draws a simplified copy of the shape (${fmtCount(d.triangles.length / 3)} triangles); the kernel is computed on the real one.`;
   viewer.edgesVisible = ui.showEdges.checked;
   viewer.setInputDrawing(d);
   applySection();
@@ -272,7 +320,11 @@ function showDrawing(d) {
 // witness faces), in the drawing worker when big (which keeps it).
 async function showMesh(mesh, token) {
   const faces = mesh.faceSizes ? mesh.faceSizes.length : mesh.indices.length / 3;
-  setStat('stat-input-faces', `${fmtCount(faces)} ${mesh.faceSizes ? 'faces' : 'triangles'} (${fmtCount(mesh.positions.length / 3)} vertices)`, faces);
+  setStat(
+    'stat-input-faces',
+    `${fmtCount(faces)} ${mesh.faceSizes ? 'faces' : 'triangles'} (${fmtCount(mesh.positions.length / 3)} vertices)`,
+    faces,
+  );
   const edges = (state.view.edges ?? faces <= EDGE_FACES) && faces <= EDGE_FACES;
   if (faces <= INLINE_FACES) {
     const t = performance.now();
@@ -360,9 +412,14 @@ async function failRun(err, token) {
 
 function showCancelled() {
   const steps = viewer.kernel.length;
-  showMessage('info', 'Cancelled.', steps > 0
-    ? `The computation was stopped; the ${fmtCount(steps)} steps that had arrived (part of the kernel's boundary) are still shown.`
-    : 'The computation was stopped before any part of the kernel had arrived; nothing of it is shown.', 'CANCELLED');
+  showMessage(
+    'info',
+    'Cancelled.',
+    steps > 0
+      ? `The computation was stopped; the ${fmtCount(steps)} steps that had arrived (part of the kernel's boundary) are still shown.`
+      : 'The computation was stopped before any part of the kernel had arrived; nothing of it is shown.',
+    'CANCELLED',
+  );
   setStatus('cancelled', 'Cancelled.', 'CANCELLED');
   showRows(['name', 'input-faces']);
 }
@@ -381,7 +438,9 @@ async function finish(result, token) {
   state.result = result;
   const wall = performance.now() - state.t0;
   // Events and result use the same ids; add anything the stream did not deliver (in id order).
-  const V = result.vertices.length / 3, E = result.edges.length / 2, F = result.faces.length;
+  const V = result.vertices.length / 3,
+    E = result.edges.length / 2,
+    F = result.faces.length;
   if (state.seen.vertex.size !== V || state.seen.edge.size !== E || state.seen.face.size !== F) {
     if (!(await addMissingEvents(result, V, E, F, token))) return;
   }
@@ -408,7 +467,9 @@ async function finish(result, token) {
 // The faces of an empty kernel's certificate (input indices), highlighted.
 async function showWitnessFaces(ids, token) {
   const center = state.drawing?.center ?? [0, 0, 0];
-  const faces = state.mesh ? faceHighlight(state.mesh, ids, center) : await drawRequest({ type: 'faces', faces: Array.from(ids) });
+  const faces = state.mesh
+    ? faceHighlight(state.mesh, ids, center)
+    : await drawRequest({ type: 'faces', faces: Array.from(ids) });
   if (token === state.token && faces?.triangles) viewer.setWitnessFaces(faces);
 }
 
@@ -417,7 +478,15 @@ async function showWitnessFaces(ids, token) {
 async function addMissingEvents(result, V, E, F, token) {
   const SLICE = 20000;
   const kinds = [
-    [V, 'vertex', (i) => ({ type: 'vertex', id: i, position: [result.vertices[3 * i], result.vertices[3 * i + 1], result.vertices[3 * i + 2]] })],
+    [
+      V,
+      'vertex',
+      (i) => ({
+        type: 'vertex',
+        id: i,
+        position: [result.vertices[3 * i], result.vertices[3 * i + 1], result.vertices[3 * i + 2]],
+      }),
+    ],
     [E, 'edge', (i) => ({ type: 'edge', id: i, a: result.edges[2 * i], b: result.edges[2 * i + 1] })],
     [F, 'face', (i) => ({ type: 'face', id: i, loop: Array.from(result.faces[i]) })],
   ];
@@ -435,10 +504,22 @@ async function addMissingEvents(result, V, E, F, token) {
 
 function showStats(result, wall, V, E, F) {
   const s = result.stats ?? {};
-  setStat('stat-input-faces', `${s.inputFaces != null ? fmtCount(s.inputFaces) : '—'}${s.droppedFaces ? ` (${s.droppedFaces} zero-area dropped)` : ''}`, s.inputFaces);
-  const planesNote = [s.activePlanes != null ? `${s.activePlanes} active` : null, s.culledFaces ? `${s.culledFaces} faces culled first` : null]
-    .filter(Boolean).join(', ');
-  setStat('stat-planes', `${s.distinctPlanes != null ? fmtCount(s.distinctPlanes) : '—'}${planesNote ? ` (${planesNote})` : ''}`, s.distinctPlanes);
+  setStat(
+    'stat-input-faces',
+    `${s.inputFaces != null ? fmtCount(s.inputFaces) : '—'}${s.droppedFaces ? ` (${s.droppedFaces} zero-area dropped)` : ''}`,
+    s.inputFaces,
+  );
+  const planesNote = [
+    s.activePlanes != null ? `${s.activePlanes} active` : null,
+    s.culledFaces ? `${s.culledFaces} faces culled first` : null,
+  ]
+    .filter(Boolean)
+    .join(', ');
+  setStat(
+    'stat-planes',
+    `${s.distinctPlanes != null ? fmtCount(s.distinctPlanes) : '—'}${planesNote ? ` (${planesNote})` : ''}`,
+    s.distinctPlanes,
+  );
   setStat('stat-status', result.status + (result.complete === false ? ' (partial)' : ''), result.status);
   setStat('stat-vertices', String(V), V);
   setStat('stat-edges', String(E), E);
@@ -449,12 +530,22 @@ function showStats(result, wall, V, E, F) {
   const kp = result.kernelPoint;
   setStat('stat-kernel-point', kp ? `(${kp.map((x) => fmt(x, 7)).join(', ')})` : 'none', kp ? kp.join(',') : '');
   const dp = result.deepestPoint;
-  setStat('stat-deepest', dp ? `(${dp.map((x) => fmt(x, 7)).join(', ')}), inscribed ball radius ${fmt(result.inscribedRadius, 6)}` : '—',
-    dp ? [...dp, result.inscribedRadius].join(',') : '');
-  setStat('stat-time', s.msTotal != null ? `${fmtMs(s.msTotal)} (LP ${fmtMs(s.msLp ?? 0)}, trace ${fmtMs(s.msTrace ?? 0)})` : '—', s.msTotal);
+  setStat(
+    'stat-deepest',
+    dp ? `(${dp.map((x) => fmt(x, 7)).join(', ')}), inscribed ball radius ${fmt(result.inscribedRadius, 6)}` : '—',
+    dp ? [...dp, result.inscribedRadius].join(',') : '',
+  );
+  setStat(
+    'stat-time',
+    s.msTotal != null ? `${fmtMs(s.msTotal)} (LP ${fmtMs(s.msLp ?? 0)}, trace ${fmtMs(s.msTrace ?? 0)})` : '—',
+    s.msTotal,
+  );
   const tm = state.timing;
-  const parts = [tm.read != null && `read ${fmtMs(tm.read)}`, `worker round trip ${fmtMs(tm.worker)}`,
-    tm.view != null && `view ${fmtMs(tm.view)}`].filter(Boolean);
+  const parts = [
+    tm.read != null && `read ${fmtMs(tm.read)}`,
+    `worker round trip ${fmtMs(tm.worker)}`,
+    tm.view != null && `view ${fmtMs(tm.view)}`,
+  ].filter(Boolean);
   setStat('stat-wall', `${fmtMs(wall)} (${parts.join(', ')})`, wall);
   viewer.setKernelPoint(kp);
   viewer.setBall(dp, result.inscribedRadius);
@@ -508,7 +599,9 @@ async function openSource(source, options = { allowOpen: false, repair: false, w
     const mesh = sampleById(source.id).build();
     showMesh(mesh, token); // samples are small: drawn right here
     // The worker copies the arrays: the drawn input keeps its own.
-    await runKernel(token, (callbacks) => worker().compute(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes, ...kernelOptions(), ...callbacks }));
+    await runKernel(token, (callbacks) =>
+      worker().compute(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes, ...kernelOptions(), ...callbacks }),
+    );
     return;
   }
   const file = source.file;
@@ -525,17 +618,21 @@ async function openSource(source, options = { allowOpen: false, repair: false, w
 // A mesh file: its bytes go to the worker as they are (transferred), which parses, validates and
 // computes there and sends the parsed mesh back early to be drawn meanwhile.
 function computeFileBytes(bytes, name, token) {
-  return runKernel(token, (callbacks) => worker().computeFile(bytes, {
-    name,
-    transfer: true,
-    // STL stores each triangle's corners on their own: welded, as the CLI does.
-    ...(/\.stl$/i.test(name) ? { weld: true } : {}),
-    ...kernelOptions(),
-    ...callbacks,
-    onMesh: (mesh) => {
-      if (token === state.token) state.inputPromise = showMesh(mesh, token);
-    },
-  }).then(({ result }) => result));
+  return runKernel(token, (callbacks) =>
+    worker()
+      .computeFile(bytes, {
+        name,
+        transfer: true,
+        // STL stores each triangle's corners on their own: welded, as the CLI does.
+        ...(/\.stl$/i.test(name) ? { weld: true } : {}),
+        ...kernelOptions(),
+        ...callbacks,
+        onMesh: (mesh) => {
+          if (token === state.token) state.inputPromise = showMesh(mesh, token);
+        },
+      })
+      .then(({ result }) => result),
+  );
 }
 
 // GLB / glTF: read here by three.js's loader (all meshes merged in world space), then welded by
@@ -555,7 +652,9 @@ async function computeGltf(bytes, name, token) {
   if (token !== state.token) return;
   // A big mesh's arrays are moved to the drawing worker: it gets copies, the kernel worker these.
   state.inputPromise = showMesh({ positions: mesh.positions.slice(), indices: mesh.indices.slice() }, token);
-  await runKernel(token, (callbacks) => worker().compute(mesh.positions, mesh.indices, { weld: true, ...kernelOptions(), ...callbacks }));
+  await runKernel(token, (callbacks) =>
+    worker().compute(mesh.positions, mesh.indices, { weld: true, ...kernelOptions(), ...callbacks }),
+  );
 }
 
 // ?url=: fetched here (the server must allow this page's origin: CORS), then opened as a file.
@@ -583,7 +682,10 @@ async function openUrl(text, options) {
   try {
     response = await fetch(url.href, { mode: 'cors' });
   } catch {
-    if (token === state.token) fail(`could not fetch ${url.href}: the server did not answer, or it does not allow this page to read it (no CORS header Access-Control-Allow-Origin)`);
+    if (token === state.token)
+      fail(
+        `could not fetch ${url.href}: the server did not answer, or it does not allow this page to read it (no CORS header Access-Control-Allow-Origin)`,
+      );
     return;
   }
   if (token !== state.token) return;
@@ -696,7 +798,11 @@ function frame(now) {
     ui.scrubber.value = String(k);
     ui.stepLabel.textContent = `${k} / ${total}${state.computing ? '+' : ''}`;
     updateSpeedLabel();
-    for (const [el, v] of [[ui.animV, c.vertices], [ui.animE, c.edges], [ui.animF, c.faces]]) {
+    for (const [el, v] of [
+      [ui.animV, c.vertices],
+      [ui.animE, c.edges],
+      [ui.animF, c.faces],
+    ]) {
       el.textContent = String(v);
       el.dataset.value = String(v);
     }
@@ -786,7 +892,10 @@ function applySection() {
 }
 function sectionFromControls() {
   Object.assign(state.view, {
-    section: ui.sectionOn.checked, axis: ui.sectionAxis.value, pos: Number(ui.sectionPos.value), clipKernel: ui.sectionKernel.checked,
+    section: ui.sectionOn.checked,
+    axis: ui.sectionAxis.value,
+    pos: Number(ui.sectionPos.value),
+    clipKernel: ui.sectionKernel.checked,
   });
   applySection();
   updateShareUrl();
@@ -818,7 +927,9 @@ function updateShareUrl() {
   else if (location.search) history.replaceState(null, '', location.pathname);
   ui.shareUrl.value = url ?? '';
   ui.copyLink.disabled = !url;
-  ui.shareNote.textContent = url ? '' : 'A file opened from this computer cannot be reopened by a link; samples and meshes opened with ?url= can.';
+  ui.shareNote.textContent = url
+    ? ''
+    : 'A file opened from this computer cannot be reopened by a link; samples and meshes opened with ?url= can.';
 }
 
 ui.copyLink.addEventListener('click', async () => {
@@ -835,7 +946,8 @@ ui.copyLink.addEventListener('click', async () => {
 
 // The play bar covers the bottom of the view: fitting uses the area above it.
 new ResizeObserver(() => {
-  const view = ui.viewport.getBoundingClientRect(), bar = ui.playbar.getBoundingClientRect();
+  const view = ui.viewport.getBoundingClientRect(),
+    bar = ui.playbar.getBoundingClientRect();
   viewer.setInsetBottom(Math.max(0, view.bottom - bar.top));
 }).observe(ui.playbar);
 
@@ -843,8 +955,12 @@ ui.fit.addEventListener('click', () => viewer.fit());
 ui.fitKernel.addEventListener('click', () => viewer.fit(true));
 
 // Shortcuts work wherever the focus is, except where a key types text or picks an option.
-const typesText = (el) => el instanceof HTMLTextAreaElement || el instanceof HTMLSelectElement || el?.isContentEditable ||
-  (el instanceof HTMLInputElement && !['checkbox', 'radio', 'range', 'button', 'submit', 'reset', 'file', 'color'].includes(el.type));
+const typesText = (el) =>
+  el instanceof HTMLTextAreaElement ||
+  el instanceof HTMLSelectElement ||
+  el?.isContentEditable ||
+  (el instanceof HTMLInputElement &&
+    !['checkbox', 'radio', 'range', 'button', 'submit', 'reset', 'file', 'color'].includes(el.type));
 const SHORTCUTS = {
   f: () => viewer.fit(),
   k: () => viewer.fit(true),

@@ -43,8 +43,21 @@ const ERROR_HINTS = {
 export const REPAIRABLE = new Set(['OPEN_MESH', 'NON_MANIFOLD_EDGE']);
 
 // Rows of the stats table (ids row-<name>), in table order.
-export const ROWS = ['name', 'input-faces', 'open-edges', 'planes', 'status', 'counts', 'volume', 'area', 'ratio',
-  'kernel-point', 'deepest', 'time', 'wall'];
+export const ROWS = [
+  'name',
+  'input-faces',
+  'open-edges',
+  'planes',
+  'status',
+  'counts',
+  'volume',
+  'area',
+  'ratio',
+  'kernel-point',
+  'deepest',
+  'time',
+  'wall',
+];
 
 /** The error state: { title, paragraphs, rows }. `openEdges`: their count when known. */
 export function describeError(err, { openEdges = null } = {}) {
@@ -52,7 +65,10 @@ export function describeError(err, { openEdges = null } = {}) {
   const title = `${ERROR_TITLES[code] ?? 'Error'} (${code})`;
   const paragraphs = [sentence(err?.message ?? err)];
   if (ERROR_HINTS[code]) paragraphs.push(ERROR_HINTS[code]);
-  if (openEdges) paragraphs.push(`${plural(openEdges, 'open edge')} (used by one face only) ${openEdges === 1 ? 'is' : 'are'} drawn in red.`);
+  if (openEdges)
+    paragraphs.push(
+      `${plural(openEdges, 'open edge')} (used by one face only) ${openEdges === 1 ? 'is' : 'are'} drawn in red.`,
+    );
   const rows = ['name', 'input-faces', 'status'];
   if (openEdges) rows.push('open-edges');
   return { code, title, paragraphs, rows, status: `${ERROR_TITLES[code] ?? 'Error'}.` };
@@ -71,43 +87,79 @@ export function describeResult(result, V, E, F, extra = {}) {
   switch (result.status) {
     case 'POLYHEDRON':
       return {
-        outcome: 'star', status: `Star-shaped: the kernel is a polyhedron (${V} vertices, ${E} edges, ${F} faces).`, kind: null,
+        outcome: 'star',
+        status: `Star-shaped: the kernel is a polyhedron (${V} vertices, ${E} edges, ${F} faces).`,
+        kind: null,
         rows: [...head, 'counts', 'volume', 'area', 'ratio', 'kernel-point', ...deepest, ...timing],
       };
     case 'EMPTY': {
       const w = extra.witness ?? 0;
-      const paragraphs = w > 0
-        ? [`No point sees all of the ${plural(w, 'face')} drawn in magenta from their inner side: the half-spaces behind ${w === 1 ? 'it have' : 'them have'} no point in common, so no point sees the whole shape.`]
-        : ['No point inside this shape sees all of it: the inner half-spaces of its face planes have no common point.'];
-      return { outcome: 'empty', status: 'Not star-shaped: the kernel is empty.', kind: 'empty', title: 'Not star-shaped — the kernel is empty.', paragraphs, rows: [...head, ...timing] };
+      const paragraphs =
+        w > 0
+          ? [
+              `No point sees all of the ${plural(w, 'face')} drawn in magenta from their inner side: the half-spaces behind ${w === 1 ? 'it have' : 'them have'} no point in common, so no point sees the whole shape.`,
+            ]
+          : [
+              'No point inside this shape sees all of it: the inner half-spaces of its face planes have no common point.',
+            ];
+      return {
+        outcome: 'empty',
+        status: 'Not star-shaped: the kernel is empty.',
+        kind: 'empty',
+        title: 'Not star-shaped — the kernel is empty.',
+        paragraphs,
+        rows: [...head, ...timing],
+      };
     }
     case 'POINT':
       return {
-        outcome: 'flat', status: 'Star-shaped, but only from a single point.', kind: 'flat', title: 'Flat kernel: a single point.',
-        paragraphs: [`Only one point, (${result.kernelPoint?.map((x) => fmt(x)).join(', ')}), sees the whole shape; the kernel has no volume.`],
+        outcome: 'flat',
+        status: 'Star-shaped, but only from a single point.',
+        kind: 'flat',
+        title: 'Flat kernel: a single point.',
+        paragraphs: [
+          `Only one point, (${result.kernelPoint?.map((x) => fmt(x)).join(', ')}), sees the whole shape; the kernel has no volume.`,
+        ],
         rows: [...head, 'counts', 'kernel-point', ...timing],
       };
     case 'SEGMENT':
       return {
-        outcome: 'flat', status: 'Star-shaped, but only from the points of a line segment.', kind: 'flat', title: 'Flat kernel: a line segment.',
+        outcome: 'flat',
+        status: 'Star-shaped, but only from the points of a line segment.',
+        kind: 'flat',
+        title: 'Flat kernel: a line segment.',
         paragraphs: ['Only the points of one segment see the whole shape; the kernel has no volume.'],
         rows: [...head, 'counts', 'kernel-point', ...timing],
       };
     case 'POLYGON':
       return {
-        outcome: 'flat', status: `Star-shaped, but only from the points of a flat polygon (${V} vertices, area ${fmt(result.area)}).`,
-        kind: 'flat', title: 'Flat kernel: a polygon.',
-        paragraphs: [`The kernel is a flat convex polygon with ${V} vertices and area ${fmt(result.area)}: its points see the whole shape, and it has no volume.`],
+        outcome: 'flat',
+        status: `Star-shaped, but only from the points of a flat polygon (${V} vertices, area ${fmt(result.area)}).`,
+        kind: 'flat',
+        title: 'Flat kernel: a polygon.',
+        paragraphs: [
+          `The kernel is a flat convex polygon with ${V} vertices and area ${fmt(result.area)}: its points see the whole shape, and it has no volume.`,
+        ],
         rows: [...head, 'counts', 'area', 'kernel-point', ...timing],
       };
     case 'UNBOUNDED': {
-      const b = extra.boxFacets ?? 0, o = extra.openEdges ?? 0;
-      const paragraphs = ['The open mesh\'s face planes do not enclose a bounded region: the kernel goes on without end. It is shown clipped to a box around the mesh.'];
-      if (b > 0) paragraphs.push(`${plural(b, 'facet')} of ${F} ${b === 1 ? 'is' : 'are'} the clip box's (grey), not the mesh's: the kernel continues beyond ${b === 1 ? 'it' : 'them'}.`);
+      const b = extra.boxFacets ?? 0,
+        o = extra.openEdges ?? 0;
+      const paragraphs = [
+        "The open mesh's face planes do not enclose a bounded region: the kernel goes on without end. It is shown clipped to a box around the mesh.",
+      ];
+      if (b > 0)
+        paragraphs.push(
+          `${plural(b, 'facet')} of ${F} ${b === 1 ? 'is' : 'are'} the clip box's (grey), not the mesh's: the kernel continues beyond ${b === 1 ? 'it' : 'them'}.`,
+        );
       if (o > 0) paragraphs.push(`${plural(o, 'open edge')} ${o === 1 ? 'is' : 'are'} drawn in red.`);
       return {
-        outcome: 'open', status: 'Open mesh: the kernel is unbounded (shown clipped to a box).', kind: 'warning', title: 'Unbounded kernel.',
-        paragraphs, rows: [...head, ...(o > 0 ? ['open-edges'] : []), 'counts', 'kernel-point', ...timing],
+        outcome: 'open',
+        status: 'Open mesh: the kernel is unbounded (shown clipped to a box).',
+        kind: 'warning',
+        title: 'Unbounded kernel.',
+        paragraphs,
+        rows: [...head, ...(o > 0 ? ['open-edges'] : []), 'counts', 'kernel-point', ...timing],
       };
     }
     default:

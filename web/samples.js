@@ -36,7 +36,9 @@ class MeshBuilder {
 function triangulatePolygon(poly) {
   const contour = poly.map(([x, y]) => new Vector2(x, y));
   return ShapeUtils.triangulateShape(contour, []).map(([a, b, c]) => {
-    const [ax, ay] = poly[a], [bx, by] = poly[b], [cx, cy] = poly[c];
+    const [ax, ay] = poly[a],
+      [bx, by] = poly[b],
+      [cx, cy] = poly[c];
     const area2 = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
     return area2 > 0 ? [a, b, c] : [a, c, b];
   });
@@ -72,8 +74,18 @@ export function starPolygon(points, outer, inner) {
 // Plus / cross outline: arms of half-width w reaching out to ±len.
 export function plusPolygon(w, len) {
   return [
-    [len, -w], [len, w], [w, w], [w, len], [-w, len], [-w, w],
-    [-len, w], [-len, -w], [-w, -w], [-w, -len], [w, -len], [w, -w],
+    [len, -w],
+    [len, w],
+    [w, w],
+    [w, len],
+    [-w, len],
+    [-w, w],
+    [-len, w],
+    [-len, -w],
+    [-w, -w],
+    [-w, -len],
+    [w, -len],
+    [w, -w],
   ];
 }
 
@@ -82,7 +94,12 @@ export function gearPolygon(teeth, root, tip) {
   const pitch = (2 * Math.PI) / teeth;
   for (let i = 0; i < teeth; i++) {
     const a = i * pitch;
-    for (const [f, r] of [[0, root], [0.2, tip], [0.45, tip], [0.65, root]]) {
+    for (const [f, r] of [
+      [0, root],
+      [0.2, tip],
+      [0.45, tip],
+      [0.65, root],
+    ]) {
       poly.push([r * Math.cos(a + f * pitch), r * Math.sin(a + f * pitch)]);
     }
   }
@@ -113,11 +130,20 @@ function smoothProfile(points, perSegment) {
   const p = (i) => points[Math.max(0, Math.min(points.length - 1, i))];
   for (let i = 0; i < points.length - 1; i++) {
     for (let s = 0; s < perSegment; s++) {
-      const t = s / perSegment, t2 = t * t, t3 = t2 * t;
+      const t = s / perSegment,
+        t2 = t * t,
+        t3 = t2 * t;
       const [p0, p1, p2, p3] = [p(i - 1), p(i), p(i + 1), p(i + 2)];
-      out.push([0, 1].map((k) =>
-        0.5 * (2 * p1[k] + (-p0[k] + p2[k]) * t + (2 * p0[k] - 5 * p1[k] + 4 * p2[k] - p3[k]) * t2 +
-          (-p0[k] + 3 * p1[k] - 3 * p2[k] + p3[k]) * t3)));
+      out.push(
+        [0, 1].map(
+          (k) =>
+            0.5 *
+            (2 * p1[k] +
+              (-p0[k] + p2[k]) * t +
+              (2 * p0[k] - 5 * p1[k] + 4 * p2[k] - p3[k]) * t2 +
+              (-p0[k] + 3 * p1[k] - 3 * p2[k] + p3[k]) * t3),
+        ),
+      );
     }
   }
   out.push(points[points.length - 1].slice());
@@ -167,7 +193,8 @@ export function torus(R, r, nu, nv) {
   }
   for (let i = 0; i < nu; i++) {
     for (let j = 0; j < nv; j++) {
-      const i1 = (i + 1) % nu, j1 = (j + 1) % nv;
+      const i1 = (i + 1) % nu,
+        j1 = (j + 1) % nv;
       m.quad(id[i][j], id[i1][j], id[i1][j1], id[i][j1]);
     }
   }
@@ -202,7 +229,15 @@ const PLUS_W = 0.3;
 const DENT = 0.4;
 
 export const VASE_PROFILE = [
-  [0.45, 0], [0.62, 0.15], [0.72, 0.4], [0.7, 0.7], [0.58, 1.0], [0.42, 1.25], [0.36, 1.45], [0.38, 1.6], [0.45, 1.72],
+  [0.45, 0],
+  [0.62, 0.15],
+  [0.72, 0.4],
+  [0.7, 0.7],
+  [0.58, 1.0],
+  [0.42, 1.25],
+  [0.36, 1.45],
+  [0.38, 1.6],
+  [0.45, 1.72],
 ];
 
 export const SAMPLES = [
@@ -225,7 +260,8 @@ export const SAMPLES = [
   {
     id: 'gear',
     name: 'Gear',
-    description: 'A 12-tooth gear; the lines of the tooth flanks cut the kernel down to a many-sided prism around the axle.',
+    description:
+      'A 12-tooth gear; the lines of the tooth flanks cut the kernel down to a many-sided prism around the axle.',
     polygon: gearPolygon(12, 0.78, 1),
     height: 0.3,
     expected: { status: 'POLYHEDRON' },
@@ -240,7 +276,8 @@ export const SAMPLES = [
   {
     id: 'vase',
     name: 'Vase',
-    description: 'A solid of revolution with a belly, a neck and a flared lip; the lip limits the kernel to a slender cone-like body.',
+    description:
+      'A solid of revolution with a belly, a neck and a flared lip; the lip limits the kernel to a slender cone-like body.',
     build: () => revolution(smoothProfile(VASE_PROFILE, 4), 48),
     expected: { status: 'POLYHEDRON' },
   },
@@ -248,23 +285,50 @@ export const SAMPLES = [
     id: 'l-prism',
     name: 'L prism',
     description: 'An L-shaped prism (2×2 with a 1×1 notch, height 1); the kernel is the corner cube, volume 1.',
-    polygon: [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]],
+    polygon: [
+      [0, 0],
+      [2, 0],
+      [2, 1],
+      [1, 1],
+      [1, 2],
+      [0, 2],
+    ],
     height: 1,
     expected: { status: 'POLYHEDRON', volume: 1, vertices: 8, edges: 12, faces: 6 },
   },
   {
     id: 'z-prism',
     name: 'Z prism (flat kernel)',
-    description: 'Two offset blocks meeting along a line: only the points of the 1 × 1 rectangle where their walls meet see everything — a flat (POLYGON) kernel of area 1, no volume.',
-    polygon: [[0, 0], [2, 0], [2, 1], [3, 1], [3, 2], [1, 2], [1, 1], [0, 1]],
+    description:
+      'Two offset blocks meeting along a line: only the points of the 1 × 1 rectangle where their walls meet see everything — a flat (POLYGON) kernel of area 1, no volume.',
+    polygon: [
+      [0, 0],
+      [2, 0],
+      [2, 1],
+      [3, 1],
+      [3, 2],
+      [1, 2],
+      [1, 1],
+      [0, 1],
+    ],
     height: 1,
     expected: { status: 'POLYGON', area: 1, vertices: 4, edges: 4, faces: 1 },
   },
   {
     id: 'u-prism',
     name: 'U prism (not star-shaped)',
-    description: 'A U-shaped prism: the inner walls of the two prongs face each other, so no point sees both prongs — the kernel is empty.',
-    polygon: [[0, 0], [3, 0], [3, 2], [2, 2], [2, 1], [1, 1], [1, 2], [0, 2]],
+    description:
+      'A U-shaped prism: the inner walls of the two prongs face each other, so no point sees both prongs — the kernel is empty.',
+    polygon: [
+      [0, 0],
+      [3, 0],
+      [3, 2],
+      [2, 2],
+      [2, 1],
+      [1, 1],
+      [1, 2],
+      [0, 2],
+    ],
     height: 1,
     expected: { status: 'EMPTY' },
   },
@@ -278,7 +342,8 @@ export const SAMPLES = [
   {
     id: 'bumpy-sphere',
     name: 'Bumpy sphere',
-    description: 'A sphere with radial bumps (3,968 triangles): star-shaped about its centre; the kernel is a many-faceted convex body — watch it grow edge by edge.',
+    description:
+      'A sphere with radial bumps (3,968 triangles): star-shaped about its centre; the kernel is a many-faceted convex body — watch it grow edge by edge.',
     build: () => radialSphere(32, 64, (t, p) => 1 + 0.22 * Math.sin(3 * t) * Math.sin(4 * p)),
     expected: { status: 'POLYHEDRON' },
   },

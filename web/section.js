@@ -10,24 +10,40 @@ import * as THREE from 'three';
 // Materials of the two counting passes (one per solid: they share nothing but the plane).
 function stencilPassMaterials(plane) {
   const base = {
-    depthWrite: false, depthTest: false, colorWrite: false, stencilWrite: true,
-    stencilFunc: THREE.AlwaysStencilFunc, clippingPlanes: [plane],
+    depthWrite: false,
+    depthTest: false,
+    colorWrite: false,
+    stencilWrite: true,
+    stencilFunc: THREE.AlwaysStencilFunc,
+    clippingPlanes: [plane],
   };
   const back = new THREE.MeshBasicMaterial({
-    ...base, side: THREE.BackSide,
-    stencilFail: THREE.IncrementWrapStencilOp, stencilZFail: THREE.IncrementWrapStencilOp, stencilZPass: THREE.IncrementWrapStencilOp,
+    ...base,
+    side: THREE.BackSide,
+    stencilFail: THREE.IncrementWrapStencilOp,
+    stencilZFail: THREE.IncrementWrapStencilOp,
+    stencilZPass: THREE.IncrementWrapStencilOp,
   });
   const front = new THREE.MeshBasicMaterial({
-    ...base, side: THREE.FrontSide,
-    stencilFail: THREE.DecrementWrapStencilOp, stencilZFail: THREE.DecrementWrapStencilOp, stencilZPass: THREE.DecrementWrapStencilOp,
+    ...base,
+    side: THREE.FrontSide,
+    stencilFail: THREE.DecrementWrapStencilOp,
+    stencilZFail: THREE.DecrementWrapStencilOp,
+    stencilZPass: THREE.DecrementWrapStencilOp,
   });
   return [back, front];
 }
 
 function capMaterial(color) {
   return new THREE.MeshLambertMaterial({
-    color, side: THREE.DoubleSide, stencilWrite: true, stencilRef: 0, stencilFunc: THREE.NotEqualStencilFunc,
-    stencilFail: THREE.ReplaceStencilOp, stencilZFail: THREE.ReplaceStencilOp, stencilZPass: THREE.ReplaceStencilOp,
+    color,
+    side: THREE.DoubleSide,
+    stencilWrite: true,
+    stencilRef: 0,
+    stencilFunc: THREE.NotEqualStencilFunc,
+    stencilFail: THREE.ReplaceStencilOp,
+    stencilZFail: THREE.ReplaceStencilOp,
+    stencilZPass: THREE.ReplaceStencilOp,
   });
 }
 

@@ -3,7 +3,14 @@
 // copied link reopens the same view.
 
 export const VIEW_DEFAULTS = Object.freeze({
-  opacity: 0.22, shape: true, edges: null, ball: true, section: false, axis: 'z', pos: 0.5, clipKernel: true,
+  opacity: 0.22,
+  shape: true,
+  edges: null,
+  ball: true,
+  section: false,
+  axis: 'z',
+  pos: 0.5,
+  clipKernel: true,
 });
 
 const AXES = ['x', 'y', 'z'];

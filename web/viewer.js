@@ -99,22 +99,31 @@ export class KernelView {
     this.pointBuf = new GrowableBuffer(this.pointsGeo);
     this.lineBuf = new GrowableBuffer(this.linesGeo);
     this.faceBuf = new GrowableBuffer(this.facesGeo);
-    this.points = new THREE.Points(this.pointsGeo, new THREE.PointsMaterial({ color: KERNEL_EDGE, size: 6, sizeAttenuation: false }));
+    this.points = new THREE.Points(
+      this.pointsGeo,
+      new THREE.PointsMaterial({ color: KERNEL_EDGE, size: 6, sizeAttenuation: false }),
+    );
     this.lines = new THREE.LineSegments(this.linesGeo, new THREE.LineBasicMaterial({ color: KERNEL_EDGE }));
     // Lambert shading: with software WebGL every pixel of PBR shading is paid on the CPU, and
     // the page's thread waits for the frame (see Viewer.render).
     this.faces = new THREE.Mesh(
       this.facesGeo,
       new THREE.MeshLambertMaterial({
-        color: KERNEL_BLUE, flatShading: true, side: THREE.DoubleSide,
-        polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1,
+        color: KERNEL_BLUE,
+        flatShading: true,
+        side: THREE.DoubleSide,
+        polygonOffset: true,
+        polygonOffsetFactor: 1,
+        polygonOffsetUnits: 1,
       }),
     );
     this.frontGeo = new THREE.BufferGeometry();
     this.frontGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
     this.front = new THREE.LineSegments(this.frontGeo, new THREE.LineBasicMaterial({ color: FRONT_COLOR }));
     this.frontPoint = new THREE.Points(
-      this.frontGeo, new THREE.PointsMaterial({ color: FRONT_COLOR, size: 10, sizeAttenuation: false }));
+      this.frontGeo,
+      new THREE.PointsMaterial({ color: FRONT_COLOR, size: 10, sizeAttenuation: false }),
+    );
     for (const o of [this.faces, this.lines, this.points, this.front, this.frontPoint]) {
       o.frustumCulled = false;
       this.group.add(o);
@@ -155,7 +164,8 @@ export class KernelView {
       this.slot[ev.id] = this.pointBuf.count;
       this.pointBuf.push(ev.position[0] - o.x, ev.position[1] - o.y, ev.position[2] - o.z);
     } else if (kind === KIND.edge) {
-      const a = this.slot[ev.a], b = this.slot[ev.b];
+      const a = this.slot[ev.a],
+        b = this.slot[ev.b];
       if (a === undefined || b === undefined) return false;
       this.lineBuf.push(...this.pointAt(a));
       this.lineBuf.push(...this.pointAt(b));
@@ -203,7 +213,8 @@ export class KernelView {
       const kind = k > 0 ? this.kinds.array[k - 1] : 0;
       let n = 0;
       if (kind === KIND.edge) {
-        const lines = this.lineBuf.attr.array, e = 3 * (p[4 * k + 1] - 2);
+        const lines = this.lineBuf.attr.array,
+          e = 3 * (p[4 * k + 1] - 2);
         pos.array.set(lines.subarray(e, e + 6), 0);
         n = 2;
       } else if (kind === KIND.vertex) {
@@ -224,7 +235,8 @@ export class KernelView {
 
 // The bounding box of float xyz positions ({ lo, hi }), at least `minSize` across.
 function boxOf(positions, minSize) {
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  const lo = [Infinity, Infinity, Infinity],
+    hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < positions.length; i += 3) {
     for (let c = 0; c < 3; c++) {
       const x = positions[i + c];
@@ -285,7 +297,9 @@ export class Viewer {
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.enableDamping = true;
     this.dirty = true; // render on demand: only when something changed
-    this.controls.addEventListener('change', () => { this.dirty = true; });
+    this.controls.addEventListener('change', () => {
+      this.dirty = true;
+    });
 
     this.inputGroup = new THREE.Group();
     this.scene.add(this.inputGroup);
@@ -294,7 +308,10 @@ export class Viewer {
     // The kernel point (the LP's kernel vertex): a fixed-size marker at any zoom.
     const kpGeo = new THREE.BufferGeometry();
     kpGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3), 3));
-    this.kernelPoint = new THREE.Points(kpGeo, new THREE.PointsMaterial({ color: 0xff3060, size: 11, sizeAttenuation: false }));
+    this.kernelPoint = new THREE.Points(
+      kpGeo,
+      new THREE.PointsMaterial({ color: 0xff3060, size: 11, sizeAttenuation: false }),
+    );
     this.kernelPoint.frustumCulled = false;
     this.kernelPoint.visible = false;
     this.scene.add(this.kernelPoint);
@@ -348,10 +365,23 @@ export class Viewer {
     // One pass for both sides (three draws a transparent double-sided mesh twice by default):
     // half the fill cost, and a translucent overlay needs no back-to-front accuracy.
     this.inputMaterial = new THREE.MeshLambertMaterial({
-      color: 0xe3a04a, transparent: true, opacity: this.opacity, depthWrite: false, side: THREE.DoubleSide,
-      forceSinglePass: true, flatShading: true, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 4,
+      color: 0xe3a04a,
+      transparent: true,
+      opacity: this.opacity,
+      depthWrite: false,
+      side: THREE.DoubleSide,
+      forceSinglePass: true,
+      flatShading: true,
+      polygonOffset: true,
+      polygonOffsetFactor: 2,
+      polygonOffsetUnits: 4,
     });
-    this.wireMaterial = new THREE.LineBasicMaterial({ color: 0x7a5a2a, transparent: true, opacity: 0.28, depthWrite: false });
+    this.wireMaterial = new THREE.LineBasicMaterial({
+      color: 0x7a5a2a,
+      transparent: true,
+      opacity: 0.28,
+      depthWrite: false,
+    });
   }
 
   applyTheme() {
@@ -362,7 +392,8 @@ export class Viewer {
   }
 
   resize() {
-    const w = Math.max(1, this.container.clientWidth), h = Math.max(1, this.container.clientHeight);
+    const w = Math.max(1, this.container.clientWidth),
+      h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h, false);
     this.updateProjection();
   }
@@ -378,7 +409,8 @@ export class Viewer {
   // the same scale (pixels per radian) as a plain camera of FOV over the whole canvas: the camera
   // renders the window [0, h) of a taller image, 2h - hv high, whose centre is hv / 2 down.
   updateProjection() {
-    const w = Math.max(1, this.container.clientWidth), h = Math.max(1, this.container.clientHeight);
+    const w = Math.max(1, this.container.clientWidth),
+      h = Math.max(1, this.container.clientHeight);
     const hv = this.visibleHeight();
     const full = 2 * h - hv;
     const t = Math.tan(THREE.MathUtils.degToRad(FOV / 2));
@@ -505,7 +537,8 @@ export class Viewer {
   // the shape, so the shape fits; tall and wide shapes alike).
   fit(kernel = false) {
     let box = this.box;
-    if (kernel && this.kernel.pointBuf.count > 0) box = boxOf(this.kernel.pointBuf.attr.array.subarray(0, 3 * this.kernel.pointBuf.count), this.radius * 1e-4);
+    if (kernel && this.kernel.pointBuf.count > 0)
+      box = boxOf(this.kernel.pointBuf.attr.array.subarray(0, 3 * this.kernel.pointBuf.count), this.radius * 1e-4);
     const center = new THREE.Vector3().fromArray(box.lo).add(new THREE.Vector3().fromArray(box.hi)).multiplyScalar(0.5);
     const dir = this.camera.position.clone().sub(this.controls.target);
     if (!kernel || dir.lengthSq() === 0) dir.set(1.0, -1.35, 0.9);
@@ -514,9 +547,12 @@ export class Viewer {
     const right = new THREE.Vector3().crossVectors(up, dir).normalize();
     const upv = new THREE.Vector3().crossVectors(dir, right);
     const t = Math.tan(THREE.MathUtils.degToRad(FOV / 2));
-    const h = Math.max(1, this.container.clientHeight), w = Math.max(1, this.container.clientWidth);
-    const tanV = (t * this.visibleHeight()) / h, tanH = (t * w) / h;
-    let dist = 0, extent = 0;
+    const h = Math.max(1, this.container.clientHeight),
+      w = Math.max(1, this.container.clientWidth);
+    const tanV = (t * this.visibleHeight()) / h,
+      tanH = (t * w) / h;
+    let dist = 0,
+      extent = 0;
     const p = new THREE.Vector3();
     for (let i = 0; i < 8; i++) {
       p.set(i & 1 ? box.hi[0] : box.lo[0], i & 2 ? box.hi[1] : box.lo[1], i & 4 ? box.hi[2] : box.lo[2]).sub(center);
@@ -540,16 +576,30 @@ export class Viewer {
     // The ball is drawn over the kernel that contains it (an opaque kernel would hide it), faint
     // with green meridians and parallels: a small kernel stays visible through it.
     const sphere = new THREE.SphereGeometry(1, 24, 12);
-    this.ball = new THREE.Mesh(sphere, new THREE.MeshLambertMaterial({
-      color: BALL_GREEN, transparent: true, opacity: 0.25, depthTest: false, depthWrite: false,
-    }));
-    this.ball.add(new THREE.LineSegments(new THREE.WireframeGeometry(new THREE.SphereGeometry(1, 16, 8)),
-      new THREE.LineBasicMaterial({ color: BALL_GREEN, depthTest: false, transparent: true, opacity: 0.9 })));
+    this.ball = new THREE.Mesh(
+      sphere,
+      new THREE.MeshLambertMaterial({
+        color: BALL_GREEN,
+        transparent: true,
+        opacity: 0.25,
+        depthTest: false,
+        depthWrite: false,
+      }),
+    );
+    this.ball.add(
+      new THREE.LineSegments(
+        new THREE.WireframeGeometry(new THREE.SphereGeometry(1, 16, 8)),
+        new THREE.LineBasicMaterial({ color: BALL_GREEN, depthTest: false, transparent: true, opacity: 0.9 }),
+      ),
+    );
     this.ball.children[0].renderOrder = 20;
     this.ball.renderOrder = 20;
     const dotGeo = new THREE.BufferGeometry();
     dotGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3), 3));
-    this.deepestDot = new THREE.Points(dotGeo, new THREE.PointsMaterial({ color: 0x0b5a28, size: 9, sizeAttenuation: false, depthTest: false }));
+    this.deepestDot = new THREE.Points(
+      dotGeo,
+      new THREE.PointsMaterial({ color: 0x0b5a28, size: 9, sizeAttenuation: false, depthTest: false }),
+    );
     this.deepestDot.renderOrder = 21;
     this.insideGroup = new THREE.Group();
     this.insideGroup.add(this.ball, this.deepestDot);
@@ -559,16 +609,47 @@ export class Viewer {
     this.scene.add(this.insideGroup);
     // Overlays in the input's frame: open edges, the witness faces of an empty kernel, the box
     // facets of an unbounded one. Drawn over everything: they are what the message is about.
-    const overlay = (color, opacity) => ({ color, transparent: true, opacity, depthTest: false, depthWrite: false, side: THREE.DoubleSide });
-    this.openEdges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(overlay(OPEN_EDGE_RED, 1)));
-    this.witnessFill = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial(overlay(WITNESS_MAGENTA, 0.55)));
-    this.witnessLines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(overlay(WITNESS_MAGENTA, 1)));
-    this.witnessDots = new THREE.Points(new THREE.BufferGeometry(), new THREE.PointsMaterial({
-      color: WITNESS_MAGENTA, size: 12, sizeAttenuation: false, depthTest: false, depthWrite: false, transparent: true,
-    }));
-    this.boxFacets = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial({
-      color: BOX_FACET_GREY, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4,
-    }));
+    const overlay = (color, opacity) => ({
+      color,
+      transparent: true,
+      opacity,
+      depthTest: false,
+      depthWrite: false,
+      side: THREE.DoubleSide,
+    });
+    this.openEdges = new THREE.LineSegments(
+      new THREE.BufferGeometry(),
+      new THREE.LineBasicMaterial(overlay(OPEN_EDGE_RED, 1)),
+    );
+    this.witnessFill = new THREE.Mesh(
+      new THREE.BufferGeometry(),
+      new THREE.MeshBasicMaterial(overlay(WITNESS_MAGENTA, 0.55)),
+    );
+    this.witnessLines = new THREE.LineSegments(
+      new THREE.BufferGeometry(),
+      new THREE.LineBasicMaterial(overlay(WITNESS_MAGENTA, 1)),
+    );
+    this.witnessDots = new THREE.Points(
+      new THREE.BufferGeometry(),
+      new THREE.PointsMaterial({
+        color: WITNESS_MAGENTA,
+        size: 12,
+        sizeAttenuation: false,
+        depthTest: false,
+        depthWrite: false,
+        transparent: true,
+      }),
+    );
+    this.boxFacets = new THREE.Mesh(
+      new THREE.BufferGeometry(),
+      new THREE.MeshBasicMaterial({
+        color: BOX_FACET_GREY,
+        side: THREE.DoubleSide,
+        polygonOffset: true,
+        polygonOffsetFactor: -1,
+        polygonOffsetUnits: -4,
+      }),
+    );
     for (const o of [this.openEdges, this.witnessFill, this.witnessLines, this.witnessDots, this.boxFacets]) {
       o.frustumCulled = false;
       o.visible = false;
@@ -628,11 +709,13 @@ export class Viewer {
   /** Kernel facets that are the clip box's (vertex-id loops of `result`; null: none). */
   setBoxFacets(result, facetIds = []) {
     const out = [];
-    const o = this.kernel.offset, v = result?.vertices;
+    const o = this.kernel.offset,
+      v = result?.vertices;
     for (const f of facetIds) {
       const loop = result.faces[f];
       for (let k = 1; k + 1 < loop.length; k++) {
-        for (const id of [loop[0], loop[k], loop[k + 1]]) out.push(v[3 * id] - o.x, v[3 * id + 1] - o.y, v[3 * id + 2] - o.z);
+        for (const id of [loop[0], loop[k], loop[k + 1]])
+          out.push(v[3 * id] - o.x, v[3 * id + 1] - o.y, v[3 * id + 2] - o.z);
       }
     }
     Viewer.setLines(this.boxFacets, out.length ? Float32Array.from(out) : null);
@@ -648,7 +731,8 @@ export class Viewer {
     const s = this.section;
     s.enabled = on;
     s.clipKernel = clipKernel;
-    const lo = this.box.lo[axis], hi = this.box.hi[axis];
+    const lo = this.box.lo[axis],
+      hi = this.box.hi[axis];
     // A hair beyond the box at either end: 0 and 1 cut nothing and everything.
     const span = hi - lo || this.radius;
     s.set(axis, lo - 1e-3 * span + at * (1 + 2e-3) * span, this.radius * 1.5);
@@ -663,8 +747,16 @@ export class Viewer {
     this.clipKey = clipKey;
     this.inputMaterial.clippingPlanes = this.wireMaterial.clippingPlanes = s.planesFor(false);
     // What lies inside the kernel (ball, deepest point, kernel point) is cut with it.
-    const kernelMaterials = [this.kernel.faces.material, this.kernel.lines.material, this.kernel.points.material, this.boxFacets.material,
-      this.ball.material, this.ball.children[0].material, this.deepestDot.material, this.kernelPoint.material];
+    const kernelMaterials = [
+      this.kernel.faces.material,
+      this.kernel.lines.material,
+      this.kernel.points.material,
+      this.boxFacets.material,
+      this.ball.material,
+      this.ball.children[0].material,
+      this.deepestDot.material,
+      this.kernelPoint.material,
+    ];
     for (const m of kernelMaterials) {
       m.clippingPlanes = s.planesFor(true);
       m.needsUpdate = true;

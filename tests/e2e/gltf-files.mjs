@@ -9,9 +9,14 @@ import fs from 'node:fs';
 // node 1 translates by (shift, 0, 0) (its positions moved by -shift): both exact in binary for
 // coordinates like the dented cube's (a shift of general float32 coordinates rounds: use 0).
 function gltfParts({ positions, indices }, split, shift = 3) {
-  const pieces = [[0, split], [split, indices.length / 3]];
+  const pieces = [
+    [0, split],
+    [split, indices.length / 3],
+  ];
   const chunks = [];
-  const accessors = [], bufferViews = [], meshes = [];
+  const accessors = [],
+    bufferViews = [],
+    meshes = [];
   let offset = 0;
   pieces.forEach(([t0, t1], k) => {
     const out = new Float32Array(9 * (t1 - t0));
@@ -36,8 +41,13 @@ function gltfParts({ positions, indices }, split, shift = 3) {
     asset: { version: '2.0', generator: 'kergen-wasm tests/e2e/gltf-files.mjs' },
     scene: 0,
     scenes: [{ nodes: [0, 1] }],
-    nodes: [{ mesh: 0, scale: [2, 2, 2] }, { mesh: 1, translation: [shift, 0, 0] }],
-    meshes, accessors, bufferViews,
+    nodes: [
+      { mesh: 0, scale: [2, 2, 2] },
+      { mesh: 1, translation: [shift, 0, 0] },
+    ],
+    meshes,
+    accessors,
+    bufferViews,
     buffers: [{ byteLength: bin.length }],
   };
   return { json, bin };
@@ -60,7 +70,16 @@ export function writeGlb(file, mesh, split, { shift = 3 } = {}) {
     h.write(type, 4);
     return h;
   };
-  fs.writeFileSync(file, Buffer.concat([header, chunkHeader(jsonChunk.length, 'JSON'), jsonChunk, chunkHeader(binChunk.length, 'BIN\0'), binChunk]));
+  fs.writeFileSync(
+    file,
+    Buffer.concat([
+      header,
+      chunkHeader(jsonChunk.length, 'JSON'),
+      jsonChunk,
+      chunkHeader(binChunk.length, 'BIN\0'),
+      binChunk,
+    ]),
+  );
 }
 
 /** Writes `mesh` as a .gltf with its buffer embedded (data URI), or, with `external`, beside it. */

@@ -8,8 +8,14 @@ import path from 'node:path';
 import { chromium } from 'playwright-core';
 
 const MIME = {
-  '.html': 'text/html; charset=utf-8', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
-  '.wasm': 'application/wasm', '.json': 'application/json', '.svg': 'image/svg+xml', '.png': 'image/png',
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript',
+  '.mjs': 'text/javascript',
+  '.css': 'text/css',
+  '.wasm': 'application/wasm',
+  '.json': 'application/json',
+  '.svg': 'image/svg+xml',
+  '.png': 'image/png',
 };
 
 /**
@@ -32,7 +38,8 @@ export function serve(root, files = new Map(), { cors = false } = {}) {
       return;
     }
     res.writeHead(200, {
-      'Content-Type': MIME[path.extname(file)] ?? 'application/octet-stream', 'Cache-Control': 'no-store',
+      'Content-Type': MIME[path.extname(file)] ?? 'application/octet-stream',
+      'Cache-Control': 'no-store',
       ...(cors ? { 'Access-Control-Allow-Origin': '*' } : {}),
     });
     fs.createReadStream(file).pipe(res);
@@ -46,8 +53,17 @@ export async function launch({ headful = false, executablePath = '/usr/bin/chrom
   const context = await chromium.launchPersistentContext(profile, {
     executablePath,
     headless: !headful,
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+    args: [
+      '--no-sandbox',
+      '--disable-gpu',
+      '--disable-quic',
+      '--no-first-run',
+      '--disable-background-networking',
+      '--disable-component-update',
+      '--disable-sync',
+      '--use-angle=swiftshader',
+      '--enable-unsafe-swiftshader',
+    ],
     viewport: { width: 1280, height: 800 },
     acceptDownloads: true,
     colorScheme: 'light',
@@ -92,11 +108,14 @@ export function writeBinarySTL(file, { positions, indices }) {
  * numbers: drop → shown (ms), the page's own stats, and the long tasks seen (longest, count, sum).
  */
 export async function dropAndMeasure(page, url, name, { timeout = 300000 } = {}) {
-  await page.evaluate(async ({ url, name }) => {
-    const blob = await (await fetch(url)).blob();
-    window.__dropFile = new File([blob], name);
-    document.getElementById('status').dataset.state = 'test-pending';
-  }, { url, name });
+  await page.evaluate(
+    async ({ url, name }) => {
+      const blob = await (await fetch(url)).blob();
+      window.__dropFile = new File([blob], name);
+      document.getElementById('status').dataset.state = 'test-pending';
+    },
+    { url, name },
+  );
   await page.waitForTimeout(300); // let the fetch's own tasks settle
   await page.evaluate(() => {
     window.__longTasks = [];
@@ -115,30 +134,50 @@ export async function dropAndMeasure(page, url, name, { timeout = 300000 } = {})
       window.__doneAt = performance.now();
       watch.disconnect();
       document.getElementById('jump-end').click();
-      requestAnimationFrame(() => requestAnimationFrame(() => { window.__shownAt = performance.now(); }));
+      requestAnimationFrame(() =>
+        requestAnimationFrame(() => {
+          window.__shownAt = performance.now();
+        }),
+      );
     });
     watch.observe(status, { attributes: true });
     window.__dropT0 = performance.now();
-    document.getElementById('viewport').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    document
+      .getElementById('viewport')
+      .dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
   });
   await page.waitForFunction(() => window.__shownAt != null, null, { timeout, polling: 50 });
   return page.evaluate(async () => {
-    const doneMs = window.__doneAt - window.__dropT0, shownMs = window.__shownAt - window.__dropT0;
+    const doneMs = window.__doneAt - window.__dropT0,
+      shownMs = window.__shownAt - window.__dropT0;
     await new Promise((r) => setTimeout(r, 200)); // long tasks are reported after they end
     window.__observer.disconnect();
     const tasks = window.__longTasks;
     const $ = (id) => document.getElementById(id);
     return {
-      doneMs, shownMs, dropT0: window.__dropT0,
-      state: $('status').dataset.state, status: $('status').dataset.value, statusText: $('status').textContent,
+      doneMs,
+      shownMs,
+      dropT0: window.__dropT0,
+      state: $('status').dataset.state,
+      status: $('status').dataset.value,
+      statusText: $('status').textContent,
       message: $('message').hidden ? null : $('message').textContent,
-      workerMs: Number($('stat-time').dataset.value), wallMs: Number($('stat-wall').dataset.value),
-      wallText: $('stat-wall').textContent, timeText: $('stat-time').textContent,
-      vertices: Number($('stat-vertices').dataset.value), edges: Number($('stat-edges').dataset.value), faces: Number($('stat-faces').dataset.value),
-      inputFaces: Number($('stat-input-faces').dataset.value), volume: Number($('stat-volume').dataset.value),
-      phases: $('busy').dataset.phases, steps: Number($('scrubber').max), step: Number($('scrubber').value),
-      longest: tasks.reduce((m, t) => Math.max(m, t.duration), 0), longTasks: tasks.length,
-      longTaskMs: tasks.reduce((s, t) => s + t.duration, 0), tasks,
+      workerMs: Number($('stat-time').dataset.value),
+      wallMs: Number($('stat-wall').dataset.value),
+      wallText: $('stat-wall').textContent,
+      timeText: $('stat-time').textContent,
+      vertices: Number($('stat-vertices').dataset.value),
+      edges: Number($('stat-edges').dataset.value),
+      faces: Number($('stat-faces').dataset.value),
+      inputFaces: Number($('stat-input-faces').dataset.value),
+      volume: Number($('stat-volume').dataset.value),
+      phases: $('busy').dataset.phases,
+      steps: Number($('scrubber').max),
+      step: Number($('scrubber').value),
+      longest: tasks.reduce((m, t) => Math.max(m, t.duration), 0),
+      longTasks: tasks.length,
+      longTaskMs: tasks.reduce((s, t) => s + t.duration, 0),
+      tasks,
     };
   });
 }

@@ -74,7 +74,10 @@ function assert(cond, message) {
 
 function assertClose(actual, expected, rel, what) {
   const err = Math.abs(actual - expected) / Math.max(Math.abs(expected), Number.MIN_VALUE);
-  assert(Number.isFinite(actual) && err <= rel, `${what}: got ${actual}, expected ${expected} (relative error ${err.toExponential(2)} > ${rel})`);
+  assert(
+    Number.isFinite(actual) && err <= rel,
+    `${what}: got ${actual}, expected ${expected} (relative error ${err.toExponential(2)} > ${rel})`,
+  );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -104,10 +107,16 @@ function buildIfNeeded() {
     console.log('e2e: web/dist is up to date');
     return;
   }
-  assert(fs.existsSync(path.join(repo, 'dist/kergen.wasm')), 'dist/kergen.wasm is missing: run `npm run build:wasm` first');
+  assert(
+    fs.existsSync(path.join(repo, 'dist/kergen.wasm')),
+    'dist/kergen.wasm is missing: run `npm run build:wasm` first',
+  );
   console.log('e2e: building the page (vite build --config web/vite.config.js)');
-  const r = spawnSync(process.execPath, [path.join(repo, 'node_modules/vite/bin/vite.js'), 'build', '--config', 'web/vite.config.js', '--logLevel', 'warn'],
-    { cwd: repo, stdio: 'inherit' });
+  const r = spawnSync(
+    process.execPath,
+    [path.join(repo, 'node_modules/vite/bin/vite.js'), 'build', '--config', 'web/vite.config.js', '--logLevel', 'warn'],
+    { cwd: repo, stdio: 'inherit' },
+  );
   assert(r.status === 0, 'vite build failed');
 }
 
@@ -117,21 +126,34 @@ function buildIfNeeded() {
 function writeOFF(file, { positions, indices }, faceSize = 3) {
   const lines = ['OFF', `${positions.length / 3} ${indices.length / faceSize} 0`];
   for (let i = 0; i < positions.length; i += 3) lines.push(`${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
-  for (let i = 0; i < indices.length; i += faceSize) lines.push(`${faceSize} ${Array.from(indices.subarray(i, i + faceSize)).join(' ')}`);
+  for (let i = 0; i < indices.length; i += faceSize)
+    lines.push(`${faceSize} ${Array.from(indices.subarray(i, i + faceSize)).join(' ')}`);
   fs.writeFileSync(file, lines.join('\n') + '\n');
 }
 
 function writeOBJ(file, { positions, indices }) {
   const lines = ['# written by tests/e2e/run.mjs', 'o sample'];
   for (let i = 0; i < positions.length; i += 3) lines.push(`v ${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
-  for (let i = 0; i < indices.length; i += 3) lines.push(`f ${indices[i] + 1} ${indices[i + 1] + 1} ${indices[i + 2] + 1}`);
+  for (let i = 0; i < indices.length; i += 3)
+    lines.push(`f ${indices[i] + 1} ${indices[i + 1] + 1} ${indices[i + 2] + 1}`);
   fs.writeFileSync(file, lines.join('\n') + '\n');
 }
 
 function writePLY(file, { positions, indices }) {
-  const nv = positions.length / 3, nf = indices.length / 3;
-  const lines = ['ply', 'format ascii 1.0', 'comment written by tests/e2e/run.mjs', `element vertex ${nv}`, 'property double x',
-    'property double y', 'property double z', `element face ${nf}`, 'property list uchar int vertex_indices', 'end_header'];
+  const nv = positions.length / 3,
+    nf = indices.length / 3;
+  const lines = [
+    'ply',
+    'format ascii 1.0',
+    'comment written by tests/e2e/run.mjs',
+    `element vertex ${nv}`,
+    'property double x',
+    'property double y',
+    'property double z',
+    `element face ${nf}`,
+    'property list uchar int vertex_indices',
+    'end_header',
+  ];
   for (let i = 0; i < positions.length; i += 3) lines.push(`${positions[i]} ${positions[i + 1]} ${positions[i + 2]}`);
   for (let i = 0; i < indices.length; i += 3) lines.push(`3 ${indices[i]} ${indices[i + 1]} ${indices[i + 2]}`);
   fs.writeFileSync(file, lines.join('\n') + '\n');
@@ -154,17 +176,46 @@ function writeAsciiSTL(file, { positions, indices }) {
 // An L prism (base (0,0) (2,0) (2,1) (1,1) (1,2) (0,2), height 1) with single hexagon caps, as
 // OFF and OBJ text; its kernel is [0,1]^2 x [0,1].
 function lPrismFiles() {
-  const base = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]];
-  const points = base.flatMap(([x, y]) => [[x, y, 0], [x, y, 1]]);
-  const faces = [[10, 8, 6, 4, 2, 0], [1, 3, 5, 7, 9, 11]];
+  const base = [
+    [0, 0],
+    [2, 0],
+    [2, 1],
+    [1, 1],
+    [1, 2],
+    [0, 2],
+  ];
+  const points = base.flatMap(([x, y]) => [
+    [x, y, 0],
+    [x, y, 1],
+  ]);
+  const faces = [
+    [10, 8, 6, 4, 2, 0],
+    [1, 3, 5, 7, 9, 11],
+  ];
   for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
-  const off = ['OFF', `${points.length} ${faces.length} 0`, ...points.map((p) => p.join(' ')), ...faces.map((f) => `${f.length} ${f.join(' ')}`)];
-  const obj = ['# L prism', ...points.map((p) => `v ${p.join(' ')}`), ...faces.map((f) => `f ${f.map((v) => v + 1).join(' ')}`)];
+  const off = [
+    'OFF',
+    `${points.length} ${faces.length} 0`,
+    ...points.map((p) => p.join(' ')),
+    ...faces.map((f) => `${f.length} ${f.join(' ')}`),
+  ];
+  const obj = [
+    '# L prism',
+    ...points.map((p) => `v ${p.join(' ')}`),
+    ...faces.map((f) => `f ${f.map((v) => v + 1).join(' ')}`),
+  ];
   return { 'l-prism.off': off.join('\n') + '\n', 'l-prism.obj': obj.join('\n') + '\n' };
 }
 
 const CUBE_V = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1];
-const CUBE_Q = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
+const CUBE_Q = [
+  [0, 3, 2, 1],
+  [4, 5, 6, 7],
+  [0, 1, 5, 4],
+  [1, 2, 6, 5],
+  [2, 3, 7, 6],
+  [3, 0, 4, 7],
+];
 
 function writeQuadOFF(file, verts, quads) {
   const lines = ['OFF', `${verts.length / 3} ${quads.length} 0`];
@@ -215,8 +266,20 @@ function nativeKernel(file) {
 // ---------------------------------------------------------------------------------------------
 // Page helpers
 
-const STATS = ['stat-input-faces', 'stat-planes', 'stat-status', 'stat-vertices', 'stat-edges', 'stat-faces', 'stat-volume', 'stat-area',
-  'stat-ratio', 'stat-kernel-point', 'stat-time', 'stat-wall'];
+const STATS = [
+  'stat-input-faces',
+  'stat-planes',
+  'stat-status',
+  'stat-vertices',
+  'stat-edges',
+  'stat-faces',
+  'stat-volume',
+  'stat-area',
+  'stat-ratio',
+  'stat-kernel-point',
+  'stat-time',
+  'stat-wall',
+];
 
 async function readState(page) {
   return page.evaluate((ids) => {
@@ -232,7 +295,11 @@ async function readState(page) {
       stats,
       step: Number($('scrubber').value),
       steps: Number($('scrubber').max),
-      shown: { vertices: Number($('anim-vertices').dataset.value), edges: Number($('anim-edges').dataset.value), faces: Number($('anim-faces').dataset.value) },
+      shown: {
+        vertices: Number($('anim-vertices').dataset.value),
+        edges: Number($('anim-edges').dataset.value),
+        faces: Number($('anim-faces').dataset.value),
+      },
     };
   }, STATS);
 }
@@ -244,7 +311,11 @@ async function markPending(page) {
 }
 
 async function waitFinished(page, timeout = 60000) {
-  await page.waitForFunction(() => ['done', 'error', 'cancelled'].includes(document.getElementById('status').dataset.state), null, { timeout, polling: 20 });
+  await page.waitForFunction(
+    () => ['done', 'error', 'cancelled'].includes(document.getElementById('status').dataset.state),
+    null,
+    { timeout, polling: 20 },
+  );
   // The timeline (scrubber, step label, counts) is redrawn by the page's animation frame, which
   // can come after the status: wait for one (the page's frame callback runs before this one).
   await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => resolve())));
@@ -267,12 +338,17 @@ async function dropFile(page, file) {
   await markPending(page);
   const b64 = fs.readFileSync(file).toString('base64');
   const t = Date.now();
-  await page.evaluate(({ b64, name }) => {
-    const bin = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-    const dt = new DataTransfer();
-    dt.items.add(new File([bin], name));
-    document.getElementById('viewport').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
-  }, { b64, name: path.basename(file) });
+  await page.evaluate(
+    ({ b64, name }) => {
+      const bin = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+      const dt = new DataTransfer();
+      dt.items.add(new File([bin], name));
+      document
+        .getElementById('viewport')
+        .dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    },
+    { b64, name: path.basename(file) },
+  );
   const s = await waitFinished(page, 120000);
   return { ...s, testMs: Date.now() - t };
 }
@@ -283,16 +359,22 @@ async function scrubTo(page, k) {
     s.value = String(k);
     s.dispatchEvent(new Event('input', { bubbles: true }));
   }, k);
-  await page.waitForFunction((k) => document.getElementById('step-label').textContent.startsWith(`${k} /`), k, { timeout: 5000 });
+  await page.waitForFunction((k) => document.getElementById('step-label').textContent.startsWith(`${k} /`), k, {
+    timeout: 5000,
+  });
   return readState(page);
 }
 
 async function jumpToEnd(page) {
   await page.click('#jump-end');
-  await page.waitForFunction(() => {
-    const s = document.getElementById('scrubber');
-    return s.value === s.max;
-  }, null, { timeout: 5000 });
+  await page.waitForFunction(
+    () => {
+      const s = document.getElementById('scrubber');
+      return s.value === s.max;
+    },
+    null,
+    { timeout: 5000 },
+  );
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 }
 
@@ -300,30 +382,40 @@ async function jumpToEnd(page) {
 // measured by decoding the PNG in the page (createImageBitmap + canvas getImageData).
 async function shoot(page, name, { fullPage = false } = {}) {
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
-  const png = fullPage ? await page.screenshot({ path: path.join(artifacts, name) }) : await page.locator('#viewport').screenshot({ path: path.join(artifacts, name) });
+  const png = fullPage
+    ? await page.screenshot({ path: path.join(artifacts, name) })
+    : await page.locator('#viewport').screenshot({ path: path.join(artifacts, name) });
   // Count pixels only inside the 3D view, above the playback bar (its sliders are blue too).
   const box = await page.locator('#viewport').boundingBox();
   const bar = await page.locator('#playbar').boundingBox();
   const height = bar.y - box.y;
   const clip = fullPage ? { ...box, height } : { x: 0, y: 0, width: box.width, height };
-  return page.evaluate(async ({ b64, clip }) => {
-    const bin = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
-    const bmp = await createImageBitmap(new Blob([bin], { type: 'image/png' }));
-    const canvas = new OffscreenCanvas(bmp.width, bmp.height);
-    const ctx = canvas.getContext('2d');
-    ctx.drawImage(bmp, 0, 0);
-    const x0 = Math.round(clip.x), y0 = Math.round(clip.y);
-    const { data, width, height } = ctx.getImageData(x0, y0, Math.round(clip.width), Math.round(clip.height));
-    let blue = 0, amber = 0, lum = 0;
-    for (let i = 0; i < data.length; i += 4) {
-      const r = data[i], g = data[i + 1], b = data[i + 2];
-      if (b >= 90 && b >= 1.8 * r && b >= 1.25 * g) blue++; // kernel blue #1e6fff, lit or shaded
-      if (r >= g + 25 && g >= b + 25) amber++; // the input's amber
-      lum += 0.2126 * r + 0.7152 * g + 0.0722 * b;
-    }
-    const n = width * height;
-    return { blue, amber, total: n, blueFraction: blue / n, meanLuminance: lum / n };
-  }, { b64: png.toString('base64'), clip });
+  return page.evaluate(
+    async ({ b64, clip }) => {
+      const bin = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+      const bmp = await createImageBitmap(new Blob([bin], { type: 'image/png' }));
+      const canvas = new OffscreenCanvas(bmp.width, bmp.height);
+      const ctx = canvas.getContext('2d');
+      ctx.drawImage(bmp, 0, 0);
+      const x0 = Math.round(clip.x),
+        y0 = Math.round(clip.y);
+      const { data, width, height } = ctx.getImageData(x0, y0, Math.round(clip.width), Math.round(clip.height));
+      let blue = 0,
+        amber = 0,
+        lum = 0;
+      for (let i = 0; i < data.length; i += 4) {
+        const r = data[i],
+          g = data[i + 1],
+          b = data[i + 2];
+        if (b >= 90 && b >= 1.8 * r && b >= 1.25 * g) blue++; // kernel blue #1e6fff, lit or shaded
+        if (r >= g + 25 && g >= b + 25) amber++; // the input's amber
+        lum += 0.2126 * r + 0.7152 * g + 0.0722 * b;
+      }
+      const n = width * height;
+      return { blue, amber, total: n, blueFraction: blue / n, meanLuminance: lum / n };
+    },
+    { b64: png.toString('base64'), clip },
+  );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -335,7 +427,10 @@ async function samplesAndAnimation(page) {
     const s = await waitFinished(page);
     const exp = expectedKernel(sampleById('star-prism'));
     assert(s.status === exp.status, `status ${s.status} (${s.statusText}) ${JSON.stringify(s.message)}`);
-    assert(Number(s.stats.vertices) === exp.vertices && Number(s.stats.faces) === exp.faces, `counts ${s.stats.vertices}/${s.stats.faces}`);
+    assert(
+      Number(s.stats.vertices) === exp.vertices && Number(s.stats.faces) === exp.faces,
+      `counts ${s.stats.vertices}/${s.stats.faces}`,
+    );
     const gl = await page.evaluate(() => !!document.querySelector('#viewport canvas')?.getContext('webgl2'));
     assert(gl, 'no WebGL2 context on the canvas');
   });
@@ -352,13 +447,19 @@ async function samplesAndAnimation(page) {
       }
       if (exp.area != null) assertClose(Number(s.stats.area), exp.area, 1e-9, 'kernel area');
       if (exp.status === 'POLYGON') {
-        assert(s.message?.kind === 'flat' && /flat/i.test(s.message.text), `flat-kernel message: ${JSON.stringify(s.message)}`);
+        assert(
+          s.message?.kind === 'flat' && /flat/i.test(s.message.text),
+          `flat-kernel message: ${JSON.stringify(s.message)}`,
+        );
         assert(Number(s.stats.volume) === 0, `flat kernel volume ${s.stats.volume}`);
         await jumpToEnd(page);
         const px = await shoot(page, 'flat-kernel.png', { fullPage: true });
         assert(px.blue > 500, `flat kernel: ${px.blue} kernel-blue pixels`);
       } else if (exp.status === 'EMPTY') {
-        assert(s.message?.kind === 'empty' && /not star-shaped/i.test(s.message.text), `empty-kernel message: ${JSON.stringify(s.message)}`);
+        assert(
+          s.message?.kind === 'empty' && /not star-shaped/i.test(s.message.text),
+          `empty-kernel message: ${JSON.stringify(s.message)}`,
+        );
       } else {
         const ratio = Number(s.stats.ratio);
         assert(ratio > 0 && ratio <= 1 + 1e-12, `kernel/shape volume ratio ${ratio}`);
@@ -369,30 +470,46 @@ async function samplesAndAnimation(page) {
 
   // 4. Animation: plays on its own, scrubber shows growing prefixes, jump to end.
   await test('animation: plays, scrubber prefixes grow, jump to end, screenshot mid-animation', async () => {
-    await page.evaluate(() => { // slow playback (1/8×) so that the first second shows a partial kernel
+    await page.evaluate(() => {
+      // slow playback (1/8×) so that the first second shows a partial kernel
       const sp = document.getElementById('speed');
       sp.value = '-3';
       sp.dispatchEvent(new Event('input', { bubbles: true }));
     });
     const done = await loadSample(page, 'gear');
     const total = done.steps;
-    const V = Number(done.stats.vertices), E = Number(done.stats.edges), F = Number(done.stats.faces);
+    const V = Number(done.stats.vertices),
+      E = Number(done.stats.edges),
+      F = Number(done.stats.faces);
     assert(total === V + E + F, `timeline has ${total} steps, result has ${V}+${E}+${F}`);
     await page.waitForTimeout(800);
     const playing = await readState(page);
-    assert(playing.step > 0 && playing.step < total, `after 0.8 s playing at 1/8× (5 steps/s) the step is ${playing.step} of ${total}`);
+    assert(
+      playing.step > 0 && playing.step < total,
+      `after 0.8 s playing at 1/8× (5 steps/s) the step is ${playing.step} of ${total}`,
+    );
     const ks = [0, Math.floor(total * 0.15), Math.floor(total * 0.4), Math.floor(total * 0.75), total];
     const seen = [];
     for (const k of ks) seen.push((await scrubTo(page, k)).shown);
-    assert(seen[0].vertices === 0 && seen[0].edges === 0 && seen[0].faces === 0, `step 0 shows ${JSON.stringify(seen[0])}`);
+    assert(
+      seen[0].vertices === 0 && seen[0].edges === 0 && seen[0].faces === 0,
+      `step 0 shows ${JSON.stringify(seen[0])}`,
+    );
     for (let i = 1; i < seen.length; i++) {
-      const a = seen[i - 1], b = seen[i];
-      assert(b.vertices >= a.vertices && b.edges >= a.edges && b.faces >= a.faces, `counts shrink: ${JSON.stringify(a)} → ${JSON.stringify(b)}`);
+      const a = seen[i - 1],
+        b = seen[i];
+      assert(
+        b.vertices >= a.vertices && b.edges >= a.edges && b.faces >= a.faces,
+        `counts shrink: ${JSON.stringify(a)} → ${JSON.stringify(b)}`,
+      );
       assert(b.vertices + b.edges + b.faces === ks[i], `step ${ks[i]} shows ${JSON.stringify(b)}`);
     }
     assert(seen[2].edges > seen[1].edges, `edges do not grow between steps ${ks[1]} and ${ks[2]}`);
     assert(seen[2].faces === 0, 'faces appear before the edges are traced');
-    assert(seen[4].vertices === V && seen[4].edges === E && seen[4].faces === F, `end shows ${JSON.stringify(seen[4])}`);
+    assert(
+      seen[4].vertices === V && seen[4].edges === E && seen[4].faces === F,
+      `end shows ${JSON.stringify(seen[4])}`,
+    );
     await scrubTo(page, ks[2]);
     const px = await shoot(page, 'sample-mid-animation.png'); // edges traced so far, no faces yet
     await shoot(page, 'page-mid-animation.png', { fullPage: true });
@@ -434,7 +551,10 @@ async function fileTests(page, tmp) {
   // Polygon faces are computed as polygons: an L prism whose caps are single non-convex
   // hexagons has the unit cube for kernel (a fan of its caps would give a flat one).
   const lPrism = lPrismFiles();
-  for (const [label, fname] of [['OFF', 'l-prism.off'], ['OBJ', 'l-prism.obj']]) {
+  for (const [label, fname] of [
+    ['OFF', 'l-prism.off'],
+    ['OBJ', 'l-prism.obj'],
+  ]) {
     await test(`file picker: ${label} with non-convex polygon faces ${fname}`, async () => {
       const file = path.join(tmp, fname);
       fs.writeFileSync(file, lPrism[fname]);
@@ -478,7 +598,10 @@ async function progressAndControls(page, tmp) {
     const missing = want.filter((p) => !phases.includes(p));
     assert(missing.length === 0, `phases shown: ${phases.join(',')}; missing ${missing.join(',')}`);
     const order = want.filter((p) => p !== 'loading').map((p) => phases.indexOf(p));
-    assert(order.every((x, i) => i === 0 || x > order[i - 1]), `phase order ${phases.join(',')}`);
+    assert(
+      order.every((x, i) => i === 0 || x > order[i - 1]),
+      `phase order ${phases.join(',')}`,
+    );
     const wall = await page.textContent('#stat-wall');
     assert(/^\d+ ms \(|^\d+(\.\d)? s \(/.test(wall), `load → kernel text "${wall}"`);
   });
@@ -486,7 +609,10 @@ async function progressAndControls(page, tmp) {
   await test('the busy line names the phase while a big file is computed', async () => {
     const big = path.join(tmp, 'sphere-busy.off');
     const { radialSphere } = await import('../../web/samples.js');
-    writeOFF(big, radialSphere(100, 200, () => 1));
+    writeOFF(
+      big,
+      radialSphere(100, 200, () => 1),
+    );
     await markPending(page);
     await page.setInputFiles('#file-input', big);
     const texts = new Set();
@@ -500,11 +626,15 @@ async function progressAndControls(page, tmp) {
     const s = await waitFinished(page);
     assert(s.status === 'POLYHEDRON', `status ${s.status}`);
     console.log(`     busy texts seen: ${[...texts].join(' | ')}`);
-    assert([...texts].some((x) => /^Tracing the kernel · N steps/.test(x)), `no tracing progress seen: ${[...texts].join(' | ')}`);
+    assert(
+      [...texts].some((x) => /^Tracing the kernel · N steps/.test(x)),
+      `no tracing progress seen: ${[...texts].join(' | ')}`,
+    );
   });
 
   await test('Show result skips the replay; replay speed 1× fits the kernel in ≤ 10 s', async () => {
-    await page.evaluate(() => { // speed 1× (an earlier test slowed it down)
+    await page.evaluate(() => {
+      // speed 1× (an earlier test slowed it down)
       const sp = document.getElementById('speed');
       sp.value = '0';
       sp.dispatchEvent(new Event('input', { bubbles: true }));
@@ -523,17 +653,24 @@ async function progressAndControls(page, tmp) {
     await page.click('#jump-end');
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     const end = await readState(page);
-    assert(end.step === total && end.shown.faces === Number(done.stats.faces), `after Show result: step ${end.step} of ${total}, ${JSON.stringify(end.shown)}`);
+    assert(
+      end.step === total && end.shown.faces === Number(done.stats.faces),
+      `after Show result: step ${end.step} of ${total}, ${JSON.stringify(end.shown)}`,
+    );
   });
 
   await test('shape opacity: 0 hides the shape, 1 makes it opaque; face-edges toggle', async () => {
     await loadSample(page, 'gear');
     await jumpToEnd(page);
-    const setRange = (id, v) => page.evaluate(({ id, v }) => {
-      const el = document.getElementById(id);
-      el.value = String(v);
-      el.dispatchEvent(new Event('input', { bubbles: true }));
-    }, { id, v });
+    const setRange = (id, v) =>
+      page.evaluate(
+        ({ id, v }) => {
+          const el = document.getElementById(id);
+          el.value = String(v);
+          el.dispatchEvent(new Event('input', { bubbles: true }));
+        },
+        { id, v },
+      );
     await page.click('#fit-view');
     const normal = await shoot(page, 'opacity-default.png');
     await setRange('opacity', 0);
@@ -541,16 +678,25 @@ async function progressAndControls(page, tmp) {
     await setRange('opacity', 1);
     const opaque = await shoot(page, 'opacity-1.png');
     await setRange('opacity', 0.22);
-    assert(hidden.amber < 50 && hidden.blue > normal.blue, `opacity 0: ${hidden.amber} amber, ${hidden.blue} blue (default ${normal.blue})`);
+    assert(
+      hidden.amber < 50 && hidden.blue > normal.blue,
+      `opacity 0: ${hidden.amber} amber, ${hidden.blue} blue (default ${normal.blue})`,
+    );
     // Opaque, the shape hides the kernel's sides; its top face stays (it lies in the gear's top
     // plane, where the kernel is drawn over the shape).
-    assert(opaque.amber > 3 * normal.amber && opaque.blue < 0.8 * normal.blue, `opacity 1: ${opaque.amber} amber (default ${normal.amber}), ${opaque.blue} blue (default ${normal.blue})`);
+    assert(
+      opaque.amber > 3 * normal.amber && opaque.blue < 0.8 * normal.blue,
+      `opacity 1: ${opaque.amber} amber (default ${normal.amber}), ${opaque.blue} blue (default ${normal.blue})`,
+    );
     assert(await page.isChecked('#show-edges'), 'face edges on by default for a small mesh');
     await page.click('#show-edges');
     const noEdges = await shoot(page, 'edges-off.png');
     await page.click('#show-edges');
     const withEdges = await shoot(page, 'edges-on.png');
-    assert(noEdges.meanLuminance > withEdges.meanLuminance, `edges off should be lighter: ${noEdges.meanLuminance} vs ${withEdges.meanLuminance}`);
+    assert(
+      noEdges.meanLuminance > withEdges.meanLuminance,
+      `edges off should be lighter: ${noEdges.meanLuminance} vs ${withEdges.meanLuminance}`,
+    );
   });
 }
 
@@ -566,7 +712,9 @@ async function realMeshesAndMessages(page, tmp) {
       assert(Number(s.stats['input-faces']) === 17514, `input faces ${s.stats['input-faces']}`);
       const vol = Number(s.stats.volume);
       assert(vol > 0, `volume ${vol}`);
-      console.log(`     350.off: V ${s.stats.vertices}, E ${s.stats.edges}, F ${s.stats.faces}, volume ${vol}, ratio ${s.stats.ratio}, planes ${s.stats.planes}, worker ${Number(s.stats.time).toFixed(1)} ms`);
+      console.log(
+        `     350.off: V ${s.stats.vertices}, E ${s.stats.edges}, F ${s.stats.faces}, volume ${vol}, ratio ${s.stats.ratio}, planes ${s.stats.planes}, worker ${Number(s.stats.time).toFixed(1)} ms`,
+      );
       const native = nativeKernel(p350);
       if (native) {
         assert(native.status === 'POLYHEDRON', `native status ${native.status}`);
@@ -585,7 +733,10 @@ async function realMeshesAndMessages(page, tmp) {
       await page.click('#fit-kernel');
       await page.waitForTimeout(300);
       const zoomed = await shoot(page, 'princeton-350-kernel-zoom.png');
-      assert(zoomed.blue > 20 * px.blue && zoomed.blue > 20000, `zoom to kernel: ${px.blue} → ${zoomed.blue} kernel-blue pixels`);
+      assert(
+        zoomed.blue > 20 * px.blue && zoomed.blue > 20000,
+        `zoom to kernel: ${px.blue} → ${zoomed.blue} kernel-blue pixels`,
+      );
       await page.click('#fit-view');
     });
   }
@@ -603,13 +754,49 @@ async function realMeshesAndMessages(page, tmp) {
 
   const broken = [
     // (refused by the package's reader, the CLI's, with the file's name and line)
-    ['OFF with an out-of-range index', 'bad-index.off', (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]), 'PARSE_ERROR', /bad-index\.off:16: vertex index 99 out of range \(the file has 8 vertices\)/],
-    ['open cube (one face missing)', 'open-cube.off', (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)), 'OPEN_MESH', /open/i],
+    [
+      'OFF with an out-of-range index',
+      'bad-index.off',
+      (f) => writeQuadOFF(f, CUBE_V, [...CUBE_Q.slice(0, 5), [3, 0, 4, 99]]),
+      'PARSE_ERROR',
+      /bad-index\.off:16: vertex index 99 out of range \(the file has 8 vertices\)/,
+    ],
+    [
+      'open cube (one face missing)',
+      'open-cube.off',
+      (f) => writeQuadOFF(f, CUBE_V, CUBE_Q.slice(0, 5)),
+      'OPEN_MESH',
+      /open/i,
+    ],
     ['two cubes sharing an edge', 'edge-cubes.off', writeEdgeSharingCubes, 'NON_MANIFOLD_EDGE', /manifold/i],
-    ['unparseable OFF', 'garbage.off', (f) => fs.writeFileSync(f, 'OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n'), 'PARSE_ERROR', /garbage\.off:4: invalid number 'zero'/],
-    ['OBJ face with a bad index', 'bad-face.obj', (f) => fs.writeFileSync(f, 'v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 x\n'), 'PARSE_ERROR', /bad-face\.obj:5: /],
-    ['truncated binary STL', 'short.stl', (f) => fs.writeFileSync(f, Buffer.alloc(20)), 'PARSE_ERROR', /short\.stl: .*STL/],
-    ['unsupported file type', 'mesh.xyz', (f) => fs.writeFileSync(f, 'hello\n'), 'PARSE_ERROR', /mesh\.xyz: unknown mesh format/],
+    [
+      'unparseable OFF',
+      'garbage.off',
+      (f) => fs.writeFileSync(f, 'OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n'),
+      'PARSE_ERROR',
+      /garbage\.off:4: invalid number 'zero'/,
+    ],
+    [
+      'OBJ face with a bad index',
+      'bad-face.obj',
+      (f) => fs.writeFileSync(f, 'v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 x\n'),
+      'PARSE_ERROR',
+      /bad-face\.obj:5: /,
+    ],
+    [
+      'truncated binary STL',
+      'short.stl',
+      (f) => fs.writeFileSync(f, Buffer.alloc(20)),
+      'PARSE_ERROR',
+      /short\.stl: .*STL/,
+    ],
+    [
+      'unsupported file type',
+      'mesh.xyz',
+      (f) => fs.writeFileSync(f, 'hello\n'),
+      'PARSE_ERROR',
+      /mesh\.xyz: unknown mesh format/,
+    ],
   ];
   for (const [label, fname, make, code, re] of broken) {
     await test(`error message: ${label} → ${code}`, async () => {
@@ -633,24 +820,46 @@ async function exportAndDrop(page, tmp) {
     const files = {};
     for (const format of ['obj', 'stl', 'off']) {
       const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`#export-${format}`)]);
-      assert(dl.suggestedFilename() === `Plus_prism-kernel.${format}` || dl.suggestedFilename().endsWith(`-kernel.${format}`), dl.suggestedFilename());
+      assert(
+        dl.suggestedFilename() === `Plus_prism-kernel.${format}` ||
+          dl.suggestedFilename().endsWith(`-kernel.${format}`),
+        dl.suggestedFilename(),
+      );
       files[format] = path.join(tmp, `exported-kernel.${format}`);
       fs.copyFileSync(await dl.path(), files[format]);
     }
     const obj = fs.readFileSync(files.obj, 'utf8');
-    const vs = obj.split('\n').filter((l) => l.startsWith('v ')).map((l) => l.split(/\s+/).slice(1).map(Number));
+    const vs = obj
+      .split('\n')
+      .filter((l) => l.startsWith('v '))
+      .map((l) => l.split(/\s+/).slice(1).map(Number));
     const fs_ = obj.split('\n').filter((l) => l.startsWith('f '));
     assert(vs.length === 8 && fs_.length === 6, `OBJ has ${vs.length} vertices, ${fs_.length} faces`);
-    for (const v of vs) assert(Math.abs(Math.abs(v[0]) - 0.3) < 1e-12 && Math.abs(Math.abs(v[1]) - 0.3) < 1e-12, `vertex ${v} off the central column`);
+    for (const v of vs)
+      assert(
+        Math.abs(Math.abs(v[0]) - 0.3) < 1e-12 && Math.abs(Math.abs(v[1]) - 0.3) < 1e-12,
+        `vertex ${v} off the central column`,
+      );
     const stl = fs.readFileSync(files.stl);
-    assert(stl.length === 84 + 50 * 12 && stl.readUInt32LE(80) === 12, `STL: ${stl.length} bytes, ${stl.readUInt32LE(80)} triangles`);
+    assert(
+      stl.length === 84 + 50 * 12 && stl.readUInt32LE(80) === 12,
+      `STL: ${stl.length} bytes, ${stl.readUInt32LE(80)} triangles`,
+    );
     const off = fs.readFileSync(files.off, 'utf8').split('\n');
-    assert(/^OFF/.test(off[0]) && /^8 6 /.test(off.find((l, i) => i > 0 && !l.startsWith('#'))), `OFF header ${off.slice(0, 3).join(' | ')}`);
+    assert(
+      /^OFF/.test(off[0]) && /^8 6 /.test(off.find((l, i) => i > 0 && !l.startsWith('#'))),
+      `OFF header ${off.slice(0, 3).join(' | ')}`,
+    );
     // Each file, dropped back on the page, is a cube-like kernel of itself with the same volume.
     for (const format of ['obj', 'stl', 'off']) {
       const back = await dropFile(page, files[format]);
       assert(back.status === 'POLYHEDRON', `${format} read back: ${back.status} ${JSON.stringify(back.message)}`);
-      assertClose(Number(back.stats.volume), Number(s.stats.volume), format === 'stl' ? 1e-6 : 1e-12, `${format} kernel volume`);
+      assertClose(
+        Number(back.stats.volume),
+        Number(s.stats.volume),
+        format === 'stl' ? 1e-6 : 1e-12,
+        `${format} kernel volume`,
+      );
     }
   });
 
@@ -670,9 +879,11 @@ async function exportAndDrop(page, tmp) {
       const wall = runs.map((r) => Number(r.stats.wall));
       const detail = await page.textContent('#stat-wall');
       const worker = runs.map((r) => Number(r.stats.time));
-      console.log(`     325.off (${s.stats['input-faces']} faces, kernel V ${s.stats.vertices} E ${s.stats.edges} F ${s.stats.faces}):` +
-        ` drop → final kernel ${wall.map((x) => x.toFixed(0)).join(' / ')} ms in the page` +
-        ` (worker msTotal ${worker.map((x) => x.toFixed(0)).join(' / ')} ms; test-side ${runs.map((r) => r.testMs).join(' / ')} ms incl. polling)`);
+      console.log(
+        `     325.off (${s.stats['input-faces']} faces, kernel V ${s.stats.vertices} E ${s.stats.edges} F ${s.stats.faces}):` +
+          ` drop → final kernel ${wall.map((x) => x.toFixed(0)).join(' / ')} ms in the page` +
+          ` (worker msTotal ${worker.map((x) => x.toFixed(0)).join(' / ')} ms; test-side ${runs.map((r) => r.testMs).join(' / ')} ms incl. polling)`,
+      );
       console.log(`     last run: ${detail}`);
       const native = nativeKernel(p325);
       if (native) assertClose(Number(s.stats.volume), native.volume, 1e-9, 'volume vs build/kergen --json');
@@ -687,40 +898,62 @@ async function cancelTest(page, tmp) {
   await test('cancel a long run; the page keeps animating meanwhile', async () => {
     const { radialSphere } = await import('../../web/samples.js');
     let cancelled = false;
-    for (const [nlat, nlon] of [[100, 200], [200, 400], [400, 800]]) {
+    for (const [nlat, nlon] of [
+      [100, 200],
+      [200, 400],
+      [400, 800],
+    ]) {
       const big = path.join(tmp, `sphere-${nlat}x${nlon}.off`);
-      writeOFF(big, radialSphere(nlat, nlon, () => 1));
+      writeOFF(
+        big,
+        radialSphere(nlat, nlon, () => 1),
+      );
       await markPending(page);
       await page.setInputFiles('#file-input', big);
-      await page.waitForFunction(() => document.getElementById('status').dataset.state !== 'test-pending' &&
-        document.getElementById('status').dataset.state !== 'reading', null, { timeout: 60000, polling: 10 });
+      await page.waitForFunction(
+        () =>
+          document.getElementById('status').dataset.state !== 'test-pending' &&
+          document.getElementById('status').dataset.state !== 'reading',
+        null,
+        { timeout: 60000, polling: 10 },
+      );
       // Event-loop latency (a blocked main thread shows as one long gap) and frame gaps.
-      const { maxGap, maxFrameGap, ticks } = await page.evaluate(() => new Promise((resolve) => {
-        const t0 = performance.now();
-        let last = t0, gap = 0, lastFrame = t0, frameGap = 0, done = false, n = 0;
-        const tick = () => {
-          const now = performance.now();
-          n++;
-          gap = Math.max(gap, now - last);
-          last = now;
-          if (now - t0 < 1500) setTimeout(tick, 5);
-          else {
-            done = true;
-            resolve({ maxGap: gap, maxFrameGap: frameGap, ticks: n });
-          }
-        };
-        const frame = (now) => {
-          frameGap = Math.max(frameGap, now - lastFrame);
-          lastFrame = now;
-          if (!done) requestAnimationFrame(frame);
-        };
-        setTimeout(tick, 5);
-        requestAnimationFrame(frame);
-      }));
+      const { maxGap, maxFrameGap, ticks } = await page.evaluate(
+        () =>
+          new Promise((resolve) => {
+            const t0 = performance.now();
+            let last = t0,
+              gap = 0,
+              lastFrame = t0,
+              frameGap = 0,
+              done = false,
+              n = 0;
+            const tick = () => {
+              const now = performance.now();
+              n++;
+              gap = Math.max(gap, now - last);
+              last = now;
+              if (now - t0 < 1500) setTimeout(tick, 5);
+              else {
+                done = true;
+                resolve({ maxGap: gap, maxFrameGap: frameGap, ticks: n });
+              }
+            };
+            const frame = (now) => {
+              frameGap = Math.max(frameGap, now - lastFrame);
+              lastFrame = now;
+              if (!done) requestAnimationFrame(frame);
+            };
+            setTimeout(tick, 5);
+            requestAnimationFrame(frame);
+          }),
+      );
       const before = await readState(page);
       if (before.state === 'computing') await page.screenshot({ path: path.join(artifacts, 'state-computing.png') });
       if (before.state !== 'computing') {
-        console.log(`     ${2 * nlat * nlon} triangles finished before cancel (${before.state} ${before.status}); trying a bigger sphere`);
+        console.log(
+          `     ${2 * nlat * nlon} triangles finished before cancel (${before.state} ${before.status}); trying a bigger sphere`,
+        );
         continue;
       }
       // The run can end between the check above and the click: then try a bigger sphere.
@@ -736,18 +969,33 @@ async function cancelTest(page, tmp) {
         continue;
       }
       const s = await waitFinished(page, 10000);
-      assert(s.state === 'cancelled' && s.message?.code === 'CANCELLED', `after cancel: ${s.state} ${JSON.stringify(s.message)}`);
+      assert(
+        s.state === 'cancelled' && s.message?.code === 'CANCELLED',
+        `after cancel: ${s.state} ${JSON.stringify(s.message)}`,
+      );
       // The controls and the message say what is shown: the steps that had arrived, or none.
-      const play = await page.evaluate(() => ({ text: document.getElementById('play').textContent, disabled: document.getElementById('play').disabled }));
+      const play = await page.evaluate(() => ({
+        text: document.getElementById('play').textContent,
+        disabled: document.getElementById('play').disabled,
+      }));
       assert(play.text === 'Play', `after cancel the play button reads "${play.text}"`);
-      assert(s.steps > 0 ? s.message.text.includes(`the ${s.steps.toLocaleString('en-US')} steps that had arrived`) && !play.disabled
-        : /nothing of it is shown/.test(s.message.text) && play.disabled, `cancel with ${s.steps} steps shown: "${s.message.text}", play ${JSON.stringify(play)}`);
+      assert(
+        s.steps > 0
+          ? s.message.text.includes(`the ${s.steps.toLocaleString('en-US')} steps that had arrived`) && !play.disabled
+          : /nothing of it is shown/.test(s.message.text) && play.disabled,
+        `cancel with ${s.steps} steps shown: "${s.message.text}", play ${JSON.stringify(play)}`,
+      );
       await page.screenshot({ path: path.join(artifacts, 'state-cancelled.png') });
       // A computation on the main thread would block the whole 1.5 s window. With software GL
       // the first frame of the new mesh alone can take ~0.3 s, so: the event loop must run
       // freely (≥ 50 of ~250 possible 5 ms timer ticks) and never stall for 1 s.
-      assert(ticks >= 50 && maxGap < 1000, `main thread blocked while the worker computed: ${ticks} timer ticks in 1.5 s, longest gap ${maxGap.toFixed(0)} ms`);
-      console.log(`     ${2 * nlat * nlon}-triangle sphere: ${before.steps} steps streamed in the first 1.5 s, ${ticks} timer ticks in 1.5 s, longest event-loop gap ${maxGap.toFixed(0)} ms, longest frame gap ${maxFrameGap.toFixed(0)} ms (software GL), cancelled`);
+      assert(
+        ticks >= 50 && maxGap < 1000,
+        `main thread blocked while the worker computed: ${ticks} timer ticks in 1.5 s, longest gap ${maxGap.toFixed(0)} ms`,
+      );
+      console.log(
+        `     ${2 * nlat * nlon}-triangle sphere: ${before.steps} steps streamed in the first 1.5 s, ${ticks} timer ticks in 1.5 s, longest event-loop gap ${maxGap.toFixed(0)} ms, longest frame gap ${maxFrameGap.toFixed(0)} ms (software GL), cancelled`,
+      );
       cancelled = true;
       break;
     }
@@ -787,7 +1035,9 @@ async function themeAndBigFile(page, tmp, served) {
     // the best one is asserted.
     let r = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
     for (let attempt = 2; attempt <= 3 && r.longest >= 100; attempt++) {
-      console.log(`     1M STL: drop ${attempt - 1} had a ${r.longest.toFixed(0)} ms task (${r.longTasks} long tasks); dropping it again`);
+      console.log(
+        `     1M STL: drop ${attempt - 1} had a ${r.longest.toFixed(0)} ms task (${r.longTasks} long tasks); dropping it again`,
+      );
       await jumpToEnd(page);
       const again = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
       if (again.longest < r.longest) r = again;
@@ -798,15 +1048,21 @@ async function themeAndBigFile(page, tmp, served) {
     // (684 blue pixels once under load): the picture is of the whole kernel.
     await jumpToEnd(page);
     const px = await shoot(page, 'big-stl-1m.png');
-    const top = r.tasks.sort((a, b) => b.duration - a.duration).slice(0, 5).map((t) => `${t.duration.toFixed(0)} ms at +${(t.start - r.dropT0).toFixed(0)} ms`);
-    console.log(`     1M STL: drop → kernel shown ${(r.shownMs / 1000).toFixed(2)} s (status after ${(r.doneMs / 1000).toFixed(2)} s);` +
-      ` worker compute ${r.timeText}; page: ${r.wallText}; kernel V ${r.vertices} E ${r.edges} F ${r.faces}, ${r.steps} steps;` +
-      ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber pixels`);
+    const top = r.tasks
+      .sort((a, b) => b.duration - a.duration)
+      .slice(0, 5)
+      .map((t) => `${t.duration.toFixed(0)} ms at +${(t.start - r.dropT0).toFixed(0)} ms`);
+    console.log(
+      `     1M STL: drop → kernel shown ${(r.shownMs / 1000).toFixed(2)} s (status after ${(r.doneMs / 1000).toFixed(2)} s);` +
+        ` worker compute ${r.timeText}; page: ${r.wallText}; kernel V ${r.vertices} E ${r.edges} F ${r.faces}, ${r.steps} steps;` +
+        ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber pixels`,
+    );
     assert(r.longest < 100, `longest main-thread task ${r.longest.toFixed(0)} ms`);
     assert(px.blue > 2000, `kernel hardly visible: ${px.blue} kernel-blue pixels`);
     assert(px.amber > 1000, `input hardly visible: ${px.amber} amber pixels`);
     assert(!(await page.isChecked('#show-edges')), 'face edges are off by default for a million faces');
-    if (r.wallMs >= 1000) assert(/^\d+(\.\d)? s \(/.test(r.wallText), `durations over a second in seconds: "${r.wallText}"`);
+    if (r.wallMs >= 1000)
+      assert(/^\d+(\.\d)? s \(/.test(r.wallText), `durations over a second in seconds: "${r.wallText}"`);
     fs.rmSync(file, { force: true });
   });
 }
@@ -822,18 +1078,38 @@ async function threeAppTest(context, tmp) {
     fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
     writeThreeApp(app);
     const vite = await import('vite');
-    await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 4000 } });
+    await vite.build({
+      root: app,
+      logLevel: 'warn',
+      configFile: false,
+      build: { outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 4000 },
+    });
     const r = await runThreeApp(context, path.join(app, 'dist'));
     assert(!r.error, `the app failed: ${r.error}`);
     assert(r.errors.length === 0, r.errors.join(' | '));
     assert(r.before[0] > 200 && r.before[1] < 50, `the red sphere is drawn before the call: ${r.before}`);
-    assert(JSON.stringify(r.after) === JSON.stringify(r.before), `the same pixel after the worker calls: ${r.after} vs ${r.before}`);
+    assert(
+      JSON.stringify(r.after) === JSON.stringify(r.before),
+      `the same pixel after the worker calls: ${r.after} vs ${r.before}`,
+    );
     assert(r.glErrorAfterInput === 0 && r.glError === 0, `GL errors ${r.glErrorAfterInput}, ${r.glError}`);
-    assert(r.sameArrays && r.lengths[0] === 3 * 33 * 17 && r.lengths[1] > 0, `the geometry keeps its arrays: ${r.lengths}`);
+    assert(
+      r.sameArrays && r.lengths[0] === 3 * 33 * 17 && r.lengths[1] > 0,
+      `the geometry keeps its arrays: ${r.lengths}`,
+    );
     assert(r.status === 'POLYHEDRON' && r.rawStatus === 'POLYHEDRON', `statuses ${r.status}, ${r.rawStatus}`);
-    assert(Math.abs(r.volume - r.rawVolume) <= 1e-12 * r.volume && r.volume > 3.9 && r.volume < 4.19, `volumes ${r.volume}, ${r.rawVolume}`);
-    assert(r.kernelPixel[1] > 200 && r.kernelPixel[0] < 50 && r.kernelTriangles > 100 && r.kernelEdges > 100, `the kernel is drawn: ${r.kernelPixel}`);
-    assert(/^WASM_LOAD_FAILED: .*\/no-such-dir\/kergen\.wasm: HTTP 404/.test(r.wasm404 ?? ''), `404 message: ${r.wasm404}`);
+    assert(
+      Math.abs(r.volume - r.rawVolume) <= 1e-12 * r.volume && r.volume > 3.9 && r.volume < 4.19,
+      `volumes ${r.volume}, ${r.rawVolume}`,
+    );
+    assert(
+      r.kernelPixel[1] > 200 && r.kernelPixel[0] < 50 && r.kernelTriangles > 100 && r.kernelEdges > 100,
+      `the kernel is drawn: ${r.kernelPixel}`,
+    );
+    assert(
+      /^WASM_LOAD_FAILED: .*\/no-such-dir\/kergen\.wasm: HTTP 404/.test(r.wasm404 ?? ''),
+      `404 message: ${r.wasm404}`,
+    );
   });
 
   await test('three.js app under the Vite dev server: without the exclude the worker fails once (no restart loop), with it the app works', async () => {
@@ -842,13 +1118,20 @@ async function threeAppTest(context, tmp) {
     const app = path.join(tmp, 'three-dev');
     const pkg = path.join(app, 'node_modules', 'kergen-wasm');
     fs.mkdirSync(pkg, { recursive: true });
-    for (const f of ['package.json', 'wasm', 'dist']) fs.cpSync(path.join(repo, f), path.join(pkg, f), { recursive: true });
+    for (const f of ['package.json', 'wasm', 'dist'])
+      fs.cpSync(path.join(repo, f), path.join(pkg, f), { recursive: true });
     fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
     writeThreeApp(app);
     const vite = await import('vite');
     for (const exclude of [false, true]) {
-      const server = await vite.createServer({ root: app, configFile: false, logLevel: 'silent', clearScreen: false,
-        optimizeDeps: exclude ? { exclude: ['kergen-wasm'] } : {}, server: { host: '127.0.0.1', port: 0, strictPort: false } });
+      const server = await vite.createServer({
+        root: app,
+        configFile: false,
+        logLevel: 'silent',
+        clearScreen: false,
+        optimizeDeps: exclude ? { exclude: ['kergen-wasm'] } : {},
+        server: { host: '127.0.0.1', port: 0, strictPort: false },
+      });
       await server.listen();
       const page = await context.newPage();
       const workerLoads = [];
@@ -859,7 +1142,10 @@ async function threeAppTest(context, tmp) {
         const r = await page.evaluate(() => window.__result);
         await new Promise((res) => setTimeout(res, 2000)); // time for a restart loop to show
         if (!exclude) {
-          assert(/WORKER_ERROR|failed to start/.test(r.error ?? '') && /optimizeDeps\.exclude/.test(r.error), `the call fails with the hint: ${r.error ?? JSON.stringify(r)}`);
+          assert(
+            /WORKER_ERROR|failed to start/.test(r.error ?? '') && /optimizeDeps\.exclude/.test(r.error),
+            `the call fails with the hint: ${r.error ?? JSON.stringify(r)}`,
+          );
           assert(workerLoads.length === 1, `one worker load, no restart loop: ${workerLoads.length} loads`);
         } else {
           assert(!r.error && r.status === 'POLYHEDRON', `with the exclude the app works: ${r.error ?? r.status}`);
@@ -872,14 +1158,19 @@ async function threeAppTest(context, tmp) {
     }
   });
 
-  await test('three.js: the README\'s smallest app loads an STL and shows its kernel', async () => {
+  await test("three.js: the README's smallest app loads an STL and shows its kernel", async () => {
     const app = path.join(tmp, 'readme-app');
     fs.mkdirSync(path.join(app, 'node_modules'), { recursive: true });
     fs.symlinkSync(repo, path.join(app, 'node_modules', 'kergen-wasm'), 'dir');
     fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
     writeReadmeApp(app, path.join(repo, 'README.md'));
     const vite = await import('vite');
-    await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 4000 } });
+    await vite.build({
+      root: app,
+      logLevel: 'warn',
+      configFile: false,
+      build: { outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 4000 },
+    });
     // shape.stl: a plus prism, whose kernel (the central cube) is at the view's centre; written by
     // three.js's STLExporter, with face normals, as a real STL has them (lit, the input shows).
     const THREE = await import('three');
@@ -899,16 +1190,22 @@ async function threeAppTest(context, tmp) {
       await page.goto(`http://127.0.0.1:${server.address().port}/`);
       // The centre pixel (the kernel) and one in the top arm (the input only), read right after
       // three.js drew a frame (in the same animation frame).
-      const centre = () => page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => {
-        const c = document.querySelector('canvas');
-        const copy = document.createElement('canvas');
-        copy.width = c.width;
-        copy.height = c.height;
-        const ctx = copy.getContext('2d');
-        ctx.drawImage(c, 0, 0);
-        const at = (x, y) => Array.from(ctx.getImageData(Math.round(x), Math.round(y), 1, 1).data);
-        resolve(c.width ? [...at(c.width / 2, c.height / 2), ...at(c.width / 2, c.height * 0.2)] : null);
-      })));
+      const centre = () =>
+        page.evaluate(
+          () =>
+            new Promise((resolve) =>
+              requestAnimationFrame(() => {
+                const c = document.querySelector('canvas');
+                const copy = document.createElement('canvas');
+                copy.width = c.width;
+                copy.height = c.height;
+                const ctx = copy.getContext('2d');
+                ctx.drawImage(c, 0, 0);
+                const at = (x, y) => Array.from(ctx.getImageData(Math.round(x), Math.round(y), 1, 1).data);
+                resolve(c.width ? [...at(c.width / 2, c.height / 2), ...at(c.width / 2, c.height * 0.2)] : null);
+              }),
+            ),
+        );
       let px = null;
       for (let i = 0; i < 150 && !(px && px[0] - px[2] > 60); i++) {
         await new Promise((r) => setTimeout(r, 200));
@@ -943,13 +1240,22 @@ async function main() {
   const context = await chromium.launchPersistentContext(profile, {
     executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
     headless: !process.env.E2E_HEADFUL,
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+    args: [
+      '--no-sandbox',
+      '--disable-gpu',
+      '--disable-quic',
+      '--no-first-run',
+      '--disable-background-networking',
+      '--disable-component-update',
+      '--disable-sync',
+      '--use-angle=swiftshader',
+      '--enable-unsafe-swiftshader',
+    ],
     viewport: { width: 1280, height: 800 },
     acceptDownloads: true,
     colorScheme: 'light',
   });
-  const page = context.pages()[0] ?? await context.newPage();
+  const page = context.pages()[0] ?? (await context.newPage());
   const pageErrors = [];
   page.on('pageerror', (e) => pageErrors.push(`pageerror: ${e.message}`));
   page.on('console', (m) => {
@@ -965,7 +1271,19 @@ async function main() {
     await exportAndDrop(page, tmp);
     await cancelTest(page, tmp);
     await demoFeatureTests(page, context, base, tmp, {
-      test, skip, skipTest, assert, assertClose, loadSample, loadFile, waitFinished, markPending, jumpToEnd, artifacts, sharedMeshes, served,
+      test,
+      skip,
+      skipTest,
+      assert,
+      assertClose,
+      loadSample,
+      loadFile,
+      waitFinished,
+      markPending,
+      jumpToEnd,
+      artifacts,
+      sharedMeshes,
+      served,
     });
     await themeAndBigFile(page, tmp, served);
     await threeAppTest(context, tmp);

@@ -13,7 +13,8 @@ const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 function polygonArea(poly) {
   let a = 0;
   for (let i = 0; i < poly.length; i++) {
-    const [x0, y0] = poly[i], [x1, y1] = poly[(i + 1) % poly.length];
+    const [x0, y0] = poly[i],
+      [x1, y1] = poly[(i + 1) % poly.length];
     a += x0 * y1 - x1 * y0;
   }
   return a / 2;
@@ -22,14 +23,22 @@ function polygonArea(poly) {
 // Kernel of a simple polygon (counter-clockwise): clip a large square by the inner half-plane of
 // every edge. Returns the kernel polygon with duplicate and collinear vertices removed ([] = empty).
 export function polygonKernel(poly, { raw = false } = {}) {
-  let k = [[-1e3, -1e3], [1e3, -1e3], [1e3, 1e3], [-1e3, 1e3]];
+  let k = [
+    [-1e3, -1e3],
+    [1e3, -1e3],
+    [1e3, 1e3],
+    [-1e3, 1e3],
+  ];
   for (let i = 0; i < poly.length && k.length; i++) {
-    const p = poly[i], q = poly[(i + 1) % poly.length];
+    const p = poly[i],
+      q = poly[(i + 1) % poly.length];
     const side = (x) => (q[0] - p[0]) * (x[1] - p[1]) - (q[1] - p[1]) * (x[0] - p[0]);
     const out = [];
     for (let j = 0; j < k.length; j++) {
-      const a = k[j], b = k[(j + 1) % k.length];
-      const sa = side(a), sb = side(b);
+      const a = k[j],
+        b = k[(j + 1) % k.length];
+      const sa = side(a),
+        sb = side(b);
       if (sa >= 0) out.push(a);
       if ((sa > 0 && sb < 0) || (sa < 0 && sb > 0)) {
         const t = sa / (sa - sb);
@@ -44,7 +53,9 @@ export function polygonKernel(poly, { raw = false } = {}) {
   while (changed && k.length) {
     changed = false;
     for (let i = 0; i < k.length; i++) {
-      const a = k[(i + k.length - 1) % k.length], b = k[i], c = k[(i + 1) % k.length];
+      const a = k[(i + k.length - 1) % k.length],
+        b = k[i],
+        c = k[(i + 1) % k.length];
       const dup = Math.hypot(b[0] - c[0], b[1] - c[1]) < eps;
       const col = Math.abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) < eps;
       if (dup || col) {
@@ -79,10 +90,15 @@ export function expectedKernel(sample) {
 
 export function checkMesh({ positions, indices }) {
   const problems = [];
-  const nv = positions.length / 3, nt = indices.length / 3;
+  const nv = positions.length / 3,
+    nt = indices.length / 3;
   const P = (i) => [positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]];
   if (indices.length % 3 !== 0 || positions.length % 3 !== 0) problems.push('array lengths not multiples of 3');
-  for (const i of indices) if (i >= nv) { problems.push(`index ${i} out of range`); return { problems }; }
+  for (const i of indices)
+    if (i >= nv) {
+      problems.push(`index ${i} out of range`);
+      return { problems };
+    }
   const keys = new Set();
   for (let i = 0; i < nv; i++) keys.add(P(i).join(','));
   if (keys.size !== nv) problems.push(`${nv - keys.size} duplicate vertices`);
@@ -94,7 +110,8 @@ export function checkMesh({ positions, indices }) {
   let diag = 0;
   for (let i = 0; i < nv; i++) diag = Math.max(diag, Math.hypot(...P(i)));
   const directed = new Map();
-  let volume6 = 0, degenerate = 0;
+  let volume6 = 0,
+    degenerate = 0;
   for (let t = 0; t < nt; t++) {
     const v = [indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]];
     const [a, b, c] = v.map(P);
@@ -116,7 +133,10 @@ export function checkMesh({ positions, indices }) {
   if (!(volume > 0)) problems.push(`signed volume ${volume} is not positive`);
 
   const parent = Int32Array.from({ length: nv }, (_, i) => i);
-  const find = (x) => { while (parent[x] !== x) x = parent[x] = parent[parent[x]]; return x; };
+  const find = (x) => {
+    while (parent[x] !== x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
   for (let t = 0; t < nt; t++) {
     parent[find(indices[3 * t])] = find(indices[3 * t + 1]);
     parent[find(indices[3 * t])] = find(indices[3 * t + 2]);
@@ -132,7 +152,9 @@ export function checkMesh({ positions, indices }) {
 export function strictlyInside(p, { positions, indices }) {
   const P = (i) => [positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]];
   for (let t = 0; t < indices.length; t += 3) {
-    const a = P(indices[t]), b = P(indices[t + 1]), c = P(indices[t + 2]);
+    const a = P(indices[t]),
+      b = P(indices[t + 1]),
+      c = P(indices[t + 2]);
     const n = cross(sub(b, a), sub(c, a));
     if (dot(n, sub(p, a)) >= -1e-12 * Math.hypot(...n)) return false;
   }
@@ -144,7 +166,8 @@ function witness(sample, mesh) {
   if (sample.polygon) {
     const k = polygonKernel(sample.polygon);
     if (!k.length) return null;
-    const cx = k.reduce((s, p) => s + p[0], 0) / k.length, cy = k.reduce((s, p) => s + p[1], 0) / k.length;
+    const cx = k.reduce((s, p) => s + p[0], 0) / k.length,
+      cy = k.reduce((s, p) => s + p[1], 0) / k.length;
     return [cx, cy, sample.height / 2];
   }
   if (sample.id === 'dented-cube') return [0.5, 0.5, 0.1];
@@ -182,13 +205,17 @@ export function checkSamples() {
       for (const a of k) for (const b of k) len = Math.max(len, Math.hypot(a[0] - b[0], a[1] - b[1]));
       const area = k.length >= 3 ? Math.abs(polygonArea(k)) : 0;
       if (!(k.length >= 2 && area < 1e-12 && Math.abs(len * sample.height - sample.expected.area) < 1e-12)) {
-        problems.push(`outline kernel is not a segment of length ${sample.expected.area / sample.height} (${k.length} points, area ${area}, length ${len})`);
+        problems.push(
+          `outline kernel is not a segment of length ${sample.expected.area / sample.height} (${k.length} points, area ${area}, length ${len})`,
+        );
       }
     }
     const exp = expectedKernel(sample);
-    if (exp.status !== sample.expected.status) problems.push(`2D kernel says ${exp.status}, sample claims ${sample.expected.status}`);
+    if (exp.status !== sample.expected.status)
+      problems.push(`2D kernel says ${exp.status}, sample claims ${sample.expected.status}`);
     const w = witness(sample, mesh);
-    if (w && !strictlyInside(w, mesh)) problems.push(`claimed kernel point ${w} is not strictly inside every face plane`);
+    if (w && !strictlyInside(w, mesh))
+      problems.push(`claimed kernel point ${w} is not strictly inside every face plane`);
     if (exp.status === 'POLYHEDRON' && !w) problems.push('no kernel witness point');
     if (sample.id === 'z-prism') {
       // Points on the flat kernel sit on two opposite face planes: not strictly inside.

@@ -68,7 +68,10 @@ main().then(
 
 /** Writes the app (index.html, main.js) into `dir`. */
 export function writeThreeApp(dir) {
-  fs.writeFileSync(path.join(dir, 'index.html'), '<!doctype html><canvas width="200" height="200"></canvas><script type="module" src="./main.js"></script>\n');
+  fs.writeFileSync(
+    path.join(dir, 'index.html'),
+    '<!doctype html><canvas width="200" height="200"></canvas><script type="module" src="./main.js"></script>\n',
+  );
   fs.writeFileSync(path.join(dir, 'main.js'), MAIN_JS);
 }
 
@@ -80,7 +83,10 @@ export function writeReadmeApp(dir, readme) {
   const text = fs.readFileSync(readme, 'utf8');
   const block = /<!-- three-readme-app:begin -->\s*```js\n([\s\S]*?)```\s*<!-- three-readme-app:end -->/.exec(text);
   if (!block) throw new Error(`${readme} has no three-readme-app code block`);
-  fs.writeFileSync(path.join(dir, 'index.html'), '<!doctype html><link rel="icon" href="data:,"><body style="margin:0"><script type="module" src="./main.js"></script></body>\n');
+  fs.writeFileSync(
+    path.join(dir, 'index.html'),
+    '<!doctype html><link rel="icon" href="data:,"><body style="margin:0"><script type="module" src="./main.js"></script></body>\n',
+  );
   fs.writeFileSync(path.join(dir, 'main.js'), block[1]);
   return block[1];
 }
@@ -112,12 +118,35 @@ export async function runThreeApp(context, dist) {
  * from outside: its kernel is the central unit cube, around the origin (the view's centre).
  */
 export function plusPrism() {
-  const plus = [[0.5, -1.5], [0.5, -0.5], [1.5, -0.5], [1.5, 0.5], [0.5, 0.5], [0.5, 1.5],
-    [-0.5, 1.5], [-0.5, 0.5], [-1.5, 0.5], [-1.5, -0.5], [-0.5, -0.5], [-0.5, -1.5]];
+  const plus = [
+    [0.5, -1.5],
+    [0.5, -0.5],
+    [1.5, -0.5],
+    [1.5, 0.5],
+    [0.5, 0.5],
+    [0.5, 1.5],
+    [-0.5, 1.5],
+    [-0.5, 0.5],
+    [-1.5, 0.5],
+    [-1.5, -0.5],
+    [-0.5, -0.5],
+    [-0.5, -1.5],
+  ];
   const positions = [];
   for (const z of [-0.5, 0.5]) for (const [x, y] of plus) positions.push(x, y, z);
   // The cap: the central square and the four arms, each as two CCW triangles (no T-junction).
-  const cap = [[1, 4, 7], [1, 7, 10], [1, 2, 3], [1, 3, 4], [4, 5, 6], [4, 6, 7], [7, 8, 9], [7, 9, 10], [10, 11, 0], [10, 0, 1]];
+  const cap = [
+    [1, 4, 7],
+    [1, 7, 10],
+    [1, 2, 3],
+    [1, 3, 4],
+    [4, 5, 6],
+    [4, 6, 7],
+    [7, 8, 9],
+    [7, 9, 10],
+    [10, 11, 0],
+    [10, 0, 1],
+  ];
   const indices = [];
   for (const [a, b, c] of cap) indices.push(a, c, b, 12 + a, 12 + b, 12 + c);
   for (let i = 0; i < 12; i++) {

@@ -39,7 +39,9 @@ test('convex box: the kernel is the box itself (triangles and quads, number[] an
       relClose(r.volume, expected, 1e-12, 'box volume');
       relClose(r.shapeVolume, expected, 1e-12, 'shape volume');
       relClose(r.volumeRatio, 1, 1e-12, 'volume ratio');
-      assert.ok(r.vertices instanceof Float64Array && r.edges instanceof Uint32Array && r.triangles instanceof Uint32Array);
+      assert.ok(
+        r.vertices instanceof Float64Array && r.edges instanceof Uint32Array && r.triangles instanceof Uint32Array,
+      );
       assert.equal(r.triangles.length, 12 * 3, 'six quads fan-triangulated');
       assert.ok(r.faces.every((f) => f instanceof Uint32Array && f.length === 4));
     }
@@ -65,7 +67,11 @@ test('result arrays are copies out of the heap: later calls and heap growth leav
   K.computeKernelSync(box().positions, box().indices);
   const n = 50000;
   const heapBefore = K.memoryStats().heapSize;
-  const prism = { positions: new Float64Array(6 * n), indices: new Uint32Array(6 * n), faceSizes: new Uint32Array(n + 2) };
+  const prism = {
+    positions: new Float64Array(6 * n),
+    indices: new Uint32Array(6 * n),
+    faceSizes: new Uint32Array(n + 2),
+  };
   for (let i = 0; i < n; i++) {
     const a = (2 * Math.PI * i) / n;
     prism.positions.set([Math.cos(a), Math.sin(a), 0], 3 * i);
@@ -86,7 +92,11 @@ test('result arrays are copies out of the heap: later calls and heap growth leav
 });
 
 test('scale and translation do not change the answer (unit cube ×1e-3, ×1e3, moved by 1e6)', async () => {
-  for (const [s, t] of [[1e-3, [0, 0, 0]], [1e3, [0, 0, 0]], [1, [1e6, -1e6, 1e6]]]) {
+  for (const [s, t] of [
+    [1e-3, [0, 0, 0]],
+    [1e3, [0, 0, 0]],
+    [1, [1e6, -1e6, 1e6]],
+  ]) {
     const m = transform(box(), s, t);
     const r = await K.computeKernel(m.positions, m.indices);
     assert.equal(r.status, 'POLYHEDRON');
@@ -103,11 +113,16 @@ test('L prism: kernel is the unit cube at the corner', async () => {
   assert.deepEqual(Object.values(checkKernel(r, m)), [8, 12, 6]);
   relClose(r.volume, 1, 1e-12, 'L kernel volume');
   relClose(r.shapeVolume, inputVolume(m), 1e-12, 'L shape volume');
-  for (let i = 0; i < r.vertices.length; i++) assert.ok([0, 1].includes(r.vertices[i]), `vertex coordinate ${r.vertices[i]} is 0 or 1`);
+  for (let i = 0; i < r.vertices.length; i++)
+    assert.ok([0, 1].includes(r.vertices[i]), `vertex coordinate ${r.vertices[i]} is 0 or 1`);
 });
 
 test('plus prism: kernel volume 4·w²·h for several arm widths', async () => {
-  for (const [w, reach, h] of [[0.25, 2, 1], [0.1, 3, 2], [1, 1.5, 0.5]]) {
+  for (const [w, reach, h] of [
+    [0.25, 2, 1],
+    [0.1, 3, 2],
+    [1, 1.5, 0.5],
+  ]) {
     const m = plusPrism(w, reach, h);
     const r = await K.computeKernel(m.positions, m.indices);
     assert.equal(r.status, 'POLYHEDRON');
@@ -134,7 +149,20 @@ test('findKernelPoint returns a point inside the kernel of star-shaped meshes', 
     const p = await K.findKernelPoint(m.positions, m.indices);
     assert.equal(p.starShaped, true);
     assert.equal(p.point.length, 3);
-    checkKernel({ vertices: Float64Array.from(p.point), edges: new Uint32Array(), triangles: new Uint32Array(), faceIndices: new Uint32Array(), faces: [], faceSizes: new Uint32Array(), kernelPoint: p.point, status: 'POINT', complete: true }, m);
+    checkKernel(
+      {
+        vertices: Float64Array.from(p.point),
+        edges: new Uint32Array(),
+        triangles: new Uint32Array(),
+        faceIndices: new Uint32Array(),
+        faces: [],
+        faceSizes: new Uint32Array(),
+        kernelPoint: p.point,
+        status: 'POINT',
+        complete: true,
+      },
+      m,
+    );
     assert.equal(await K.isStarShaped(m.positions, m.indices), true);
   }
 });
@@ -145,7 +173,10 @@ test('inward-oriented input is flipped and reported', async () => {
   assert.equal(r.status, 'POLYHEDRON');
   relClose(r.volume, 1, 1e-12, 'volume after flip');
   assert.ok(r.shapeVolume > 0, 'shape volume reported after the fix');
-  assert.ok(r.warnings.some((w) => w.kind === 'ORIENTATION_FLIPPED' && w.count > 0 && w.message.length > 0), JSON.stringify(r.warnings));
+  assert.ok(
+    r.warnings.some((w) => w.kind === 'ORIENTATION_FLIPPED' && w.count > 0 && w.message.length > 0),
+    JSON.stringify(r.warnings),
+  );
   checkKernel(r, m, { orientation: -1 });
 });
 
@@ -168,7 +199,10 @@ test('deepestPoint: centre of the largest inscribed ball of a box', async () => 
   relClose(r.inscribedRadius, 1, 1e-9, 'inscribed radius = half the smallest side');
   // Any centre with x in [1,3], y = 1, z in [1,5] is a largest ball's centre.
   const [x, y, z] = r.deepestPoint;
-  assert.ok(x >= 1 - 1e-9 && x <= 3 + 1e-9 && Math.abs(y - 1) <= 1e-9 && z >= 1 - 1e-9 && z <= 5 + 1e-9, `deepest point ${r.deepestPoint}`);
+  assert.ok(
+    x >= 1 - 1e-9 && x <= 3 + 1e-9 && Math.abs(y - 1) <= 1e-9 && z >= 1 - 1e-9 && z <= 5 + 1e-9,
+    `deepest point ${r.deepestPoint}`,
+  );
   const plain = await K.computeKernel(m.positions, m.indices);
   assert.equal(plain.deepestPoint, null, 'only computed on request');
 });

@@ -34,10 +34,16 @@ function check(row, expect, { result, error }) {
     assert.equal(error, undefined, `${row.name}: unexpected error ${error && error.code}: ${error && error.message}`);
     if (expect.status) assert.equal(result.status, expect.status, row.name);
     if (expect.volume !== undefined) {
-      assert.ok(Math.abs(result.volume - expect.volume) <= 1e-12 * expect.volume, `${row.name}: volume ${result.volume} vs ${expect.volume}`);
+      assert.ok(
+        Math.abs(result.volume - expect.volume) <= 1e-12 * expect.volume,
+        `${row.name}: volume ${result.volume} vs ${expect.volume}`,
+      );
     }
     if (expect.warning) {
-      assert.ok(result.warnings.some((w) => w.kind === expect.warning), `${row.name}: warning ${expect.warning} missing`);
+      assert.ok(
+        result.warnings.some((w) => w.kind === expect.warning),
+        `${row.name}: warning ${expect.warning} missing`,
+      );
     }
     return;
   }
@@ -45,7 +51,10 @@ function check(row, expect, { result, error }) {
   assert.ok(error instanceof K.KergenError, `${row.name}: not a KergenError: ${error}`);
   assert.equal(error.code, expect.code, `${row.name}: ${error.message}`);
   assert.notEqual(error.code, 'INTERNAL_ERROR', `${row.name}: ${error.message}`);
-  assert.ok(error.message.includes(expect.message), `${row.name}: message "${error.message}" lacks "${expect.message}"`);
+  assert.ok(
+    error.message.includes(expect.message),
+    `${row.name}: message "${error.message}" lacks "${expect.message}"`,
+  );
 }
 
 for (const row of table.rows.filter((r) => r.mesh)) {
@@ -67,7 +76,10 @@ for (const row of table.rows.filter((r) => r.mesh)) {
       } catch (e) {
         err = e;
       }
-      assert.ok(err instanceof K.KergenError && err.code === row.expect.code, `${row.name}: findKernelPoint ${err && err.code}`);
+      assert.ok(
+        err instanceof K.KergenError && err.code === row.expect.code,
+        `${row.name}: findKernelPoint ${err && err.code}`,
+      );
     }
   });
 }

@@ -8,15 +8,30 @@ import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 
 // An L prism (non-convex hexagon caps, quad sides): 12 vertices, 8 faces, 18 edges.
 function lPrism() {
-  const base = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]];
+  const base = [
+    [0, 0],
+    [2, 0],
+    [2, 1],
+    [1, 1],
+    [1, 2],
+    [0, 2],
+  ];
   const positions = new Float64Array(base.flatMap(([x, y]) => [x, y, 0, x, y, 1]));
-  const faces = [[10, 8, 6, 4, 2, 0], [1, 3, 5, 7, 9, 11]];
+  const faces = [
+    [10, 8, 6, 4, 2, 0],
+    [1, 3, 5, 7, 9, 11],
+  ];
   for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
-  return { positions, indices: Uint32Array.from(faces.flat()), faceSizes: Uint32Array.from(faces.map((f) => f.length)) };
+  return {
+    positions,
+    indices: Uint32Array.from(faces.flat()),
+    faceSizes: Uint32Array.from(faces.map((f) => f.length)),
+  };
 }
 
 const area = (P, a, b, c) => {
-  const u = [0, 1, 2].map((k) => P[3 * b + k] - P[3 * a + k]), v = [0, 1, 2].map((k) => P[3 * c + k] - P[3 * a + k]);
+  const u = [0, 1, 2].map((k) => P[3 * b + k] - P[3 * a + k]),
+    v = [0, 1, 2].map((k) => P[3 * c + k] - P[3 * a + k]);
   return Math.hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]) / 2;
 };
 
@@ -71,7 +86,11 @@ test('simplify: a 40k-triangle sphere drawn with about 5k triangles, within a gr
   // whose radius is 1 ± 0.2 (the cell: the longest side / res, res ≥ sqrt(5000 / 4) ≈ 35).
   const cell = 2.4 / 35;
   for (let i = 0; i < d.positions.length; i += 3) {
-    const r = Math.hypot(d.positions[i] + d.center[0], d.positions[i + 1] + d.center[1], d.positions[i + 2] + d.center[2]);
+    const r = Math.hypot(
+      d.positions[i] + d.center[0],
+      d.positions[i + 1] + d.center[1],
+      d.positions[i + 2] + d.center[2],
+    );
     assert.ok(r > 0.8 - 2 * cell && r < 1.2 + 2 * cell, `vertex at radius ${r}`);
   }
   // Unchanged input: simplify leaves the arrays it is given alone.

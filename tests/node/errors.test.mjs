@@ -20,7 +20,10 @@ async function expectCode(code, fn) {
     error = err;
   }
   assert.ok(error, `expected a KergenError with code ${code}, nothing was thrown`);
-  assert.ok(error instanceof K.KergenError, `expected KergenError, got ${error && error.constructor && error.constructor.name}: ${error}`);
+  assert.ok(
+    error instanceof K.KergenError,
+    `expected KergenError, got ${error && error.constructor && error.constructor.name}: ${error}`,
+  );
   assert.ok(error instanceof Error);
   assert.equal(error.name, 'KergenError');
   assert.equal(error.code, code, `code (message: ${error.message})`);
@@ -111,7 +114,8 @@ function woundBipyramid(n, turns) {
     positions.push(Math.cos(a), Math.sin(a), 0);
   }
   for (let i = 0; i < n; i++) {
-    const v = 2 + i, w = 2 + ((i + 1) % n);
+    const v = 2 + i,
+      w = 2 + ((i + 1) % n);
     indices.push(0, v, w, 1, w, v);
   }
   return { positions, indices };
@@ -143,7 +147,10 @@ test('1e-60 next to 1 → COORDINATE_RANGE, the message arrives whole (it is not
   m.positions[0] = 1e-60;
   for (const call of [K.computeKernel, K.findKernelPoint]) {
     const err = await expectCode('COORDINATE_RANGE', () => call(m.positions, m.indices));
-    assert.match(err.message, /^coordinates span about 75 decimal orders of magnitude .* about 66 — snap tiny coordinates to 0 or rescale$/);
+    assert.match(
+      err.message,
+      /^coordinates span about 75 decimal orders of magnitude .* about 66 — snap tiny coordinates to 0 or rescale$/,
+    );
   }
 });
 
@@ -194,7 +201,7 @@ test('a detached typed array → INVALID_ARGUMENT, and the module stays usable',
   assert.match(e2.message, /indices is a detached/);
   // A fresh empty array is not mistaken for a detached one: it reaches the core's own check.
   await expectCode('EMPTY_INPUT', () => K.computeKernel(new Float64Array(0), new Uint32Array(0)));
-  const r = K.computeKernelSync(m.positions, m.indices);  // still loaded: no reload was needed
+  const r = K.computeKernelSync(m.positions, m.indices); // still loaded: no reload was needed
   assert.ok(r.volume > 0);
 });
 

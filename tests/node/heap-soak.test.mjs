@@ -20,10 +20,18 @@ test('10,000 calls: heapUsed and heapSize unchanged', () => {
   const dupIdx = Uint32Array.from([...dup.indices, ...dup.indices.subarray(0, 3)]);
   const calls = [
     () => assert.equal(K.computeKernelSync(good.positions, good.indices).status, 'POLYHEDRON'),
-    () => assert.equal(K.computeKernelSync(quads.positions, quads.indices, { faceSizes: quads.faceSizes }).status, 'POLYHEDRON'),
+    () =>
+      assert.equal(
+        K.computeKernelSync(quads.positions, quads.indices, { faceSizes: quads.faceSizes }).status,
+        'POLYHEDRON',
+      ),
     () => assert.equal(K.findKernelPointSync(good.positions, good.indices).starShaped, true),
     () => assert.equal(K.computeKernelSync(good.positions, good.indices, { maxSteps: 3 }).complete, false),
-    () => assert.throws(() => K.computeKernelSync(dup.positions, dupIdx), (e) => e.code === 'NON_MANIFOLD_EDGE'),
+    () =>
+      assert.throws(
+        () => K.computeKernelSync(dup.positions, dupIdx),
+        (e) => e.code === 'NON_MANIFOLD_EDGE',
+      ),
   ];
   for (const c of calls) c(); // warm-up: one-time allocations are not leaks
   const start = K.memoryStats();

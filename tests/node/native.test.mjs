@@ -19,12 +19,20 @@ before(async () => {
 function runNative(file) {
   let stdout;
   try {
-    stdout = execFileSync(nativeCli, ['--json', file], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'], timeout: 120000 });
+    stdout = execFileSync(nativeCli, ['--json', file], {
+      encoding: 'utf8',
+      stdio: ['ignore', 'pipe', 'pipe'],
+      timeout: 120000,
+    });
   } catch (err) {
     stdout = err.stdout || '';
-    if (!stdout.trim()) throw new Error(`native CLI failed on ${file} without JSON output: ${err.stderr || err.message}`);
+    if (!stdout.trim())
+      throw new Error(`native CLI failed on ${file} without JSON output: ${err.stderr || err.message}`);
   }
-  const objects = stdout.split('\n').filter((l) => l.trim().startsWith('{')).map((l) => JSON.parse(l));
+  const objects = stdout
+    .split('\n')
+    .filter((l) => l.trim().startsWith('{'))
+    .map((l) => JSON.parse(l));
   assert.equal(objects.length, 1, `one JSON object per mesh from the CLI for ${file}`);
   return objects[0];
 }
@@ -55,7 +63,9 @@ function compareFolder(folder) {
     const missing = sharedMeshesMissing();
     if (missing) return t.skip(missing);
     if (!fs.existsSync(nativeCli)) {
-      return t.skip(`native CLI ${path.relative(repoRoot, nativeCli)} not built (npm run build:native): skipping the comparison`);
+      return t.skip(
+        `native CLI ${path.relative(repoRoot, nativeCli)} not built (npm run build:native): skipping the comparison`,
+      );
     }
     const files = offFiles(folder);
     assert.ok(files.length > 0, `${folder} has .off files`);
@@ -86,12 +96,16 @@ function compareFolder(folder) {
         continue;
       }
       if (JSON.stringify(n.witness_faces) !== JSON.stringify(w.witnessFaces)) {
-        problems.push(`${name}: witness faces native ${JSON.stringify(n.witness_faces)} vs wasm ${JSON.stringify(w.witnessFaces)}`);
+        problems.push(
+          `${name}: witness faces native ${JSON.stringify(n.witness_faces)} vs wasm ${JSON.stringify(w.witnessFaces)}`,
+        );
         continue;
       }
       agree++;
     }
-    t.diagnostic(`${folder}: ${agree} kernels and ${errorsAgree} error codes agree, ${problems.length} differ, of ${files.length}`);
+    t.diagnostic(
+      `${folder}: ${agree} kernels and ${errorsAgree} error codes agree, ${problems.length} differ, of ${files.length}`,
+    );
     assert.deepEqual(problems, [], problems.join('\n'));
     assert.ok(agree > 0, 'at least one kernel was compared');
   };

@@ -14,7 +14,13 @@ before(async () => {
 // The unit cube without its top face (triangles).
 const cube = {
   positions: Float64Array.from([0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1]),
-  quads: [[0, 2, 3, 1], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]],
+  quads: [
+    [0, 2, 3, 1],
+    [0, 1, 5, 4],
+    [2, 6, 7, 3],
+    [0, 4, 6, 2],
+    [1, 3, 7, 5],
+  ],
 };
 const openCube = Uint32Array.from(cube.quads.flatMap(([a, b, c, d]) => [a, b, c, a, c, d]));
 
@@ -24,7 +30,8 @@ function lippedBowl(nu, nv, lip) {
   const p = [0, 0, -1 - lip];
   for (let i = 1; i <= nv; i++) {
     for (let j = 0; j < nu; j++) {
-      const th = (Math.PI / 2) * i / nv - Math.PI / 2, ph = 2 * Math.PI * j / nu;
+      const th = ((Math.PI / 2) * i) / nv - Math.PI / 2,
+        ph = (2 * Math.PI * j) / nu;
       p.push(Math.cos(th) * Math.cos(ph), Math.cos(th) * Math.sin(ph), Math.sin(th) - lip);
     }
   }
@@ -34,7 +41,8 @@ function lippedBowl(nu, nv, lip) {
   const t = [];
   for (let j = 0; j < nu; j++) t.push(0, id(1, j + 1), id(1, j));
   for (let i = 1; i <= nv; i++) {
-    for (let j = 0; j < nu; j++) t.push(id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i + 1, j));
+    for (let j = 0; j < nu; j++)
+      t.push(id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i + 1, j));
   }
   const lid = Array.from({ length: nu }, (_, j) => id(nv + 1, j));
   return { positions: Float64Array.from(p), indices: Uint32Array.from(t), lid };
@@ -65,7 +73,11 @@ test('a lipped bowl with walls has the kernel of the bowl with a lid', async () 
 
 test('open: bad values and contradictions are INVALID_ARGUMENT; OPEN_MESH names the option', async () => {
   for (const options of [{ open: 'sideways' }, { open: true }, { open: 'perpendicular', allowOpen: false }]) {
-    await assert.rejects(K.computeKernel(cube.positions, openCube, options), (e) => e.code === 'INVALID_ARGUMENT', JSON.stringify(options));
+    await assert.rejects(
+      K.computeKernel(cube.positions, openCube, options),
+      (e) => e.code === 'INVALID_ARGUMENT',
+      JSON.stringify(options),
+    );
   }
   await assert.rejects(K.computeKernel(cube.positions, openCube), (e) => {
     assert.equal(e.code, 'OPEN_MESH');
@@ -77,7 +89,9 @@ test('open: bad values and contradictions are INVALID_ARGUMENT; OPEN_MESH names 
 
 // The bad-input table's mesh_t_junction: a box [0,2]x[0,1]x[0,1] whose bottom is two squares.
 const tBox = {
-  positions: Float64Array.from([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]),
+  positions: Float64Array.from([
+    0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0,
+  ]),
   indices: Uint32Array.from([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]),
   faceSizes: Uint32Array.from([4, 4, 4, 4, 4, 4, 4]),
 };
@@ -86,8 +100,13 @@ test('repairMesh: the repaired T-junction solid is closed and has the kernel com
   const r = await K.repairMesh(tBox.positions, tBox.indices, { faceSizes: tBox.faceSizes, repair: true });
   assert.equal(r.error, null);
   assert.equal(r.message, '');
-  assert.ok(r.positions instanceof Float64Array && r.indices instanceof Uint32Array && r.faceSizes instanceof Uint32Array);
-  assert.deepEqual(r.warnings.map((w) => [w.kind, w.count]), [['T_JUNCTIONS_SPLIT', 2]]);
+  assert.ok(
+    r.positions instanceof Float64Array && r.indices instanceof Uint32Array && r.faceSizes instanceof Uint32Array,
+  );
+  assert.deepEqual(
+    r.warnings.map((w) => [w.kind, w.count]),
+    [['T_JUNCTIONS_SPLIT', 2]],
+  );
   const plain = await K.computeKernel(r.positions, r.indices, { faceSizes: r.faceSizes });
   const repaired = await K.computeKernel(tBox.positions, tBox.indices, { faceSizes: tBox.faceSizes, repair: true });
   assert.equal(plain.volume, 2);
@@ -107,5 +126,8 @@ test('repairMesh without repair returns the input with the verdict; malformed in
   assert.deepEqual(r.indices, tBox.indices);
   const bad = Uint32Array.from(openCube);
   bad[4] = 99;
-  assert.throws(() => K.repairMeshSync(cube.positions, bad), (e) => e.code === 'INDEX_OUT_OF_RANGE');
+  assert.throws(
+    () => K.repairMeshSync(cube.positions, bad),
+    (e) => e.code === 'INDEX_OUT_OF_RANGE',
+  );
 });

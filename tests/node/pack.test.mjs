@@ -8,14 +8,25 @@ import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { assertBuilt, repoRoot } from './lib/env.mjs';
 
-const npmEnv = { ...process.env, npm_config_audit: 'false', npm_config_fund: 'false', npm_config_update_notifier: 'false', npm_config_loglevel: 'error' };
+const npmEnv = {
+  ...process.env,
+  npm_config_audit: 'false',
+  npm_config_fund: 'false',
+  npm_config_update_notifier: 'false',
+  npm_config_loglevel: 'error',
+};
 let tmp;
 let packInfo;
 
 before(() => {
   assertBuilt();
   tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-pack-'));
-  const out = execFileSync('npm', ['pack', '--json', '--pack-destination', tmp], { cwd: repoRoot, encoding: 'utf8', env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
+  const out = execFileSync('npm', ['pack', '--json', '--pack-destination', tmp], {
+    cwd: repoRoot,
+    encoding: 'utf8',
+    env: npmEnv,
+    stdio: ['ignore', 'pipe', 'pipe'],
+  });
   packInfo = JSON.parse(out.slice(out.indexOf('[')))[0];
 });
 
@@ -25,8 +36,23 @@ after(() => {
 
 test('the tarball holds the runtime files only', (t) => {
   const files = packInfo.files.map((f) => f.path).sort();
-  t.diagnostic(`${packInfo.filename}: ${packInfo.size} B packed, ${packInfo.unpackedSize} B unpacked, ${files.length} files`);
-  for (const needed of ['package.json', 'LICENSE', 'dist/kergen.mjs', 'dist/kergen.wasm', 'wasm/index.js', 'wasm/index.d.ts', 'wasm/worker.js', 'wasm/worker.d.ts', 'wasm/kergen-worker.js', 'wasm/errors.js', 'wasm/three.js', 'wasm/three.d.ts']) {
+  t.diagnostic(
+    `${packInfo.filename}: ${packInfo.size} B packed, ${packInfo.unpackedSize} B unpacked, ${files.length} files`,
+  );
+  for (const needed of [
+    'package.json',
+    'LICENSE',
+    'dist/kergen.mjs',
+    'dist/kergen.wasm',
+    'wasm/index.js',
+    'wasm/index.d.ts',
+    'wasm/worker.js',
+    'wasm/worker.d.ts',
+    'wasm/kergen-worker.js',
+    'wasm/errors.js',
+    'wasm/three.js',
+    'wasm/three.d.ts',
+  ]) {
     assert.ok(files.includes(needed), `${needed} is packed`);
   }
   for (const f of files) {
@@ -37,14 +63,25 @@ test('the tarball holds the runtime files only', (t) => {
   assert.equal(wasmEntry.size, fs.statSync(path.join(repoRoot, 'dist/kergen.wasm')).size);
 });
 
-test('npm install <tarball> --offline into an empty folder, then compute a cube kernel from Node', { timeout: 120000 }, () => {
-  const app = path.join(tmp, 'app');
-  fs.mkdirSync(app);
-  fs.writeFileSync(path.join(app, 'package.json'), JSON.stringify({ name: 'kergen-smoke', version: '1.0.0', private: true, type: 'module' }));
-  execFileSync('npm', ['install', '--offline', path.join(tmp, packInfo.filename)], { cwd: app, encoding: 'utf8', env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
-  assert.ok(fs.existsSync(path.join(app, 'node_modules/kergen-wasm/dist/kergen.wasm')));
-  assert.ok(!fs.existsSync(path.join(app, 'node_modules/kergen-wasm/tests')));
-  const script = `
+test(
+  'npm install <tarball> --offline into an empty folder, then compute a cube kernel from Node',
+  { timeout: 120000 },
+  () => {
+    const app = path.join(tmp, 'app');
+    fs.mkdirSync(app);
+    fs.writeFileSync(
+      path.join(app, 'package.json'),
+      JSON.stringify({ name: 'kergen-smoke', version: '1.0.0', private: true, type: 'module' }),
+    );
+    execFileSync('npm', ['install', '--offline', path.join(tmp, packInfo.filename)], {
+      cwd: app,
+      encoding: 'utf8',
+      env: npmEnv,
+      stdio: ['ignore', 'pipe', 'pipe'],
+    });
+    assert.ok(fs.existsSync(path.join(app, 'node_modules/kergen-wasm/dist/kergen.wasm')));
+    assert.ok(!fs.existsSync(path.join(app, 'node_modules/kergen-wasm/tests')));
+    const script = `
     import { computeKernel, isStarShaped, KergenError } from 'kergen-wasm';
     import { KernelWorker } from 'kergen-wasm/worker';
     const wasmPath = import.meta.resolve('kergen-wasm/kergen.wasm');
@@ -63,16 +100,20 @@ test('npm install <tarball> --offline into an empty folder, then compute a cube 
     console.log(JSON.stringify({ three, status: r.status, volume: r.volume, v: r.vertices.length / 3, f: r.faces.length,
       star: await isStarShaped(positions, indices), code, worker: typeof KernelWorker, wasmPath }));
   `;
-  fs.writeFileSync(path.join(app, 'smoke.mjs'), script);
-  const out = JSON.parse(execFileSync(process.execPath, ['smoke.mjs'], { cwd: app, encoding: 'utf8' }).trim());
-  assert.equal(out.status, 'POLYHEDRON');
-  assert.match(out.three, /^ERR_MODULE_NOT_FOUND .*'three'/, 'the core and worker entries work without three; kergen-wasm/three asks for it');
-  assert.equal(out.volume, 24);
-  assert.equal(out.v, 8);
-  assert.equal(out.f, 6);
-  assert.equal(out.star, true);
-  assert.equal(out.code, 'OPEN_MESH');
-  assert.equal(out.worker, 'function');
-  assert.ok(out.wasmPath.endsWith('/node_modules/kergen-wasm/dist/kergen.wasm'), out.wasmPath);
-});
-
+    fs.writeFileSync(path.join(app, 'smoke.mjs'), script);
+    const out = JSON.parse(execFileSync(process.execPath, ['smoke.mjs'], { cwd: app, encoding: 'utf8' }).trim());
+    assert.equal(out.status, 'POLYHEDRON');
+    assert.match(
+      out.three,
+      /^ERR_MODULE_NOT_FOUND .*'three'/,
+      'the core and worker entries work without three; kergen-wasm/three asks for it',
+    );
+    assert.equal(out.volume, 24);
+    assert.equal(out.v, 8);
+    assert.equal(out.f, 6);
+    assert.equal(out.star, true);
+    assert.equal(out.code, 'OPEN_MESH');
+    assert.equal(out.worker, 'function');
+    assert.ok(out.wasmPath.endsWith('/node_modules/kergen-wasm/dist/kergen.wasm'), out.wasmPath);
+  },
+);

@@ -42,7 +42,10 @@ async function traced(mesh, options = {}) {
         const worst = maxViolation(planes, e.position);
         assert.ok(worst <= tol, `vertex event ${e.id} lies outside a half-space by ${worst}`);
       } else if (e.type === 'edge') {
-        assert.ok(e.a < seen.vertex && e.b < seen.vertex && e.a !== e.b, `edge ${e.id} joins vertices already reported`);
+        assert.ok(
+          e.a < seen.vertex && e.b < seen.vertex && e.a !== e.b,
+          `edge ${e.id} joins vertices already reported`,
+        );
       } else {
         assert.equal(e.type, 'face');
         assert.ok(Array.isArray(e.loop) && e.loop.length >= 3);
@@ -62,7 +65,12 @@ function meshes() {
     ['star prism', starPrism(9, 0.55)],
   ];
   if (!sharedMeshesMissing()) {
-    for (const f of ['fixtures/star.off', 'fixtures/cross_quad.off', 'fixtures/dodecahedron_pentagons.off', 'princeton/350.off']) {
+    for (const f of [
+      'fixtures/star.off',
+      'fixtures/cross_quad.off',
+      'fixtures/dodecahedron_pentagons.off',
+      'princeton/350.off',
+    ]) {
       list.push([f, readOff(path.join(sharedMeshes, f))]);
     }
   }
@@ -81,7 +89,11 @@ test('every vertex event lies in the kernel; final counts and coordinates equal 
     assert.equal(seen.face, result.faces.length, `${name}: one event per face`);
     for (const e of events) {
       if (e.type === 'vertex') {
-        assert.deepEqual(e.position, Array.from(result.vertices.subarray(3 * e.id, 3 * e.id + 3)), `${name}: vertex ${e.id}`);
+        assert.deepEqual(
+          e.position,
+          Array.from(result.vertices.subarray(3 * e.id, 3 * e.id + 3)),
+          `${name}: vertex ${e.id}`,
+        );
       } else if (e.type === 'edge') {
         const a = result.edges[2 * e.id];
         const b = result.edges[2 * e.id + 1];
@@ -115,7 +127,8 @@ test('onStep returning false stops the trace with a valid partial kernel', async
     // vertex); everything in it must lie in the kernel.
     assert.equal(result.vertices.length / 3, seen.vertex, 'the partial result holds the reported vertices');
     for (const e of events) {
-      if (e.type === 'vertex') assert.deepEqual(e.position, Array.from(result.vertices.subarray(3 * e.id, 3 * e.id + 3)));
+      if (e.type === 'vertex')
+        assert.deepEqual(e.position, Array.from(result.vertices.subarray(3 * e.id, 3 * e.id + 3)));
       if (e.type === 'edge') {
         const pair = [result.edges[2 * e.id], result.edges[2 * e.id + 1]].sort();
         assert.deepEqual(pair, [e.a, e.b].sort(), `reported edge ${e.id} is in the partial result`);
@@ -137,9 +150,17 @@ test('maxSteps bounds the number of events', async () => {
 
 test('from: the trace starts at the kernel vertex extreme towards the given point', async () => {
   const mesh = box([0, 0, 0], [1, 1, 1]);
-  for (const corner of [[5, 5, 5], [-5, 5, -5], [5, -5, -5]]) {
+  for (const corner of [
+    [5, 5, 5],
+    [-5, 5, -5],
+    [5, -5, -5],
+  ]) {
     const { events } = await traced(mesh, { from: corner });
     const first = events.find((e) => e.type === 'vertex').position;
-    assert.deepEqual(first, corner.map((c) => (c > 0 ? 1 : 0)), `first vertex towards ${corner}`);
+    assert.deepEqual(
+      first,
+      corner.map((c) => (c > 0 ? 1 : 0)),
+      `first vertex towards ${corner}`,
+    );
   }
 });

@@ -14,7 +14,10 @@ function assertTypesCheck(tsc) {
   let out = '';
   let status = 0;
   try {
-    out = execFileSync(process.execPath, [tsc, '-p', path.join(repoRoot, 'tests', 'types'), '--noEmit', '--strict'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+    out = execFileSync(process.execPath, [tsc, '-p', path.join(repoRoot, 'tests', 'types'), '--noEmit', '--strict'], {
+      encoding: 'utf8',
+      stdio: ['ignore', 'pipe', 'pipe'],
+    });
   } catch (err) {
     status = err.status;
     out = `${err.stdout}${err.stderr}`;
@@ -35,9 +38,15 @@ test('tsc --strict with typescript@latest on tests/types', { timeout: 300000 }, 
   try {
     fs.writeFileSync(path.join(dir, 'package.json'), JSON.stringify({ name: 'ts-latest', private: true }));
     try {
-      execFileSync('npm', ['install', '--no-audit', '--no-fund', 'typescript@latest'], { cwd: dir, stdio: ['ignore', 'pipe', 'pipe'], timeout: 240000 });
+      execFileSync('npm', ['install', '--no-audit', '--no-fund', 'typescript@latest'], {
+        cwd: dir,
+        stdio: ['ignore', 'pipe', 'pipe'],
+        timeout: 240000,
+      });
     } catch (err) {
-      return t.skip(`the npm registry could not provide typescript@latest: ${String(err.stderr || err.message).split('\n')[0]}`);
+      return t.skip(
+        `the npm registry could not provide typescript@latest: ${String(err.stderr || err.message).split('\n')[0]}`,
+      );
     }
     const tsc = path.join(dir, 'node_modules', 'typescript', 'bin', 'tsc');
     t.diagnostic(execFileSync(process.execPath, [tsc, '--version'], { encoding: 'utf8' }).trim());

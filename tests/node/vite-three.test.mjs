@@ -12,14 +12,25 @@ import { execFileSync } from 'node:child_process';
 import { assertBuilt, distWasm, repoRoot, viteUnsupported } from './lib/env.mjs';
 import { writeThreeApp, writeReadmeApp } from '../e2e/three-app.mjs';
 
-const npmEnv = { ...process.env, npm_config_audit: 'false', npm_config_fund: 'false', npm_config_update_notifier: 'false', npm_config_loglevel: 'error' };
+const npmEnv = {
+  ...process.env,
+  npm_config_audit: 'false',
+  npm_config_fund: 'false',
+  npm_config_update_notifier: 'false',
+  npm_config_loglevel: 'error',
+};
 let tmp;
 let tarball;
 
 before(() => {
   assertBuilt();
   tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-vite-three-'));
-  const out = execFileSync('npm', ['pack', '--json', '--pack-destination', tmp], { cwd: repoRoot, encoding: 'utf8', env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
+  const out = execFileSync('npm', ['pack', '--json', '--pack-destination', tmp], {
+    cwd: repoRoot,
+    encoding: 'utf8',
+    env: npmEnv,
+    stdio: ['ignore', 'pipe', 'pipe'],
+  });
   tarball = path.join(tmp, JSON.parse(out.slice(out.indexOf('[')))[0].filename);
 });
 after(() => {
@@ -30,7 +41,10 @@ after(() => {
 function newApp(name) {
   const app = path.join(tmp, name);
   fs.mkdirSync(app);
-  fs.writeFileSync(path.join(app, 'package.json'), JSON.stringify({ name, version: '1.0.0', private: true, type: 'module' }));
+  fs.writeFileSync(
+    path.join(app, 'package.json'),
+    JSON.stringify({ name, version: '1.0.0', private: true, type: 'module' }),
+  );
   execFileSync('npm', ['install', '--offline', tarball], { cwd: app, env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
   writeThreeApp(app);
   return app;
@@ -48,14 +62,23 @@ function checkBuild(t, app, label) {
   const read = (f) => fs.readFileSync(path.join(out, f), 'utf8');
   const worker = read(workerFiles[0]);
   assert.ok(worker.includes(wasmFiles[0]), 'the worker locates the emitted .wasm');
-  const page = files.filter((f) => f.endsWith('.js') && !workerFiles.includes(f)).map(read).join('\n');
+  const page = files
+    .filter((f) => f.endsWith('.js') && !workerFiles.includes(f))
+    .map(read)
+    .join('\n');
   assert.ok(page.includes(workerFiles[0]), 'the page spawns the worker chunk');
-  assert.ok(page.includes('computeGeometry') && page.includes('WebGLRenderer'), 'kergen-wasm/three and three.js are in the page bundle');
-  assert.ok(!worker.includes('WebGLRenderer') && worker.length < 200000, `three.js stays out of the worker (${worker.length} B)`);
+  assert.ok(
+    page.includes('computeGeometry') && page.includes('WebGLRenderer'),
+    'kergen-wasm/three and three.js are in the page bundle',
+  );
+  assert.ok(
+    !worker.includes('WebGLRenderer') && worker.length < 200000,
+    `three.js stays out of the worker (${worker.length} B)`,
+  );
   assert.ok(!`${page}\n${worker}`.includes('__vite-browser-external'), 'no Node built-in in the bundles');
 }
 
-test('Vite 7 (the repository\'s) builds the app from the packed tarball', { timeout: 180000 }, async (t) => {
+test("Vite 7 (the repository's) builds the app from the packed tarball", { timeout: 180000 }, async (t) => {
   if (viteUnsupported()) return t.skip(viteUnsupported());
   const app = newApp('app-vite7');
   fs.symlinkSync(path.join(repoRoot, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
@@ -65,25 +88,42 @@ test('Vite 7 (the repository\'s) builds the app from the packed tarball', { time
   checkBuild(t, app, `vite ${vite.version}`);
 });
 
-test('the current Vite (npm install vite@latest three) builds the same app from the tarball', { timeout: 300000 }, (t) => {
-  if (viteUnsupported()) return t.skip(viteUnsupported());
-  const app = newApp('app-vite-latest');
-  try {
-    execFileSync('npm', ['install', '--no-save', 'vite@latest', 'three@0.187.0'], { cwd: app, env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'], timeout: 240000 });
-  } catch (err) {
-    return t.skip(`the npm registry could not provide vite@latest: ${String(err.stderr || err.message).split('\n')[0]}`);
-  }
-  const version = JSON.parse(fs.readFileSync(path.join(app, 'node_modules/vite/package.json'), 'utf8')).version;
-  execFileSync(process.execPath, [path.join(app, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: app, env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
-  checkBuild(t, app, `vite ${version}`);
-});
+test(
+  'the current Vite (npm install vite@latest three) builds the same app from the tarball',
+  { timeout: 300000 },
+  (t) => {
+    if (viteUnsupported()) return t.skip(viteUnsupported());
+    const app = newApp('app-vite-latest');
+    try {
+      execFileSync('npm', ['install', '--no-save', 'vite@latest', 'three@0.187.0'], {
+        cwd: app,
+        env: npmEnv,
+        stdio: ['ignore', 'pipe', 'pipe'],
+        timeout: 240000,
+      });
+    } catch (err) {
+      return t.skip(
+        `the npm registry could not provide vite@latest: ${String(err.stderr || err.message).split('\n')[0]}`,
+      );
+    }
+    const version = JSON.parse(fs.readFileSync(path.join(app, 'node_modules/vite/package.json'), 'utf8')).version;
+    execFileSync(process.execPath, [path.join(app, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], {
+      cwd: app,
+      env: npmEnv,
+      stdio: ['ignore', 'pipe', 'pipe'],
+    });
+    checkBuild(t, app, `vite ${version}`);
+  },
+);
 
-test('the README\'s smallest three.js app builds with Vite 7 from the tarball', { timeout: 180000 }, async (t) => {
+test("the README's smallest three.js app builds with Vite 7 from the tarball", { timeout: 180000 }, async (t) => {
   if (viteUnsupported()) return t.skip(viteUnsupported());
   const app = newApp('app-readme');
   const code = writeReadmeApp(app, path.join(repoRoot, 'README.md'));
   const lines = code.split('\n').filter((l) => l.trim() !== '');
-  t.diagnostic(`${lines.length} non-blank lines, ${lines.filter((l) => l.includes('// kernel')).length} of them for the kernel`);
+  t.diagnostic(
+    `${lines.length} non-blank lines, ${lines.filter((l) => l.includes('// kernel')).length} of them for the kernel`,
+  );
   assert.ok(lines.filter((l) => l.includes('// kernel')).length <= 5, 'the kernel part is at most 5 lines');
   fs.symlinkSync(path.join(repoRoot, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
   const vite = await import('vite');

@@ -41,15 +41,29 @@ test('vite build: worker chunk + hashed .wasm, no Node built-ins in the web bund
   }
   const warnings = [];
   const logger = vite.createLogger('warn', { allowClearScreen: false });
-  const customLogger = { ...logger, warn: (msg, opts) => warnings.push(msg), warnOnce: (msg) => warnings.push(msg), info() {} };
-  await vite.build({ root: app, logLevel: 'warn', customLogger, build: { outDir: 'dist', emptyOutDir: true }, configFile: false });
+  const customLogger = {
+    ...logger,
+    warn: (msg) => warnings.push(msg),
+    warnOnce: (msg) => warnings.push(msg),
+    info() {},
+  };
+  await vite.build({
+    root: app,
+    logLevel: 'warn',
+    customLogger,
+    build: { outDir: 'dist', emptyOutDir: true },
+    configFile: false,
+  });
 
   const out = path.join(app, 'dist', 'assets');
   const files = fs.readdirSync(out);
   t.diagnostic(`emitted: ${files.join(', ')}`);
   const wasmFiles = files.filter((f) => f.endsWith('.wasm'));
   assert.equal(wasmFiles.length, 1, 'one .wasm asset');
-  assert.ok(fs.readFileSync(path.join(out, wasmFiles[0])).equals(fs.readFileSync(distWasm)), 'the emitted .wasm is the package binary');
+  assert.ok(
+    fs.readFileSync(path.join(out, wasmFiles[0])).equals(fs.readFileSync(distWasm)),
+    'the emitted .wasm is the package binary',
+  );
   const workerFiles = files.filter((f) => /^kergen-worker.*\.js$/.test(f));
   assert.equal(workerFiles.length, 1, 'the module worker is emitted as its own chunk');
   const workerCode = fs.readFileSync(path.join(out, workerFiles[0]), 'utf8');
@@ -58,7 +72,14 @@ test('vite build: worker chunk + hashed .wasm, no Node built-ins in the web bund
   const allJs = [...mainFiles, ...workerFiles].map((f) => fs.readFileSync(path.join(out, f), 'utf8')).join('\n');
   assert.ok(allJs.includes(workerFiles[0]), 'the main bundle spawns the worker chunk');
   const mainJs = mainFiles.map((f) => fs.readFileSync(path.join(out, f), 'utf8')).join('\n');
-  assert.ok(mainJs.includes(wasmFiles[0]), "the 'kergen-wasm/kergen.wasm?url' import builds and names the same single asset");
+  assert.ok(
+    mainJs.includes(wasmFiles[0]),
+    "the 'kergen-wasm/kergen.wasm?url' import builds and names the same single asset",
+  );
   assert.ok(!allJs.includes('__vite-browser-external'), 'no Node built-in was pulled into the web bundle');
-  assert.deepEqual(warnings.filter((w) => /externalized|node:|Critical/i.test(w)), [], 'no bundler warnings about Node modules');
+  assert.deepEqual(
+    warnings.filter((w) => /externalized|node:|Critical/i.test(w)),
+    [],
+    'no bundler warnings about Node modules',
+  );
 });

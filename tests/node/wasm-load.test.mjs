@@ -39,8 +39,16 @@ const failsWith = (pattern) => (err) => {
 
 test('Node: a 404 and an HTML page name the URL and the status; then the right URL loads', async () => {
   const K = await import('../../wasm/index.js?node-path');
-  await assert.rejects(K.init({ wasmUrl: `${base}/missing.wasm` }), failsWith(new RegExp(`${base}/missing\\.wasm: HTTP 404 Not Found$`)));
-  await assert.rejects(K.init({ wasmUrl: `${base}/spa.wasm` }), failsWith(/spa\.wasm: HTTP 200 OK but not a WebAssembly module \(content-type text\/html, starts with "<!doctype html><html><bo"\)/));
+  await assert.rejects(
+    K.init({ wasmUrl: `${base}/missing.wasm` }),
+    failsWith(new RegExp(`${base}/missing\\.wasm: HTTP 404 Not Found$`)),
+  );
+  await assert.rejects(
+    K.init({ wasmUrl: `${base}/spa.wasm` }),
+    failsWith(
+      /spa\.wasm: HTTP 200 OK but not a WebAssembly module \(content-type text\/html, starts with "<!doctype html><html><bo"\)/,
+    ),
+  );
   assert.equal(K.isInitialized(), false);
   await K.init({ wasmUrl: `${base}/kergen.wasm` });
   assert.equal(K.isInitialized(), true);
@@ -51,11 +59,19 @@ test('browser path (window defined): the same checks before the glue compiles an
   try {
     const K = await import('../../wasm/index.js?browser-path');
     await assert.rejects(K.init({ wasmUrl: `${base}/missing.wasm` }), failsWith(/missing\.wasm: HTTP 404 Not Found$/));
-    await assert.rejects(K.init({ wasmUrl: `${base}/spa.wasm` }), failsWith(/HTTP 200 OK but not a WebAssembly module \(content-type text\/html/));
-    await assert.rejects(K.init({ wasmUrl: 'http://127.0.0.1:1/kergen.wasm' }), failsWith(/could not load kergen\.wasm from http:\/\/127\.0\.0\.1:1\/kergen\.wasm: /));
+    await assert.rejects(
+      K.init({ wasmUrl: `${base}/spa.wasm` }),
+      failsWith(/HTTP 200 OK but not a WebAssembly module \(content-type text\/html/),
+    );
+    await assert.rejects(
+      K.init({ wasmUrl: 'http://127.0.0.1:1/kergen.wasm' }),
+      failsWith(/could not load kergen\.wasm from http:\/\/127\.0\.0\.1:1\/kergen\.wasm: /),
+    );
     await K.init({ wasmUrl: `${base}/kergen.wasm` });
     const cube = [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1];
-    const idx = [0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5];
+    const idx = [
+      0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5,
+    ];
     assert.equal((await K.computeKernel(cube, idx)).volume, 1, 'the module fetched on the browser path works');
   } finally {
     delete globalThis.window;

@@ -25,7 +25,7 @@ function soup(m, jitter) {
 const sphere = bumpySphere(40, 21);
 const reference = () => K.computeKernel(sphere.positions, sphere.indices);
 
-test('an open soup is refused with a message in the package\'s words', async () => {
+test("an open soup is refused with a message in the package's words", async () => {
   const s = soup(sphere, 1e-12);
   await assert.rejects(K.computeKernel(s.positions, s.indices), (e) => {
     assert.equal(e.code, 'OPEN_MESH');
@@ -36,7 +36,7 @@ test('an open soup is refused with a message in the package\'s words', async () 
   });
 });
 
-test('weld: true, a distance or { relative } closes the soup: the indexed mesh\'s kernel', async () => {
+test("weld: true, a distance or { relative } closes the soup: the indexed mesh's kernel", async () => {
   const ref = await reference();
   const s = soup(sphere, 1e-12);
   const before = Float64Array.from(s.positions);
@@ -56,7 +56,11 @@ test('weld: true, a distance or { relative } closes the soup: the indexed mesh\'
 test('bad weld values are INVALID_ARGUMENT', async () => {
   const s = soup(sphere, 0);
   for (const weld of [-1, NaN, 'yes', { relative: -2 }, {}]) {
-    await assert.rejects(K.computeKernel(s.positions, s.indices, { weld }), (e) => e.code === 'INVALID_ARGUMENT', String(weld));
+    await assert.rejects(
+      K.computeKernel(s.positions, s.indices, { weld }),
+      (e) => e.code === 'INVALID_ARGUMENT',
+      String(weld),
+    );
   }
   const off = await K.computeKernel(sphere.positions, sphere.indices, { weld: false });
   assert.equal(off.warnings.length, 0);
@@ -64,10 +68,15 @@ test('bad weld values are INVALID_ARGUMENT', async () => {
 
 test('repair: true splits T-junctions: the box whose bottom is two squares gets its kernel', async () => {
   // [0,2]x[0,1]x[0,1]; (1,0,0) and (1,1,0) lie inside the bottom edges of the front and back quads.
-  const positions = new Float64Array([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]);
+  const positions = new Float64Array([
+    0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0,
+  ]);
   const indices = new Uint32Array([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]);
   const faceSizes = new Uint32Array([4, 4, 4, 4, 4, 4, 4]);
-  await assert.rejects(K.computeKernel(positions, indices, { faceSizes }), (e) => e.code === 'OPEN_MESH' && /repair: true/.test(e.message));
+  await assert.rejects(
+    K.computeKernel(positions, indices, { faceSizes }),
+    (e) => e.code === 'OPEN_MESH' && /repair: true/.test(e.message),
+  );
   const r = await K.computeKernel(positions, indices, { faceSizes, repair: true });
   assert.equal(r.status, 'POLYHEDRON');
   assert.equal(r.volume, 2);

@@ -15,29 +15,53 @@ before(async () => {
 
 const box = {
   positions: new Float64Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1]),
-  indices: new Uint32Array([0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7]),
+  indices: new Uint32Array([
+    0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7,
+  ]),
 };
 
 test('a layout missing a name the wrapper uses is refused, naming it', () => {
   assert.throws(
     () => K.checkWireFormat({ option: {}, head: {}, scalar: {}, step: {}, stats: [], statuses: [], stepKinds: [] }),
-    (e) => e instanceof K.KergenError && e.code === 'WASM_LOAD_FAILED' && /option\.fromX/.test(e.message) && /head\.numBytes/.test(e.message),
+    (e) =>
+      e instanceof K.KergenError &&
+      e.code === 'WASM_LOAD_FAILED' &&
+      /option\.fromX/.test(e.message) &&
+      /head\.numBytes/.test(e.message),
   );
-  assert.throws(() => K.checkWireFormat(undefined), (e) => e.code === 'WASM_LOAD_FAILED' && /stats/.test(e.message));
+  assert.throws(
+    () => K.checkWireFormat(undefined),
+    (e) => e.code === 'WASM_LOAD_FAILED' && /stats/.test(e.message),
+  );
 });
 
-test('stats carry the core\'s fields, in camelCase, with values that fit them', async () => {
+test("stats carry the core's fields, in camelCase, with values that fit them", async () => {
   const r = await K.computeKernel(box.positions, box.indices);
   assert.deepEqual(Object.keys(r.stats), [
-    'inputVertices', 'inputFaces', 'droppedFaces', 'culledFaces', 'distinctPlanes', 'activePlanes', 'tracedLines',
-    'exactFallbacks', 'msValidate', 'msPlanes', 'msLp', 'msTrace', 'msAssemble', 'msTotal',
+    'inputVertices',
+    'inputFaces',
+    'droppedFaces',
+    'culledFaces',
+    'distinctPlanes',
+    'activePlanes',
+    'tracedLines',
+    'exactFallbacks',
+    'msValidate',
+    'msPlanes',
+    'msLp',
+    'msTrace',
+    'msAssemble',
+    'msTotal',
   ]);
   assert.equal(r.stats.inputVertices, 8);
   assert.equal(r.stats.inputFaces, 12);
   assert.equal(r.stats.distinctPlanes, 6);
   assert.equal(r.status, 'POLYHEDRON');
   assert.ok(Math.abs(r.volume - 1) < 1e-12);
-  assert.deepEqual(r.kernelPoint.map((c) => c === 0 || c === 1), [true, true, true]);
+  assert.deepEqual(
+    r.kernelPoint.map((c) => c === 0 || c === 1),
+    [true, true, true],
+  );
 });
 
 test('cullFaces: false keeps every face and gives the same kernel; seed changes nothing', async () => {

@@ -28,7 +28,6 @@ after(() => {
   for (const w of workers) w.dispose();
 });
 
-const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
 const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const vtx = (P, i) => [P[3 * i], P[3 * i + 1], P[3 * i + 2]];
@@ -39,7 +38,8 @@ const vtx = (P, i) => [P[3 * i], P[3 * i + 1], P[3 * i + 2]];
 function facePlane(positions, loop, orientation) {
   const n = [0, 0, 0];
   for (let i = 0; i < loop.length; i++) {
-    const a = vtx(positions, loop[i]), b = vtx(positions, loop[(i + 1) % loop.length]);
+    const a = vtx(positions, loop[i]),
+      b = vtx(positions, loop[(i + 1) % loop.length]);
     n[0] += (a[1] - b[1]) * (a[2] + b[2]);
     n[1] += (a[2] - b[2]) * (a[0] + b[0]);
     n[2] += (a[0] - b[0]) * (a[1] + b[1]);
@@ -69,7 +69,9 @@ function meetInBox(planes, R, tol) {
         const det = dot(a.n, cross(b.n, c.n));
         if (Math.abs(det) < 1e-12) continue;
         // Cramer: x = (d_a (n_b x n_c) + d_b (n_c x n_a) + d_c (n_a x n_b)) / det
-        const x = [0, 1, 2].map((t) => (a.d * cross(b.n, c.n)[t] + b.d * cross(c.n, a.n)[t] + c.d * cross(a.n, b.n)[t]) / det);
+        const x = [0, 1, 2].map(
+          (t) => (a.d * cross(b.n, c.n)[t] + b.d * cross(c.n, a.n)[t] + c.d * cross(a.n, b.n)[t]) / det,
+        );
         if (all.every((p) => dot(p.n, x) - p.d <= tol * (1 + Math.abs(p.d)))) return true;
       }
     }
@@ -117,51 +119,57 @@ test('a star-shaped mesh has no witness (an empty Uint32Array), sync and findKer
   assert.equal(p.witnessFaces.length, 0);
 });
 
-test('shared non-star meshes: the same witness from sync, async, findKernelPoint (both) and the worker (compute, computeFile)', { timeout: 600000 }, async (t) => {
-  const missing = sharedMeshesMissing();
-  if (missing) return t.skip(missing);
-  const files = [...offFiles('princeton'), ...offFiles('fixtures')];
-  const kw = new W.KernelWorker();
-  workers.push(kw);
-  let checked = 0;
-  let nonPlanar = 0;
-  for (const file of files) {
-    const name = path.relative(sharedMeshes, file);
-    let mesh;
-    try {
-      mesh = readOff(file);
-    } catch {
-      continue; // (files the test's parser does not read: covered by native.test.mjs)
+test(
+  'shared non-star meshes: the same witness from sync, async, findKernelPoint (both) and the worker (compute, computeFile)',
+  { timeout: 600000 },
+  async (t) => {
+    const missing = sharedMeshesMissing();
+    if (missing) return t.skip(missing);
+    const files = [...offFiles('princeton'), ...offFiles('fixtures')];
+    const kw = new W.KernelWorker();
+    workers.push(kw);
+    let checked = 0;
+    let nonPlanar = 0;
+    for (const file of files) {
+      const name = path.relative(sharedMeshes, file);
+      let mesh;
+      try {
+        mesh = readOff(file);
+      } catch {
+        continue; // (files the test's parser does not read: covered by native.test.mjs)
+      }
+      const options = { faceSizes: mesh.faceSizes ?? undefined };
+      let r;
+      try {
+        r = K.computeKernelSync(mesh.positions, mesh.indices, options);
+      } catch (err) {
+        if (err instanceof K.KergenError) continue; // refused input: no kernel
+        throw err;
+      }
+      if (r.status !== 'EMPTY') {
+        assert.equal(r.witnessFaces.length, 0, `${name}: no witness for ${r.status}`);
+        continue;
+      }
+      if (!checkWitness(mesh, r.witnessFaces, name)) nonPlanar++;
+      const expected = Array.from(r.witnessFaces);
+      const async = await K.computeKernel(mesh.positions, mesh.indices, options);
+      assert.deepEqual(Array.from(async.witnessFaces), expected, `${name}: computeKernel`);
+      const p = K.findKernelPointSync(mesh.positions, mesh.indices, options);
+      assert.equal(p.starShaped, false);
+      assert.ok(p.witnessFaces instanceof Uint32Array);
+      assert.deepEqual(Array.from(p.witnessFaces), expected, `${name}: findKernelPointSync`);
+      const pa = await K.findKernelPoint(mesh.positions, mesh.indices, options);
+      assert.deepEqual(Array.from(pa.witnessFaces), expected, `${name}: findKernelPoint`);
+      const w = await kw.compute(mesh.positions, mesh.indices, options);
+      assert.ok(w.witnessFaces instanceof Uint32Array, `${name}: worker witnessFaces is a Uint32Array`);
+      assert.deepEqual(Array.from(w.witnessFaces), expected, `${name}: KernelWorker.compute`);
+      const { result } = await kw.computeFile(fs.readFileSync(file), { name: path.basename(file), transfer: true });
+      assert.deepEqual(Array.from(result.witnessFaces), expected, `${name}: KernelWorker.computeFile`);
+      checked++;
     }
-    const options = { faceSizes: mesh.faceSizes ?? undefined };
-    let r;
-    try {
-      r = K.computeKernelSync(mesh.positions, mesh.indices, options);
-    } catch (err) {
-      if (err instanceof K.KergenError) continue; // refused input: no kernel
-      throw err;
-    }
-    if (r.status !== 'EMPTY') {
-      assert.equal(r.witnessFaces.length, 0, `${name}: no witness for ${r.status}`);
-      continue;
-    }
-    if (!checkWitness(mesh, r.witnessFaces, name)) nonPlanar++;
-    const expected = Array.from(r.witnessFaces);
-    const async = await K.computeKernel(mesh.positions, mesh.indices, options);
-    assert.deepEqual(Array.from(async.witnessFaces), expected, `${name}: computeKernel`);
-    const p = K.findKernelPointSync(mesh.positions, mesh.indices, options);
-    assert.equal(p.starShaped, false);
-    assert.ok(p.witnessFaces instanceof Uint32Array);
-    assert.deepEqual(Array.from(p.witnessFaces), expected, `${name}: findKernelPointSync`);
-    const pa = await K.findKernelPoint(mesh.positions, mesh.indices, options);
-    assert.deepEqual(Array.from(pa.witnessFaces), expected, `${name}: findKernelPoint`);
-    const w = await kw.compute(mesh.positions, mesh.indices, options);
-    assert.ok(w.witnessFaces instanceof Uint32Array, `${name}: worker witnessFaces is a Uint32Array`);
-    assert.deepEqual(Array.from(w.witnessFaces), expected, `${name}: KernelWorker.compute`);
-    const { result } = await kw.computeFile(fs.readFileSync(file), { name: path.basename(file), transfer: true });
-    assert.deepEqual(Array.from(result.witnessFaces), expected, `${name}: KernelWorker.computeFile`);
-    checked++;
-  }
-  t.diagnostic(`${checked} non-star shared meshes, the same witness on every path; ${checked - nonPlanar} checked here (${nonPlanar} with a non-planar witness face)`);
-  assert.ok(checked >= 10, `${checked} non-star meshes checked`);
-});
+    t.diagnostic(
+      `${checked} non-star shared meshes, the same witness on every path; ${checked - nonPlanar} checked here (${nonPlanar} with a non-planar witness face)`,
+    );
+    assert.ok(checked >= 10, `${checked} non-star meshes checked`);
+  },
+);

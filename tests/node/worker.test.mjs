@@ -50,18 +50,26 @@ test('compute in the worker equals computeKernelSync; step events replay in orde
   const events = [];
   const progress = [];
   const kw = newWorker();
-  const r = await kw.compute(m.positions, m.indices, { copy: true, onStep: (e) => void events.push(e), onProgress: (p) => progress.push(p) });
+  const r = await kw.compute(m.positions, m.indices, {
+    copy: true,
+    onStep: (e) => void events.push(e),
+    onProgress: (p) => progress.push(p),
+  });
   assert.equal(r.status, expected.status);
   assert.equal(r.volume, expected.volume);
   assert.deepEqual(Array.from(r.vertices), Array.from(expected.vertices));
-  assert.deepEqual(r.faces.map((f) => Array.from(f)), expected.faces.map((f) => Array.from(f)));
+  assert.deepEqual(
+    r.faces.map((f) => Array.from(f)),
+    expected.faces.map((f) => Array.from(f)),
+  );
   assert.deepEqual(Array.from(r.triangles), Array.from(expected.triangles));
   assert.deepEqual(r.stats.inputFaces, expected.stats.inputFaces);
   assert.deepEqual(events, syncEvents);
   assert.ok(progress.length >= 2);
   assert.deepEqual(progress[0], { phase: 'loading', steps: 0 });
   assert.deepEqual(progress.at(-1), { phase: 'done', steps: syncEvents.length });
-  for (let i = 1; i < progress.length; i++) assert.ok(progress[i].steps >= progress[i - 1].steps, 'steps never decrease');
+  for (let i = 1; i < progress.length; i++)
+    assert.ok(progress[i].steps >= progress[i - 1].steps, 'steps never decrease');
 });
 
 test('input arrays are copied by default (never detached); transfer: true detaches them; copy is an accepted no-op', async () => {
@@ -76,7 +84,11 @@ test('input arrays are copied by default (never detached); transfer: true detach
   assert.equal(positions.length, m.positions.length, 'positions kept');
   assert.equal(indices.length, m.indices.length, 'indices kept');
   assert.ok(positions.buffer === buffers[0] && indices.buffer === buffers[1], 'same buffers');
-  assert.deepEqual([Buffer.from(positions.buffer).toString('hex'), Buffer.from(indices.buffer).toString('hex')], bytesBefore, 'same bytes');
+  assert.deepEqual(
+    [Buffer.from(positions.buffer).toString('hex'), Buffer.from(indices.buffer).toString('hex')],
+    bytesBefore,
+    'same bytes',
+  );
 
   const r2 = await kw.compute(positions, indices, { copy: true });
   assert.equal(positions.length, m.positions.length, 'kept with copy: true');
@@ -88,14 +100,24 @@ test('input arrays are copied by default (never detached); transfer: true detach
   assert.equal(r3.volume, r1.volume);
   assert.equal(p3.byteLength, 0, 'positions detached with transfer: true');
   assert.equal(i3.byteLength, 0, 'indices detached with transfer: true');
-  await assert.rejects(kw.compute(positions, indices, { copy: true, transfer: true }), (err) => err.code === 'INVALID_ARGUMENT' && /contradict/.test(err.message));
-  await assert.rejects(kw.compute(positions, indices, { transfer: 'yes' }), (err) => err.code === 'INVALID_ARGUMENT' && /transfer must be a boolean/.test(err.message));
+  await assert.rejects(
+    kw.compute(positions, indices, { copy: true, transfer: true }),
+    (err) => err.code === 'INVALID_ARGUMENT' && /contradict/.test(err.message),
+  );
+  await assert.rejects(
+    kw.compute(positions, indices, { transfer: 'yes' }),
+    (err) => err.code === 'INVALID_ARGUMENT' && /transfer must be a boolean/.test(err.message),
+  );
 
   const big = new Float64Array(m.positions.length + 6);
   big.set(m.positions, 3);
   const view = big.subarray(3, 3 + m.positions.length);
   const r4 = await kw.compute(view, Array.from(m.indices), { transfer: true });
-  assert.equal(big.byteLength, (m.positions.length + 6) * 8, 'a partial view never detaches its buffer, even with transfer: true');
+  assert.equal(
+    big.byteLength,
+    (m.positions.length + 6) * 8,
+    'a partial view never detaches its buffer, even with transfer: true',
+  );
   assert.equal(r4.volume, K.computeKernelSync(view, m.indices).volume);
 });
 
@@ -107,10 +129,15 @@ test('step events arrive in batches of at most 2048', async () => {
   const total = r.vertices.length / 3 + r.edges.length / 2 + r.faces.length;
   assert.equal(count, total, 'every event delivered');
   assert.ok(total > 4 * 2048, `a large kernel (${total} events)`);
-  const shim = WebWorkerShim.spawned.find((s) => s.received.some((msg) => msg.type === 'result' && msg.result.vertices.length === r.vertices.length));
+  const shim = WebWorkerShim.spawned.find((s) =>
+    s.received.some((msg) => msg.type === 'result' && msg.result.vertices.length === r.vertices.length),
+  );
   const batches = shim.received.filter((msg) => msg.type === 'steps');
   assert.ok(batches.length >= Math.ceil(total / 2048), `${batches.length} batches`);
-  assert.ok(batches.length < total / 64, `${batches.length} batches for ${total} events: batched, not one message per event`);
+  assert.ok(
+    batches.length < total / 64,
+    `${batches.length} batches for ${total} events: batched, not one message per event`,
+  );
   assert.ok(batches.every((b) => b.events.length <= 2048));
 });
 
@@ -119,11 +146,29 @@ const fileLayer = () => typeof K.readMeshSync === 'function' && typeof K.writeMe
 
 // An L prism with non-convex hexagon caps as OFF text: its kernel is the unit cube.
 function lPrismOff() {
-  const base = [[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]];
-  const points = base.flatMap(([x, y]) => [[x, y, 0], [x, y, 1]]);
-  const faces = [[10, 8, 6, 4, 2, 0], [1, 3, 5, 7, 9, 11]];
+  const base = [
+    [0, 0],
+    [2, 0],
+    [2, 1],
+    [1, 1],
+    [1, 2],
+    [0, 2],
+  ];
+  const points = base.flatMap(([x, y]) => [
+    [x, y, 0],
+    [x, y, 1],
+  ]);
+  const faces = [
+    [10, 8, 6, 4, 2, 0],
+    [1, 3, 5, 7, 9, 11],
+  ];
   for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
-  const lines = ['OFF', `${points.length} ${faces.length} 0`, ...points.map((p) => p.join(' ')), ...faces.map((f) => `${f.length} ${f.join(' ')}`)];
+  const lines = [
+    'OFF',
+    `${points.length} ${faces.length} 0`,
+    ...points.map((p) => p.join(' ')),
+    ...faces.map((f) => `${f.length} ${f.join(' ')}`),
+  ];
   return new TextEncoder().encode(lines.join('\n') + '\n');
 }
 
@@ -151,9 +196,16 @@ test('computeFile parses in the worker: mesh and kernel, bytes kept (transferred
   assert.deepEqual(order[0], ['mesh', 8], 'onMesh comes before the first step');
   assert.equal(order.filter((x) => x === 'step').length, 8 + 12 + 6);
   const phases = progress.map((p) => p.phase);
-  assert.deepEqual(progress.find((p) => p.phase === 'reading'), { phase: 'reading', steps: 0, bytes: size });
-  for (const phase of ['validating', 'planes', 'lp', 'tracing', 'assembling']) assert.ok(phases.includes(phase), `phase ${phase} in ${phases}`);
-  assert.ok(phases.indexOf('reading') < phases.indexOf('validating') && phases.indexOf('validating') < phases.indexOf('assembling'));
+  assert.deepEqual(
+    progress.find((p) => p.phase === 'reading'),
+    { phase: 'reading', steps: 0, bytes: size },
+  );
+  for (const phase of ['validating', 'planes', 'lp', 'tracing', 'assembling'])
+    assert.ok(phases.includes(phase), `phase ${phase} in ${phases}`);
+  assert.ok(
+    phases.indexOf('reading') < phases.indexOf('validating') &&
+      phases.indexOf('validating') < phases.indexOf('assembling'),
+  );
   assert.equal(progress.find((p) => p.phase === 'validating').count, 8, 'validating counts the 8 input faces');
   assert.equal(phases.at(-1), 'done');
 });
@@ -162,7 +214,10 @@ test('computeFile: parse errors reject with PARSE_ERROR naming the file and line
   if (!fileLayer()) return t.skip('this package build has no readMeshSync / writeMesh');
   const kw = newWorker();
   const text = new TextEncoder().encode('OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n');
-  await assert.rejects(kw.computeFile(text, { name: 'garbage.off' }), (err) => err.code === 'PARSE_ERROR' && /^garbage\.off:4: invalid number 'zero'/.test(err.message));
+  await assert.rejects(
+    kw.computeFile(text, { name: 'garbage.off' }),
+    (err) => err.code === 'PARSE_ERROR' && /^garbage\.off:4: invalid number 'zero'/.test(err.message),
+  );
   const r = await kw.computeFile(lPrismOff(), { format: 'off' });
   assert.equal(r.result.volume, 1, 'the worker keeps working after a parse error');
 });
@@ -184,13 +239,25 @@ test('writeMesh in the worker: OFF, OBJ and STL bytes of a kernel read back to t
 test('errors cross as KergenError with the core code', async () => {
   const kw = newWorker();
   const m = box();
-  await assert.rejects(kw.compute(m.positions, m.indices.subarray(0, 33), { transfer: true }), (err) => err instanceof W.KergenError && err.code === 'OPEN_MESH' && err.message.length > 3);
+  await assert.rejects(
+    kw.compute(m.positions, m.indices.subarray(0, 33), { transfer: true }),
+    (err) => err instanceof W.KergenError && err.code === 'OPEN_MESH' && err.message.length > 3,
+  );
   assert.equal(m.positions.byteLength, 0, 'transferred');
   // Reusing a transferred (detached) array is reported, not silently lost.
-  await assert.rejects(kw.compute(m.positions, box().indices), (err) => err.code === 'INVALID_ARGUMENT' && /detached/.test(err.message));
-  await assert.rejects(kw.compute(m.positions, box().indices, { copy: true }), (err) => err.code === 'INVALID_ARGUMENT' && /detached/.test(err.message));
+  await assert.rejects(
+    kw.compute(m.positions, box().indices),
+    (err) => err.code === 'INVALID_ARGUMENT' && /detached/.test(err.message),
+  );
+  await assert.rejects(
+    kw.compute(m.positions, box().indices, { copy: true }),
+    (err) => err.code === 'INVALID_ARGUMENT' && /detached/.test(err.message),
+  );
   const fresh = box();
-  await assert.rejects(kw.compute(fresh.positions, fresh.indices, { copy: true, maxSteps: -3 }), (err) => err.code === 'INVALID_ARGUMENT');
+  await assert.rejects(
+    kw.compute(fresh.positions, fresh.indices, { copy: true, maxSteps: -3 }),
+    (err) => err.code === 'INVALID_ARGUMENT',
+  );
   await assert.rejects(kw.compute(new Float64Array(0), new Uint32Array(0)), (err) => err.code === 'EMPTY_INPUT');
   const r = await kw.compute(fresh.positions, fresh.indices);
   assert.equal(r.status, 'POLYHEDRON', 'the worker keeps working after errors');
@@ -216,7 +283,10 @@ test('onStep returning false cancels the worker computation', async () => {
   const kw = newWorker();
   const m = starPrism(40, 0.6);
   let n = 0;
-  await assert.rejects(kw.compute(m.positions, m.indices, { onStep: () => ++n < 10 }), (err) => err.code === 'CANCELLED');
+  await assert.rejects(
+    kw.compute(m.positions, m.indices, { onStep: () => ++n < 10 }),
+    (err) => err.code === 'CANCELLED',
+  );
   assert.equal(n, 10, 'no events delivered after false');
   const small = box();
   assert.equal((await kw.compute(small.positions, small.indices)).volume, 1);
@@ -279,7 +349,9 @@ test('the worker forwards open and repair', async () => {
   assert.equal(walled.volume, expected.volume);
   // The bad-input table's T-junction box: open as given, the box with repair.
   const t = {
-    positions: Float64Array.from([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]),
+    positions: Float64Array.from([
+      0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0,
+    ]),
     indices: Uint32Array.from([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]),
     faceSizes: Uint32Array.from([4, 4, 4, 4, 4, 4, 4]),
   };
@@ -289,7 +361,9 @@ test('the worker forwards open and repair', async () => {
 
 test('repairMesh in the worker equals repairMeshSync', async () => {
   const t = {
-    positions: Float64Array.from([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0]),
+    positions: Float64Array.from([
+      0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 1, 2, 0, 1, 2, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 0,
+    ]),
     indices: Uint32Array.from([0, 3, 9, 8, 8, 9, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 2, 3, 7, 6, 1, 2, 6, 5, 3, 0, 4, 7]),
     faceSizes: Uint32Array.from([4, 4, 4, 4, 4, 4, 4]),
   };
@@ -298,5 +372,8 @@ test('repairMesh in the worker equals repairMeshSync', async () => {
   const r = await kw.repairMesh(t.positions, t.indices, { faceSizes: t.faceSizes, repair: true });
   assert.deepEqual(r, expected);
   assert.equal(r.error, null);
-  await assert.rejects(kw.repairMesh(t.positions, Uint32Array.from([0, 1, 99]), {}), (e) => e.code === 'INDEX_OUT_OF_RANGE');
+  await assert.rejects(
+    kw.repairMesh(t.positions, Uint32Array.from([0, 1, 99]), {}),
+    (e) => e.code === 'INDEX_OUT_OF_RANGE',
+  );
 });

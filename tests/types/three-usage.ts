@@ -23,13 +23,19 @@ async function three(): Promise<void> {
   const k: KernelResult = await computeKernelOfGeometry(sphere, options);
   const { mesh, edges }: KernelGeometries = kernelToGeometry(k);
   const scene = new THREE.Scene();
-  scene.add(new THREE.Mesh(mesh, new THREE.MeshNormalMaterial()), new THREE.LineSegments(edges, new THREE.LineBasicMaterial()));
+  scene.add(
+    new THREE.Mesh(mesh, new THREE.MeshNormalMaterial()),
+    new THREE.LineSegments(edges, new THREE.LineBasicMaterial()),
+  );
 
   const stl: THREE.BufferGeometry = new STLLoader().parse(new ArrayBuffer(84));
   const group = new OBJLoader().parse('v 0 0 0');
   const objMesh = group.children[0] as THREE.Mesh;
   const worker = new KernelWorker({ wasmUrl: '/kergen.wasm' });
-  const fromWorker: KernelResult = await worker.computeGeometry(stl, { onProgress: (p) => void p.phase, onStep: (e) => e.type !== 'face' });
+  const fromWorker: KernelResult = await worker.computeGeometry(stl, {
+    onProgress: (p) => void p.phase,
+    onStep: (e) => e.type !== 'face',
+  });
   const fromObj = await worker.computeGeometry(objMesh.geometry, { weld: 1e-6 });
   const knot = await computeKernelOfGeometry(new THREE.TorusKnotGeometry());
   void [fromWorker.volume, fromObj.status, knot.status];

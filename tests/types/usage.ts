@@ -75,12 +75,18 @@ async function main(): Promise<void> {
   const sizes: Uint32Array | null = fromBuffer.faceSizes;
   const again: KernelResult = await computeKernel(read.positions, read.indices, { faceSizes: read.faceSizes });
   const obj: Uint8Array = writeMesh(again, 'obj');
-  const stl: Uint8Array = writeMesh({ positions: fromView.positions, indices: fromView.indices, faceSizes: fromView.faceSizes }, 'stl');
+  const stl: Uint8Array = writeMesh(
+    { positions: fromView.positions, indices: fromView.indices, faceSizes: fromView.faceSizes },
+    'stl',
+  );
   const off: Uint8Array = writeMesh({ positions: [0, 0, 0, 1, 0, 0, 0, 1, 0], indices: [0, 1, 2] }, 'off');
   void [sizes, obj, stl, off];
 
   // The repaired mesh: a MeshData with warnings and validation's verdict, ready for writeMesh.
-  const repaired: RepairedMesh = await repairMesh(read.positions, read.indices, { faceSizes: read.faceSizes, repair: true });
+  const repaired: RepairedMesh = await repairMesh(read.positions, read.indices, {
+    faceSizes: read.faceSizes,
+    repair: true,
+  });
   const verdict: string | null = repaired.error;
   const saved: Uint8Array = writeMesh(repaired, 'off');
   const again2 = repairMeshSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2], { weld: true, open: 'perpendicular' });
@@ -117,12 +123,17 @@ async function main(): Promise<void> {
     copy: true,
     onStep: (e) => e.type !== 'face',
     onProgress: (pr: ProgressEvent) => {
-      const phase: 'loading' | 'reading' | 'computing' | 'validating' | 'planes' | 'lp' | 'tracing' | 'assembling' | 'done' = pr.phase;
+      const phase:
+        'loading' | 'reading' | 'computing' | 'validating' | 'planes' | 'lp' | 'tracing' | 'assembling' | 'done' =
+        pr.phase;
       void [phase, pr.steps, pr.count, pr.bytes];
     },
   });
   void fromWorker.edges;
-  const { mesh, result: fileKernel } = await worker.computeFile(new Uint8Array(8), { name: 'a.stl', onMesh: (m) => void m.faceSizes });
+  const { mesh, result: fileKernel } = await worker.computeFile(new Uint8Array(8), {
+    name: 'a.stl',
+    onMesh: (m) => void m.faceSizes,
+  });
   const positions64: Float64Array = mesh.positions;
   void [positions64, fileKernel.volume];
   const stlBytes: Uint8Array = await worker.writeMesh(fileKernel, 'stl');

@@ -67,7 +67,15 @@ export function checkKernel(result, mesh, { orientation = 1, tol = 1e-9 } = {}) 
     }
     const triVolume = signedVolume(result.vertices, faceLoops(result.triangles, null));
     relClose(triVolume, result.volume, 1e-9, 'volume of the output triangles');
-    relClose(signedVolume(result.vertices, result.faces.map((f) => Array.from(f))), result.volume, 1e-9, 'volume of the output faces');
+    relClose(
+      signedVolume(
+        result.vertices,
+        result.faces.map((f) => Array.from(f)),
+      ),
+      result.volume,
+      1e-9,
+      'volume of the output faces',
+    );
     assert.ok(result.volume > 0, 'positive volume');
     if (result.shapeVolume > 0) relClose(result.volumeRatio, result.volume / result.shapeVolume, 1e-12, 'volumeRatio');
   }

@@ -12,7 +12,8 @@ export const nativeCli = process.env.KERGEN_CLI || path.join(repoRoot, 'build', 
 
 export function assertBuilt() {
   for (const f of [distWasm, distGlue]) {
-    if (!fs.existsSync(f)) throw new Error(`${path.relative(repoRoot, f)} is missing: run \`npm run build:wasm\` first`);
+    if (!fs.existsSync(f))
+      throw new Error(`${path.relative(repoRoot, f)} is missing: run \`npm run build:wasm\` first`);
   }
 }
 
@@ -25,11 +26,17 @@ export function sharedMeshesMissing() {
 export function offFiles(folder) {
   const dir = path.join(sharedMeshes, folder);
   if (!fs.existsSync(dir)) return [];
-  return fs.readdirSync(dir).filter((f) => f.endsWith('.off')).sort().map((f) => path.join(dir, f));
+  return fs
+    .readdirSync(dir)
+    .filter((f) => f.endsWith('.off'))
+    .sort()
+    .map((f) => path.join(dir, f));
 }
 
 /** Why Vite cannot run under this Node (a skip message), or '' (Vite 7 and 8 need Node >= 20.19). */
 export function viteUnsupported() {
   const [major, minor] = process.versions.node.split('.').map(Number);
-  return major > 20 || (major === 20 && minor >= 19) ? '' : `Vite needs Node >= 20.19 (this is ${process.version}); the package itself is tested here by the other files`;
+  return major > 20 || (major === 20 && minor >= 19)
+    ? ''
+    : `Vite needs Node >= 20.19 (this is ${process.version}); the package itself is tested here by the other files`;
 }

@@ -9,7 +9,7 @@ export function parseOff(text) {
     if (body) tokens.push(body.split(/\s+/));
   }
   let row = 0;
-  let head = tokens[row++];
+  const head = tokens[row++];
   if (!/^[CNST]*OFF$/.test(head[0])) throw new Error(`not an OFF file (header ${head[0]})`);
   const perVertexExtra = head[0].includes('N') ? 3 : 0;
   let counts = head.slice(1);
