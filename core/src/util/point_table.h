@@ -1,4 +1,4 @@
-// PointTable: vertex ids keyed by their exact positions, for the STL readers' weld (io.cpp) and
+// PointTable: vertex ids keyed by their exact positions, for the STL readers' weld (io/stl.cpp) and
 // validation's check for two vertices at one position (mesh_prep.cpp).
 #pragma once
 
