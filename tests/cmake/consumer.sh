@@ -33,7 +33,7 @@ COMMON=(-DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_COMPILER=$CXX"
 
 # The L-shaped prism of examples/api_example.cpp as an OFF file: the L (0,0)-(2,0)-(2,1)-(1,1)-
 # (1,2)-(0,2) over z in [0, 1]; its kernel is the unit cube [0,1]^3 (8 vertices, volume 1).
-cat >"$WORK/l_prism.off" <<'OFF'
+cat >"$WORK/l_prism.off" <<'END'
 OFF
 12 8 0
 0 0 0
@@ -56,7 +56,7 @@ OFF
 4 3 4 10 9
 4 4 5 11 10
 4 5 0 6 11
-OFF
+END
 
 # run_consumer LABEL BINARY: the built-in cube [-1,1]^3 (volume 8), the L prism (volume 1) and,
 # when the shared meshes are there, fixtures/cube.off (the cube [-1,1]^3 as 12 triangles).
@@ -108,6 +108,7 @@ for f in libkergen.a cmake/kergen/kergenConfig.cmake cmake/kergen/kergenConfigVe
 done
 echo "consumer: installed $(wc -l <"$WORK/installed.txt") files: $(tr '\n' ' ' <"$WORK/installed.txt")"
 "$WORK/prefix/bin/kergen" "$WORK/l_prism.off" >"$WORK/cli.txt" || fail "the installed CLI failed on l_prism.off"
+grep -qE "^ *volume +1 +\(shape 3," "$WORK/cli.txt" || fail "the installed CLI: expected volume 1 (shape 3): $(cat "$WORK/cli.txt")"
 
 "$CMAKE" -S "$SRC/examples/cpp-consumer" -B "$WORK/consumer-installed" "${COMMON[@]}" \
   "-DCMAKE_PREFIX_PATH=$WORK/prefix" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >"$WORK/consumer-installed.log" ||
@@ -129,14 +130,16 @@ echo "consumer: (b) FetchContent of $SRC"
 no_lookups "$WORK/consumer-fetch.trace" "FetchContent"
 # Only the library was built: no CLI, tests, benchmarks or examples of kergen's.
 for t in kergen kergen_tests kernel_dump input_bench api_example; do
-  [ ! -e "$WORK/consumer-fetch/_deps/kergen-build/$t" ] && [ ! -e "$WORK/consumer-fetch/_deps/kergen-build/bench/$t" ] ||
+  if [ -e "$WORK/consumer-fetch/_deps/kergen-build/$t" ] || [ -e "$WORK/consumer-fetch/_deps/kergen-build/bench/$t" ]; then
     fail "(b) FetchContent built kergen's $t"
+  fi
 done
 main=$(compile_command "$WORK/consumer-fetch" main.cpp)
 core=$(compile_command "$WORK/consumer-fetch" core/src/kergen.cpp)
 [[ "$main" == *" -O2 "* && "$main" != *"-O3"* ]] || fail "(b) the parent's Release flags were overridden: $main"
 [[ "$main" != *"-ffp-contract"* && "$main" != *"-fno-fast-math"* ]] || fail "(b) kergen's private flags reached main.cpp: $main"
-[[ "$core" == *"-ffp-contract=off"* && "$core" == *"-fno-fast-math"* ]] || fail "(b) kergen's exactness flags are missing: $core"
+[[ "$core" == *"-ffp-contract=off"* && "$core" == *"-fno-fast-math"* && "$core" == *"-std=c++17"* ]] ||
+  fail "(b) kergen's exactness flags or -std=c++17 are missing: $core"
 [[ "$core" == *" -O2 "* && "$core" != *"-O3"* ]] || fail "(b) kergen's sources do not follow the parent's Release flags: $core"
 run_consumer "FetchContent" "$WORK/consumer-fetch/kernel_info"
 
