@@ -22,7 +22,7 @@ command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (apt-get instal
 if ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
   echo "fuzz: libFuzzer runtime missing (apt-get install libclang-rt-14-dev)" >&2; exit 1
 fi
-cmake -S . -B "$BUILD" -DCMAKE_CXX_COMPILER=clang++ -DKERGEN_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
+cmake -S . -B "$BUILD" -DCMAKE_CXX_COMPILER=clang++ -DKERGEN_BUILD_FUZZERS=ON -DKERGEN_BUILD_TESTS=OFF -DKERGEN_BUILD_BENCH=OFF -DKERGEN_BUILD_EXAMPLES=OFF >/dev/null
 cmake --build "$BUILD" -j2 --target "${TARGETS[@]}" fuzz_make_seeds >/dev/null
 
 mkdir -p fuzz/corpus fuzz/corpus/crashes
