@@ -4,7 +4,17 @@ import js from '@eslint/js';
 import globals from 'globals';
 
 export default [
-  { ignores: ['build*/**', 'dist/**', 'web/dist/**', 'docs/api/**', 'tests/artifacts/**', '**/node_modules/**'] },
+  {
+    ignores: [
+      'build*/**',
+      'dist/**',
+      'web/dist/**',
+      'web/public/api/**',
+      'docs/api/**',
+      'tests/artifacts/**',
+      '**/node_modules/**',
+    ],
+  },
   js.configs.recommended,
   {
     files: ['**/*.js', '**/*.mjs'],

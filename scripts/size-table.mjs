@@ -1,8 +1,9 @@
 #!/usr/bin/env node
-// The README's size table, measured on dist/ (run by scripts/build-wasm.sh after every build, so
-// the table is always that of the last build; never edited by hand).
+// The package README's size table (wasm/README.md), measured on dist/. scripts/build-wasm.sh prints
+// it after every build; the build never edits a tracked file, and tests/node/readme-examples.test.mjs
+// checks that the README's numbers are within 5% of the current build's.
 //   node scripts/size-table.mjs          prints the table
-//   node scripts/size-table.mjs --write  also rewrites it in README.md (between the size-table markers)
+//   node scripts/size-table.mjs --write  also rewrites it in wasm/README.md (between the markers)
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
@@ -29,15 +30,15 @@ function table() {
   return rows.join('\n');
 }
 
+const readme = path.join(root, 'wasm', 'README.md');
 const text = table();
 console.log(text);
 if (process.argv.includes('--write')) {
-  const readme = path.join(root, 'README.md');
   const old = fs.readFileSync(readme, 'utf8');
   const start = old.indexOf(BEGIN);
   const end = old.indexOf(END);
   if (start < 0 || end < start) {
-    console.error(`size-table: README.md has no ${BEGIN} ... ${END} section`);
+    console.error(`size-table: wasm/README.md has no ${BEGIN} ... ${END} section`);
     process.exit(1);
   }
   const updated = `${old.slice(0, start + BEGIN.length)}\n${text}\n${old.slice(end)}`;

@@ -1,5 +1,11 @@
 // Type declarations for `kergen-wasm` (hand-written; checked by `tsc --noEmit --strict`
 // against tests/types/usage.ts).
+/**
+ * The kernel of a mesh (computeKernel), star-shapedness (findKernelPoint, isStarShaped), mesh
+ * files (readMesh, writeMesh), repair (repairMesh).
+ *
+ * @module kergen-wasm
+ */
 
 /** A point or direction `[x, y, z]`. */
 export type Vec3 = [number, number, number];

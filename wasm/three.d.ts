@@ -1,5 +1,11 @@
 // Type declarations for `kergen-wasm/three` (needs `three` and its types, `@types/three`).
-import type { BufferGeometry } from 'three';
+/**
+ * three.js helpers: the kernel of a BufferGeometry or of a whole scene (computeKernelOfObject),
+ * and the kernel as geometries to draw.
+ *
+ * @module kergen-wasm/three
+ */
+import type { BufferGeometry, Object3D } from 'three';
 import type { KernelOptions, KernelResult } from './index.js';
 import { KernelWorker as PlainKernelWorker, type WorkerComputeOptions } from './worker.js';
 
@@ -37,6 +43,30 @@ export function computeKernelOfGeometry(
   options?: GeometryKernelOptions,
 ): Promise<KernelResult>;
 
+/** Every triangle mesh under an object, in world coordinates, merged (see objectToMesh). */
+export interface MergedMesh {
+  positions: Float64Array;
+  indices: Uint32Array;
+  /** How many meshes were merged (an InstancedMesh counts once). */
+  meshes: number;
+}
+
+/**
+ * Every triangle mesh under `object` (itself included: Mesh, SkinnedMesh in its bind pose,
+ * InstancedMesh once per instance; visible or not; meshes without positions skipped) with its
+ * world transform applied, merged into fresh arrays. Lines and points are skipped; a mirroring
+ * transform keeps the faces outward. World matrices are updated first (updateWorldMatrix). Throws
+ * `EMPTY_INPUT` when no triangle mesh is found.
+ */
+export function objectToMesh(object: Object3D): MergedMesh;
+
+/**
+ * The kernel of every mesh under a three.js object (a glTF scene, a Group), world transforms
+ * applied, merged and welded (weld on by default, so meshes meeting along seams form one closed
+ * surface), computed on the calling thread.
+ */
+export function computeKernelOfObject(object: Object3D, options?: GeometryKernelOptions): Promise<KernelResult>;
+
 /** The kernel as three.js geometries. */
 export interface KernelGeometries {
   /** The kernel's convex faces, triangulated, with flat normals (corners repeated per face): for THREE.Mesh. Empty for a point, segment or empty kernel. */
@@ -55,4 +85,10 @@ export class KernelWorker extends PlainKernelWorker {
    * geometry's arrays are copied: nothing of the caller's is transferred or detached.
    */
   computeGeometry(geometry: GeometryInput, options?: WorkerGeometryOptions): Promise<KernelResult>;
+  /**
+   * The kernel of every mesh under a three.js object (world transforms applied, merged, welded by
+   * default; see computeKernelOfObject), computed in the worker. The merge runs on the calling
+   * thread; only its fresh arrays are transferred.
+   */
+  computeObject(object: Object3D, options?: WorkerGeometryOptions): Promise<KernelResult>;
 }

@@ -2,6 +2,7 @@
 //
 //   import { computeKernelOfGeometry, kernelToGeometry, KernelWorker } from 'kergen-wasm/three';
 //   const kernel = await new KernelWorker().computeGeometry(geometry);   // or computeKernelOfGeometry
+//   const ofScene = await new KernelWorker().computeObject(gltf.scene);  // or computeKernelOfObject
 //   const { mesh, edges } = kernelToGeometry(kernel);
 //   scene.add(new THREE.Mesh(mesh, material), new THREE.LineSegments(edges, lineMaterial));
 //
@@ -9,7 +10,7 @@
 // interleaved) and index (Uint8/16/32, or none) are copied into fresh Float64Array/Uint32Array,
 // so nothing of the caller's is transferred or detached. three.js is an optional peer dependency:
 // only this entry imports it.
-import { BufferAttribute, BufferGeometry } from 'three';
+import { BufferAttribute, BufferGeometry, Matrix4, Vector3 } from 'three';
 import { computeKernel, KergenError } from './index.js';
 import { KernelWorker as PlainKernelWorker } from './worker.js';
 
@@ -102,6 +103,90 @@ function geometryOptions(fn, options) {
   return { ...GEOMETRY_DEFAULTS, ...options };
 }
 
+// One mesh's triangles written into the merged arrays at `at` ({ vertex, index }), its corners
+// moved by `matrix` (the mesh's world matrix, times an instance's matrix for an InstancedMesh). A
+// mirroring matrix (negative determinant) turns the faces inside out, so two corners of each
+// triangle are swapped back.
+function writeTransformed(merged, at, mesh, matrix) {
+  const flip = matrix.determinant() < 0;
+  const p = new Vector3();
+  const src = mesh.positions;
+  for (let i = 0; i < src.length; i += 3) {
+    p.set(src[i], src[i + 1], src[i + 2]).applyMatrix4(matrix);
+    const o = 3 * at.vertex + i;
+    merged.positions[o] = p.x;
+    merged.positions[o + 1] = p.y;
+    merged.positions[o + 2] = p.z;
+  }
+  const ids = mesh.indices;
+  const numIds = ids.length - (ids.length % 3);
+  for (let t = 0; t < numIds; t += 3) {
+    merged.indices[at.index++] = at.vertex + ids[t];
+    merged.indices[at.index++] = at.vertex + ids[t + (flip ? 2 : 1)];
+    merged.indices[at.index++] = at.vertex + ids[t + (flip ? 1 : 2)];
+  }
+  at.vertex += src.length / 3;
+}
+
+/**
+ * Every triangle mesh under `object` (itself included: THREE.Mesh, SkinnedMesh in its bind pose,
+ * InstancedMesh once per instance; visible or not; meshes without positions skipped), in world
+ * coordinates, merged into fresh arrays `{ positions: Float64Array, indices: Uint32Array, meshes }`.
+ * Lines and points are not surfaces and are skipped. World matrices are brought up to date first
+ * (updateWorldMatrix), as three.js does before rendering; nothing else of the scene is modified.
+ */
+export function objectToMesh(object) {
+  return mergedMeshOf('objectToMesh', object);
+}
+
+function mergedMeshOf(fn, object) {
+  if (object === null || typeof object !== 'object' || typeof object.traverse !== 'function') {
+    throw invalid(fn, 'object must be a three.js Object3D (a Mesh, Group, Scene, ...)');
+  }
+  object.updateWorldMatrix(true, true);
+  const parts = []; // [mesh arrays, three.js Mesh, copies (instances)]
+  let numVertices = 0;
+  let numIndices = 0;
+  object.traverse((node) => {
+    if (!node.isMesh || !node.geometry?.attributes?.position) return; // e.g. an empty placeholder
+    const mesh = meshOf(fn, node.geometry);
+    const copies = node.isInstancedMesh ? node.count : 1;
+    parts.push([mesh, node, copies]);
+    numVertices += copies * (mesh.positions.length / 3);
+    numIndices += copies * (mesh.indices.length - (mesh.indices.length % 3));
+  });
+  if (numIndices === 0) {
+    throw new KergenError('EMPTY_INPUT', `${fn}: there is no triangle mesh under the object`);
+  }
+  const merged = { positions: new Float64Array(3 * numVertices), indices: new Uint32Array(numIndices) };
+  const at = { vertex: 0, index: 0 };
+  const instanceMatrix = new Matrix4();
+  const matrix = new Matrix4();
+  for (const [mesh, node, copies] of parts) {
+    if (!node.isInstancedMesh) {
+      writeTransformed(merged, at, mesh, node.matrixWorld);
+      continue;
+    }
+    for (let i = 0; i < copies; i++) {
+      node.getMatrixAt(i, instanceMatrix);
+      writeTransformed(merged, at, mesh, matrix.multiplyMatrices(node.matrixWorld, instanceMatrix));
+    }
+  }
+  return { ...merged, meshes: parts.length };
+}
+
+/**
+ * The kernel of every mesh under a three.js object (a glTF scene, a Group), in world coordinates,
+ * merged into one surface, computed on this thread (options as computeKernel; weld on: meshes
+ * that meet along seams become one closed surface).
+ */
+export async function computeKernelOfObject(object, options) {
+  const fn = 'computeKernelOfObject';
+  const opts = geometryOptions(fn, options);
+  const { positions, indices } = mergedMeshOf(fn, object);
+  return computeKernel(positions, indices, opts);
+}
+
 /** The kernel of a BufferGeometry, computed on this thread (options as computeKernel; weld on). */
 export async function computeKernelOfGeometry(geometry, options) {
   const fn = 'computeKernelOfGeometry';
@@ -123,6 +208,25 @@ export class KernelWorker extends PlainKernelWorker {
     try {
       opts = geometryOptions(fn, options);
       mesh = meshOf(fn, geometry);
+    } catch (err) {
+      return Promise.reject(err);
+    }
+    delete opts.copy;
+    return this.compute(mesh.positions, mesh.indices, { ...opts, transfer: true });
+  }
+
+  /**
+   * The kernel of every mesh under a three.js object (world coordinates, merged; see
+   * computeKernelOfObject), computed in the worker. The merge is done here; only the merged
+   * arrays, fresh copies, are transferred.
+   */
+  computeObject(object, options) {
+    const fn = 'computeObject';
+    let mesh;
+    let opts;
+    try {
+      opts = geometryOptions(fn, options);
+      mesh = mergedMeshOf(fn, object);
     } catch (err) {
       return Promise.reject(err);
     }

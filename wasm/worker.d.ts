@@ -1,4 +1,9 @@
 // Type declarations for `kergen-wasm/worker`.
+/**
+ * KernelWorker: the same computations in a module Web Worker, with progress and cancel.
+ *
+ * @module kergen-wasm/worker
+ */
 import type {
   IndicesInput,
   KernelOptions,

@@ -24,7 +24,8 @@ import { SAMPLES, sampleById } from '../../web/samples.js';
 import { checkSamples, expectedKernel } from './samples-check.mjs';
 import { serve, writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
-import { writeThreeApp, writeReadmeApp, runThreeApp, plusPrism } from './three-app.mjs';
+import { writeThreeApp, runThreeApp } from './three-app.mjs';
+import { examplesTests } from './examples.mjs';
 import { demoFeatureTests } from './demo-features.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
@@ -1157,69 +1158,6 @@ async function threeAppTest(context, tmp) {
       }
     }
   });
-
-  await test("three.js: the README's smallest app loads an STL and shows its kernel", async () => {
-    const app = path.join(tmp, 'readme-app');
-    fs.mkdirSync(path.join(app, 'node_modules'), { recursive: true });
-    fs.symlinkSync(repo, path.join(app, 'node_modules', 'kergen-wasm'), 'dir');
-    fs.symlinkSync(path.join(repo, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
-    writeReadmeApp(app, path.join(repo, 'README.md'));
-    const vite = await import('vite');
-    await vite.build({
-      root: app,
-      logLevel: 'warn',
-      configFile: false,
-      build: { outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 4000 },
-    });
-    // shape.stl: a plus prism, whose kernel (the central cube) is at the view's centre; written by
-    // three.js's STLExporter, with face normals, as a real STL has them (lit, the input shows).
-    const THREE = await import('three');
-    const { STLExporter } = await import('three/examples/jsm/exporters/STLExporter.js');
-    const plus = plusPrism();
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(plus.positions), 3));
-    geometry.setIndex(new THREE.BufferAttribute(plus.indices, 1));
-    const stl = new STLExporter().parse(new THREE.Mesh(geometry), { binary: true });
-    fs.writeFileSync(path.join(app, 'dist', 'shape.stl'), new Uint8Array(stl.buffer, stl.byteOffset, stl.byteLength));
-    const server = await serve(path.join(app, 'dist'));
-    const page = await context.newPage();
-    const errors = [];
-    page.on('pageerror', (e) => errors.push(e.message));
-    page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
-    try {
-      await page.goto(`http://127.0.0.1:${server.address().port}/`);
-      // The centre pixel (the kernel) and one in the top arm (the input only), read right after
-      // three.js drew a frame (in the same animation frame).
-      const centre = () =>
-        page.evaluate(
-          () =>
-            new Promise((resolve) =>
-              requestAnimationFrame(() => {
-                const c = document.querySelector('canvas');
-                const copy = document.createElement('canvas');
-                copy.width = c.width;
-                copy.height = c.height;
-                const ctx = copy.getContext('2d');
-                ctx.drawImage(c, 0, 0);
-                const at = (x, y) => Array.from(ctx.getImageData(Math.round(x), Math.round(y), 1, 1).data);
-                resolve(c.width ? [...at(c.width / 2, c.height / 2), ...at(c.width / 2, c.height * 0.2)] : null);
-              }),
-            ),
-        );
-      let px = null;
-      for (let i = 0; i < 150 && !(px && px[0] - px[2] > 60); i++) {
-        await new Promise((r) => setTimeout(r, 200));
-        px = await centre();
-      }
-      await page.screenshot({ path: path.join(artifacts, 'three-readme-app.png') });
-      assert(errors.length === 0, errors.join(' | '));
-      assert(px && px[0] - px[2] > 60, `the orange kernel is at the centre of the view: ${px}`);
-      assert(px[4] > 20 && Math.abs(px[4] - px[6]) < 10, `the translucent grey input shows in its arm: ${px.slice(4)}`);
-    } finally {
-      await page.close();
-      server.close();
-    }
-  });
 }
 
 async function main() {
@@ -1287,6 +1225,7 @@ async function main() {
     });
     await themeAndBigFile(page, tmp, served);
     await threeAppTest(context, tmp);
+    await examplesTests(context, tmp, { test, assert, artifacts });
 
     await test('no uncaught errors or console errors in the page', async () => {
       assert(pageErrors.length === 0, pageErrors.slice(0, 5).join(' | '));

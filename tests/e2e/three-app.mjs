@@ -75,22 +75,6 @@ export function writeThreeApp(dir) {
   fs.writeFileSync(path.join(dir, 'main.js'), MAIN_JS);
 }
 
-/**
- * Writes the README's smallest three.js app (the code block between the three-readme-app markers
- * of `readme`) into `dir`: index.html + main.js. It loads `shape.stl` next to the page.
- */
-export function writeReadmeApp(dir, readme) {
-  const text = fs.readFileSync(readme, 'utf8');
-  const block = /<!-- three-readme-app:begin -->\s*```js\n([\s\S]*?)```\s*<!-- three-readme-app:end -->/.exec(text);
-  if (!block) throw new Error(`${readme} has no three-readme-app code block`);
-  fs.writeFileSync(
-    path.join(dir, 'index.html'),
-    '<!doctype html><link rel="icon" href="data:,"><body style="margin:0"><script type="module" src="./main.js"></script></body>\n',
-  );
-  fs.writeFileSync(path.join(dir, 'main.js'), block[1]);
-  return block[1];
-}
-
 /** Runs the built app (`dist`) in a page of `context`; returns window.__result. */
 export async function runThreeApp(context, dist) {
   const { serve } = await import('./page-tools.mjs'); // playwright-core: only where a browser runs
@@ -111,47 +95,4 @@ export async function runThreeApp(context, dist) {
     await page.close();
     server.close();
   }
-}
-
-/**
- * A plus-shaped prism (arms of width 1 reaching to ±1.5, z in [-0.5, 0.5]) as triangles, CCW seen
- * from outside: its kernel is the central unit cube, around the origin (the view's centre).
- */
-export function plusPrism() {
-  const plus = [
-    [0.5, -1.5],
-    [0.5, -0.5],
-    [1.5, -0.5],
-    [1.5, 0.5],
-    [0.5, 0.5],
-    [0.5, 1.5],
-    [-0.5, 1.5],
-    [-0.5, 0.5],
-    [-1.5, 0.5],
-    [-1.5, -0.5],
-    [-0.5, -0.5],
-    [-0.5, -1.5],
-  ];
-  const positions = [];
-  for (const z of [-0.5, 0.5]) for (const [x, y] of plus) positions.push(x, y, z);
-  // The cap: the central square and the four arms, each as two CCW triangles (no T-junction).
-  const cap = [
-    [1, 4, 7],
-    [1, 7, 10],
-    [1, 2, 3],
-    [1, 3, 4],
-    [4, 5, 6],
-    [4, 6, 7],
-    [7, 8, 9],
-    [7, 9, 10],
-    [10, 11, 0],
-    [10, 0, 1],
-  ];
-  const indices = [];
-  for (const [a, b, c] of cap) indices.push(a, c, b, 12 + a, 12 + b, 12 + c);
-  for (let i = 0; i < 12; i++) {
-    const j = (i + 1) % 12;
-    indices.push(i, j, 12 + j, i, 12 + j, 12 + i);
-  }
-  return { positions: new Float64Array(positions), indices: new Uint32Array(indices) };
 }

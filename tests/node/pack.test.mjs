@@ -1,33 +1,122 @@
-// `npm pack` produces a tarball with only the runtime files, and that tarball installs offline
-// into an empty folder and computes a kernel from plain Node.
+// `npm pack` produces a tarball with only the runtime files and the package README, which
+// publint, @arethetypeswrong/cli and `npm publish --dry-run` find clean, which stays under the
+// size budget, and which installs offline into an empty folder and computes a kernel from plain
+// Node. Packing leaves the work tree's README.md as it was.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawnSync } from 'node:child_process';
 import { assertBuilt, repoRoot } from './lib/env.mjs';
+import { extractTarball, npmEnv, packTarball } from './lib/pack.mjs';
 
-const npmEnv = {
-  ...process.env,
-  npm_config_audit: 'false',
-  npm_config_fund: 'false',
-  npm_config_update_notifier: 'false',
-  npm_config_loglevel: 'error',
-};
 let tmp;
 let packInfo;
+
+const SIZE_BUDGET = 350000; // bytes, packed (npm's "package size"; 350 kB)
+let readmeBefore;
 
 before(() => {
   assertBuilt();
   tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-pack-'));
-  const out = execFileSync('npm', ['pack', '--json', '--pack-destination', tmp], {
-    cwd: repoRoot,
-    encoding: 'utf8',
-    env: npmEnv,
-    stdio: ['ignore', 'pipe', 'pipe'],
-  });
-  packInfo = JSON.parse(out.slice(out.indexOf('[')))[0];
+  readmeBefore = fs.readFileSync(path.join(repoRoot, 'README.md'), 'utf8');
+  packInfo = packTarball(tmp);
+});
+
+const bin = (name) => path.join(repoRoot, 'node_modules', '.bin', name);
+// Runs a checker; returns { status, out } (stdout + stderr).
+function run(cmd, args, cwd = tmp) {
+  const r = spawnSync(cmd, args, { cwd, encoding: 'utf8', env: { ...npmEnv, NO_COLOR: '1', FORCE_COLOR: '0' } });
+  return { status: r.status, out: `${r.stdout}${r.stderr}` };
+}
+
+test(`the packed size is within the budget (${SIZE_BUDGET} B)`, (t) => {
+  t.diagnostic(`${packInfo.filename}: ${packInfo.size} B packed, ${packInfo.unpackedSize} B unpacked`);
+  assert.ok(packInfo.size <= SIZE_BUDGET, `${packInfo.size} B packed > ${SIZE_BUDGET} B`);
+});
+
+test('publint (strict) finds nothing in the tarball', (t) => {
+  const r = run(bin('publint'), ['run', packInfo.tarball, '--strict']);
+  t.diagnostic(r.out.trim().split('\n').pop());
+  assert.equal(r.status, 0, r.out);
+  assert.match(r.out, /All good!/);
+});
+
+test('@arethetypeswrong/cli: every entry point resolves to its types (ESM-only profile)', (t) => {
+  const major = Number(process.versions.node.split('.')[0]);
+  if (major < 20)
+    return t.skip(`@arethetypeswrong/cli needs Node >= 20 (this is ${process.version}); npm run test:node runs it`);
+  // ESM only (`"type": "module"`, no require entry): the profile leaves out CommonJS resolution.
+  // kergen.wasm is a binary asset exported for bundlers (`?url`), not a module with types.
+  const r = run(bin('attw'), [
+    packInfo.tarball,
+    '--profile',
+    'esm-only',
+    '--exclude-entrypoints',
+    'kergen.wasm',
+    '--format',
+    'ascii',
+  ]);
+  t.diagnostic(
+    r.out
+      .trim()
+      .split('\n')
+      .filter((l) => /"kergen-wasm/.test(l))
+      .join('; '),
+  );
+  assert.equal(r.status, 0, r.out);
+  assert.doesNotMatch(r.out, /💀|❌|Resolution failed/);
+});
+
+test('npm publish --dry-run --offline of the tarball is clean (no network, no login needed)', (t) => {
+  const r = run('npm', ['publish', '--dry-run', '--offline', '--loglevel', 'notice', packInfo.tarball]);
+  assert.equal(r.status, 0, r.out);
+  assert.match(r.out, /\+ kergen-wasm@\d+\.\d+\.\d+/);
+  // The one warning a dry run gives without `npm login` is that a real publish would need it.
+  // (Under the oldest Node tested, npm itself also warns that it does not support that Node: a
+  // remark on the npm CLI's runtime, not on the package.)
+  const warnings = r.out
+    .split('\n')
+    .filter((l) => /npm (warn|error|ERR)/i.test(l) && !/npm warn cli npm v\S+ does not support Node\.js/.test(l));
+  t.diagnostic(warnings.join(' | ') || 'no warnings');
+  assert.ok(
+    warnings.every((l) => /requires you to be logged in .*\(dry-run\)/.test(l)),
+    `unexpected warnings: ${warnings.join(' | ')}`,
+  );
+});
+
+// GitHub's heading anchors: lower case, punctuation dropped, spaces to hyphens.
+const slug = (heading) =>
+  heading
+    .toLowerCase()
+    .replace(/[^a-z0-9 _-]/g, '')
+    .replace(/ /g, '-');
+
+test("the tarball's README is the package README, every link of it resolves inside the tarball, and the work tree's README.md is unchanged", () => {
+  const unpacked = path.join(tmp, 'unpacked');
+  extractTarball(packInfo.tarball, unpacked);
+  const pkgDir = path.join(unpacked, 'node_modules', 'kergen-wasm');
+  const readme = fs.readFileSync(path.join(pkgDir, 'README.md'), 'utf8');
+  assert.equal(readme, fs.readFileSync(path.join(repoRoot, 'wasm', 'README.md'), 'utf8'));
+  assert.equal(
+    fs.readFileSync(path.join(repoRoot, 'README.md'), 'utf8'),
+    readmeBefore,
+    'README.md restored by postpack',
+  );
+  assert.ok(!fs.existsSync(path.join(repoRoot, 'build', 'pack-readme', 'README.md')), 'no saved copy left behind');
+  const anchors = new Set([...readme.matchAll(/^#+ (.*)$/gm)].map((m) => slug(m[1])));
+  const links = [...readme.replace(/```[\s\S]*?```/g, '').matchAll(/\]\(([^)\s]+)\)/g)].map((m) => m[1]);
+  assert.ok(links.length > 0);
+  for (const link of links) {
+    if (/^https:\/\/|^http:\/\//.test(link)) assert.fail(`${link}: the package README links no web page`);
+    if (link.startsWith('#')) assert.ok(anchors.has(link.slice(1)), `${link}: no such heading`);
+    else assert.ok(fs.existsSync(path.join(pkgDir, link.split('#')[0])), `${link}: not in the tarball`);
+  }
+  for (const f of ['CHANGELOG.md', 'LICENSE']) assert.ok(fs.existsSync(path.join(pkgDir, f)), `${f} is packed`);
+  const pkg = JSON.parse(fs.readFileSync(path.join(pkgDir, 'package.json'), 'utf8'));
+  assert.equal(pkg.repository, undefined, 'no invented repository URL');
+  assert.equal(pkg.homepage, undefined, 'no invented homepage');
 });
 
 after(() => {
@@ -52,6 +141,8 @@ test('the tarball holds the runtime files only', (t) => {
     'wasm/errors.js',
     'wasm/three.js',
     'wasm/three.d.ts',
+    'README.md',
+    'CHANGELOG.md',
   ]) {
     assert.ok(files.includes(needed), `${needed} is packed`);
   }
@@ -73,7 +164,7 @@ test(
       path.join(app, 'package.json'),
       JSON.stringify({ name: 'kergen-smoke', version: '1.0.0', private: true, type: 'module' }),
     );
-    execFileSync('npm', ['install', '--offline', path.join(tmp, packInfo.filename)], {
+    execFileSync('npm', ['install', '--offline', packInfo.tarball], {
       cwd: app,
       encoding: 'utf8',
       env: npmEnv,

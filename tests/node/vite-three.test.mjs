@@ -10,28 +10,16 @@ import os from 'node:os';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { assertBuilt, distWasm, repoRoot, viteUnsupported } from './lib/env.mjs';
-import { writeThreeApp, writeReadmeApp } from '../e2e/three-app.mjs';
+import { npmEnv, packTarball } from './lib/pack.mjs';
+import { writeThreeApp } from '../e2e/three-app.mjs';
 
-const npmEnv = {
-  ...process.env,
-  npm_config_audit: 'false',
-  npm_config_fund: 'false',
-  npm_config_update_notifier: 'false',
-  npm_config_loglevel: 'error',
-};
 let tmp;
 let tarball;
 
 before(() => {
   assertBuilt();
   tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-vite-three-'));
-  const out = execFileSync('npm', ['pack', '--json', '--pack-destination', tmp], {
-    cwd: repoRoot,
-    encoding: 'utf8',
-    env: npmEnv,
-    stdio: ['ignore', 'pipe', 'pipe'],
-  });
-  tarball = path.join(tmp, JSON.parse(out.slice(out.indexOf('[')))[0].filename);
+  tarball = packTarball(tmp).tarball;
 });
 after(() => {
   if (tmp) fs.rmSync(tmp, { recursive: true, force: true });
@@ -115,18 +103,3 @@ test(
     checkBuild(t, app, `vite ${version}`);
   },
 );
-
-test("the README's smallest three.js app builds with Vite 7 from the tarball", { timeout: 180000 }, async (t) => {
-  if (viteUnsupported()) return t.skip(viteUnsupported());
-  const app = newApp('app-readme');
-  const code = writeReadmeApp(app, path.join(repoRoot, 'README.md'));
-  const lines = code.split('\n').filter((l) => l.trim() !== '');
-  t.diagnostic(
-    `${lines.length} non-blank lines, ${lines.filter((l) => l.includes('// kernel')).length} of them for the kernel`,
-  );
-  assert.ok(lines.filter((l) => l.includes('// kernel')).length <= 5, 'the kernel part is at most 5 lines');
-  fs.symlinkSync(path.join(repoRoot, 'node_modules', 'three'), path.join(app, 'node_modules', 'three'), 'dir');
-  const vite = await import('vite');
-  await vite.build({ root: app, logLevel: 'warn', configFile: false, build: { outDir: 'dist', emptyOutDir: true } });
-  checkBuild(t, app, `README app, vite ${vite.version}`);
-});

@@ -5,7 +5,10 @@ import { STLLoader } from 'three/examples/jsm/loaders/STLLoader.js';
 import { OBJLoader } from 'three/examples/jsm/loaders/OBJLoader.js';
 import {
   computeKernelOfGeometry,
+  computeKernelOfObject,
   geometryToMesh,
+  objectToMesh,
+  type MergedMesh,
   kernelToGeometry,
   KernelWorker,
   KergenError,
@@ -43,6 +46,12 @@ async function three(): Promise<void> {
   const plain: PlainWorker = worker;
   const { positions, indices } = geometryToMesh(new THREE.BoxGeometry());
   await plain.compute(positions, indices, { transfer: true });
+  // A whole scene (a glTF scene, a Group): world transforms applied, merged.
+  const group3 = new THREE.Group().add(new THREE.Mesh(new THREE.BoxGeometry()));
+  const ofScene: KernelResult = await computeKernelOfObject(group3, { weld: true });
+  const ofSceneInWorker: KernelResult = await worker.computeObject(group3, { onStep: () => true });
+  const merged: MergedMesh = objectToMesh(new THREE.Scene());
+  void [ofScene.volume, ofSceneInWorker.volume, merged.meshes];
   worker.dispose();
 
   // The index arrays of three.js geometries (Uint16Array / Uint32Array, even Uint8Array) fit IndicesInput.
@@ -65,6 +74,8 @@ const typo = (e: KergenError) => e.code === 'OPEN_MSH';
 void computeKernelOfGeometry(new THREE.BoxGeometry(), { faceSizes: [3] });
 // @ts-expect-error: computeGeometry copies the geometry's arrays itself
 void new KernelWorker().computeGeometry(new THREE.BoxGeometry(), { transfer: true });
+// @ts-expect-error: a geometry is not an Object3D
+void computeKernelOfObject(new THREE.BoxGeometry());
 // @ts-expect-error: an Int8Array is not an index array the core accepts
 const badIndex: IndicesInput = new Int8Array(3);
 
