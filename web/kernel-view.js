@@ -123,6 +123,7 @@ export class KernelView {
     this.prefix = new GrowableArray(Uint32Array);
     for (let i = 0; i < 4; i++) this.prefix.push(0);
     this.slot = []; // vertex id → its point index
+    this.triFace = new GrowableArray(Uint32Array); // drawn triangle → its kernel face id (picking)
     this.nFaces = 0;
     this.pointBuf.reset();
     this.lineBuf.reset();
@@ -158,6 +159,7 @@ export class KernelView {
       if (loop.length < 3 || loop.some((i) => i === undefined)) return false;
       const p0 = this.pointAt(loop[0]);
       for (let k = 1; k + 1 < loop.length; k++) {
+        this.triFace.push(ev.id);
         this.faceBuf.push(...p0);
         this.faceBuf.push(...this.pointAt(loop[k]));
         this.faceBuf.push(...this.pointAt(loop[k + 1]));
@@ -172,6 +174,11 @@ export class KernelView {
     this.prefix.push(this.faceBuf.count);
     this.prefix.push(this.nFaces);
     return true;
+  }
+
+  /** The kernel face id of drawn triangle `t` (a raycast's faceIndex on `faces`). */
+  faceOfTriangle(t) {
+    return t < this.triFace.length ? this.triFace.array[t] : -1;
   }
 
   countsAt(k) {

@@ -11,6 +11,7 @@ import { drawRequest } from './runs.js';
 import { openSource, openUrl } from './sources.js';
 import { viewToControls, updateShareUrl } from './controls.js';
 import './playback.js';
+import { installFaceInfo } from './face-info.js';
 import { sampleById } from './samples.js';
 
 // For the browser tests: the view (camera, scene) and the page's state, read-only by convention.
@@ -22,6 +23,7 @@ canvas.tabIndex = 0; // focusable: the view's label is read, and the keys work f
 setStatus('idle', 'No mesh loaded.');
 showRows(['name']);
 viewToControls();
+installFaceInfo();
 
 // Start the drawing worker now, not when the first big file arrives.
 drawRequest({ type: 'noop' });

@@ -62,6 +62,9 @@ export const ui = {
   retryOpen: $('retry-open'),
   retryWalls: $('retry-walls'),
   retryRepair: $('retry-repair'),
+  retryWeld: $('retry-weld'),
+  faceInfo: $('face-info'),
+  faceHint: $('face-hint'),
   playbar: $('playbar'),
 };
 
@@ -90,9 +93,17 @@ export const state = {
     allowOpen: PARAMS.get('allowOpen') === '1',
     repair: PARAMS.get('repair') === '1',
     walls: PARAMS.get('open') === 'perpendicular',
+    weld: PARAMS.get('weld') === '1',
   },
   view: viewFromParams(PARAMS),
   mesh: null, // the parsed input when it is drawn on this thread (small); else the drawing worker has it
   drawing: null, // { center, maxAbs } of the drawn input
   openEdges: 0,
+  // The input as computed (its mesh and the options its kind needs, e.g. weld for STL), kept to
+  // try a refusal's alternatives (trials.js); null for meshes too big to try.
+  input: null,
+  // { source, trials: { [alternative]: outcome }, ranked }: what was tried after a refusal of
+  // `source`; kept while the same source is computed again (retry buttons).
+  trials: null,
+  trying: false,
 };

@@ -1,7 +1,8 @@
 // What the page says: the status line, the stats table, the message box, the busy line, each
 // outcome's and error's text (written in outcome.js) put on the page.
 
-import { REPAIRABLE, ROWS, describeError, describeResult, sentence } from './outcome.js';
+import { warningInWords, messageInWords } from './alternatives.js';
+import { ROWS, describeError, describeResult, sentence } from './outcome.js';
 import { $, state, ui, viewer } from './page-state.js';
 
 export const fmt = (x, digits = 6) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : String(x));
@@ -63,7 +64,7 @@ function showMessage(kind, title, paragraphs = [], code = '') {
   for (const text of [paragraphs].flat().filter(Boolean)) addParagraph(text);
 }
 
-function addParagraph(text) {
+export function addParagraph(text) {
   const p = document.createElement('p');
   p.textContent = text;
   ui.message.append(p);
@@ -81,19 +82,13 @@ export function setBusy(text) {
   if (text) ui.busyText.textContent = text;
 }
 
-// The error state; offers what can get an answer from the same mesh (repair, allowOpen).
+// The error state (what can get an answer from the same mesh is offered by trials.js).
 export function showError(err) {
   const d = describeError(err, { openEdges: state.openEdges });
   showMessage('error', d.title, d.paragraphs, d.code);
   setStatus('error', d.status, 'ERROR');
   setStat('stat-status', d.code, 'ERROR');
   showRows(d.rows);
-  const reopenable = !!state.source && state.inputShown;
-  const open = reopenable && d.code === 'OPEN_MESH';
-  ui.retryOpen.hidden = !(open && !state.runOptions.allowOpen);
-  ui.retryWalls.hidden = !(open && !state.runOptions.walls);
-  ui.retryRepair.hidden = !(reopenable && REPAIRABLE.has(d.code) && !state.runOptions.repair);
-  ui.actions.hidden = ui.retryOpen.hidden && ui.retryWalls.hidden && ui.retryRepair.hidden;
 }
 
 const PHASE_TEXT = {
@@ -176,7 +171,7 @@ export function showStats(result, wall, V, E, F) {
   ].filter(Boolean);
   setStat('stat-wall', `${fmtMs(wall)} (${parts.join(', ')})`, wall);
   viewer.setKernelPoint(kp);
-  viewer.setBall(dp, result.inscribedRadius);
+  viewer.setBall(dp, result.inscribedRadius, result.volume);
   viewer.setKernelClosed(result.status === 'POLYHEDRON' || result.status === 'UNBOUNDED');
 }
 
@@ -186,11 +181,14 @@ export function showOutcome(result, V, E, F, extra) {
   showRows(d.rows);
   if (d.kind) showMessage(d.kind, d.title, d.paragraphs, result.status);
   if (result.warnings?.length) {
-    const text = result.warnings.map((w) => sentence(w.message || `${w.kind} (${w.count})`)).join(' ');
+    const text = result.warnings
+      .map((w) => warningInWords(w) ?? sentence(messageInWords(w.message) || `${w.kind} (${w.count})`))
+      .join(' ');
     if (ui.message.hidden) showMessage('info', 'Note', [text], 'WARNINGS');
     else addParagraph(`Note: ${text}`);
   }
   setExportEnabled(result.triangles?.length > 0);
+  ui.faceHint.hidden = !(result.faceSources?.length > 0);
 }
 
 export function setExportEnabled(on) {

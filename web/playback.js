@@ -66,6 +66,8 @@ function frame(now) {
   }
   const k = Math.floor(state.cursor);
   const c = viewer.kernel.show(k);
+  // The inscribed ball belongs to the whole kernel: drawn once the replay has shown all of it.
+  viewer.setBallComplete(!!state.result && k >= total);
   const key = `${k}/${total}/${c.vertices}/${c.edges}/${c.faces}/${state.computing}`;
   if (key !== lastUi) {
     lastUi = key;

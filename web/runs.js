@@ -21,7 +21,9 @@ import {
   showStats,
 } from './page-text.js';
 import { setPlayButton } from './playback.js';
-import { boxFacets } from './unbounded.js';
+import { boxFaceIds, edgeLines } from './face-sources.js';
+import { clearFaceInfo } from './face-info.js';
+import { hideAlternatives, offerAlternatives } from './trials.js';
 
 export function worker() {
   state.worker ??= new KernelWorker();
@@ -58,7 +60,9 @@ export function drawRequest(message, transfer = []) {
 export function beginRun(name) {
   state.token++;
   // KernelWorker.cancel() terminates the busy worker thread and starts a fresh one (same object).
-  if (state.computing && state.worker) state.worker.cancel();
+  // So are the trials of a refusal's alternatives (trials.js).
+  if ((state.computing || state.trying) && state.worker) state.worker.cancel();
+  state.trying = false;
   state.computing = false;
   state.name = name;
   state.result = null;
@@ -78,10 +82,13 @@ export function beginRun(name) {
   viewer.setBall(null);
   viewer.setBoxFacets(null);
   viewer.setWitnessFaces(null);
+  viewer.setWitnessEdges(null);
   viewer.setOpenEdges(null);
   viewer.setKernelClosed(false);
   hideMessage();
-  ui.actions.hidden = ui.retryOpen.hidden = ui.retryWalls.hidden = ui.retryRepair.hidden = true;
+  hideAlternatives();
+  clearFaceInfo();
+  ui.faceHint.hidden = true;
   clearStats();
   setStat('stat-name', name);
   showRows(['name', 'input-faces']);
@@ -201,11 +208,14 @@ async function failRun(err, token) {
     showCancelled();
     return;
   }
-  if (err?.code === 'OPEN_MESH' && state.inputPromise) await state.inputPromise.catch(() => {});
+  // The drawn input first: the open edges are drawn on it, and the alternatives reopen it.
+  if (state.inputPromise) await state.inputPromise.catch(() => {});
   if (token !== state.token) return;
   if (!state.inputShown) viewer.clearInput();
   if (err?.code === 'OPEN_MESH' && state.inputShown) await showOpenEdges(token);
-  if (token === state.token) showError(err);
+  if (token !== state.token) return;
+  showError(err);
+  await offerAlternatives(err?.code, token);
 }
 
 // The input's open edges, drawn in red and counted (from the indices: edges used by one face).
@@ -232,7 +242,7 @@ async function finish(result, token) {
   if (result.status === 'UNBOUNDED') {
     await showOpenEdges(token);
     if (token !== state.token) return;
-    const ids = boxFacets(result, state.drawing?.maxAbs ?? 0);
+    const ids = boxFaceIds(result, state.drawing?.maxAbs ?? 0);
     viewer.setBoxFacets(result, ids);
     Object.assign(extra, { boxFacets: ids.length, openEdges: state.openEdges });
     // The clipped kernel reaches the box, far beyond the mesh: show all of it, box facets included.
@@ -243,6 +253,25 @@ async function finish(result, token) {
     await showWitnessFaces(witness, token);
     if (token !== state.token) return;
     extra.witness = witness.length;
+  }
+  if (result.status === 'EMPTY' && state.runOptions.walls) {
+    // Empty with walls: the open edges (where the walls stand) in red, the walls' boundary edges
+    // in the witness in magenta, and the kernel without walls when it was tried (the walls may be
+    // what empties it).
+    await showOpenEdges(token);
+    if (token !== state.token) return;
+    const pairs = result.witnessBoundaryEdges;
+    const positions = state.input?.mesh.positions ?? state.mesh?.positions;
+    if (pairs?.length && positions) {
+      const { lines, mids } = edgeLines(positions, pairs, state.drawing?.center ?? [0, 0, 0]);
+      viewer.setWitnessEdges(lines, mids);
+    }
+    Object.assign(extra, {
+      walls: true,
+      openEdges: state.openEdges,
+      witnessEdges: pairs ? pairs.length / 2 : 0,
+      openSurface: state.trials?.trials.allowOpen,
+    });
   }
   showStats(result, wall, V, E, F);
   showOutcome(result, V, E, F, extra);

@@ -4,19 +4,19 @@
 
 import { updateShareUrl } from './controls.js';
 import { isGltfName, readGltf } from './gltf.js';
-import { state, ui, viewer } from './page-state.js';
+import { INLINE_FACES, state, ui, viewer } from './page-state.js';
 import { fmtBytes, setBusy, setStatus, showCancelled, showError } from './page-text.js';
 import { beginRun, endRun, runKernel, showMesh, stopPlayback, worker } from './runs.js';
 import { SAMPLES, sampleById } from './samples.js';
+import { ALTERNATIVES, packageOptions } from './alternatives.js';
 
-const kernelOptions = () => ({
-  // The inscribed ball costs little next to the kernel (docs/demo.md has the numbers): always on.
-  deepestPoint: true,
-  // Walls at the boundary edges (the package's open: 'perpendicular') bound an open surface's
-  // kernel where allowOpen clips it to a box; walls win when both were asked for.
-  ...(state.runOptions.walls ? { open: 'perpendicular' } : state.runOptions.allowOpen ? { allowOpen: true } : {}),
-  ...(state.runOptions.repair ? { repair: true } : {}),
-});
+// The inscribed ball costs little next to the kernel (docs/demo.md has the numbers): always on.
+const kernelOptions = () => ({ deepestPoint: true, ...packageOptions(state.runOptions) });
+
+// Meshes up to this many faces are kept on this thread after a refusal's run, so that what the
+// refusal proposes can be tried in the worker before it is offered (trials.js).
+const TRY_FACES = 200000;
+const faceCount = (mesh) => (mesh.faceSizes ? mesh.faceSizes.length : mesh.indices.length / 3);
 
 /**
  * Opens `source` ({ kind: 'sample', id } | { kind: 'file', file } | { kind: 'url', url, file })
@@ -24,9 +24,12 @@ const kernelOptions = () => ({
  */
 export async function openSource(
   source,
-  options = { allowOpen: false, repair: false, walls: false },
+  options = { allowOpen: false, repair: false, walls: false, weld: false },
   t0 = performance.now(),
 ) {
+  // What was tried after a refusal stays known while the same input is computed again.
+  if (state.trials?.source !== source) state.trials = null;
+  state.input = null;
   state.source = source;
   state.runOptions = options;
   selectSample(source.kind === 'sample' ? source.id : null);
@@ -38,6 +41,7 @@ export async function openSource(
   if (source.kind === 'sample') {
     const mesh = sampleById(source.id).build();
     showMesh(mesh, token); // samples are small: drawn right here
+    state.input = { mesh, options: {} };
     // The worker copies the arrays: the drawn input keeps its own.
     await runKernel(token, (callbacks) =>
       worker().compute(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes, ...kernelOptions(), ...callbacks }),
@@ -68,7 +72,16 @@ function computeFileBytes(bytes, name, token) {
         ...kernelOptions(),
         ...callbacks,
         onMesh: (mesh) => {
-          if (token === state.token) state.inputPromise = showMesh(mesh, token);
+          if (token !== state.token) return;
+          // A big mesh's arrays move to the drawing worker (showMesh): the trials keep a copy.
+          const faces = faceCount(mesh);
+          const copy = (a) => (faces > INLINE_FACES ? a?.slice() : a);
+          if (faces <= TRY_FACES)
+            state.input = {
+              mesh: { positions: copy(mesh.positions), indices: copy(mesh.indices), faceSizes: copy(mesh.faceSizes) },
+              options: /\.stl$/i.test(name) ? { weld: true } : {},
+            };
+          state.inputPromise = showMesh(mesh, token);
         },
       })
       .then(({ result }) => result),
@@ -90,6 +103,7 @@ async function computeGltf(bytes, name, token) {
     return;
   }
   if (token !== state.token) return;
+  if (faceCount(mesh) <= TRY_FACES) state.input = { mesh, options: { weld: true } };
   // A big mesh's arrays are moved to the drawing worker: it gets copies, the kernel worker these.
   state.inputPromise = showMesh({ positions: mesh.positions.slice(), indices: mesh.indices.slice() }, token);
   await runKernel(token, (callbacks) =>
@@ -132,7 +146,21 @@ export async function openUrl(text, options) {
   if (!response.ok) return fail(`could not fetch ${url.href}: HTTP ${response.status} ${response.statusText}`.trim());
   const blob = await response.blob();
   if (token !== state.token) return;
+  // A server that answers every path with its site (a relative link to a file it does not have)
+  // sends a web page: said as such, not as a mesh file's parse error.
+  if (await isWebPage(response, blob))
+    return fail(`this URL returned a web page, not a mesh: ${url.href} (is the address of the file right?)`);
   await openSource({ kind: 'url', url: url.href, file: new File([blob], name) }, options, t0);
+}
+
+// An HTML answer: it starts with a tag (no mesh format does), and says text/html or looks like a
+// page. A mesh file served with a wrong Content-Type is still read.
+async function isWebPage(response, blob) {
+  const head = new TextDecoder().decode(await blob.slice(0, 512).arrayBuffer()).replace(/^\uFEFF/, '');
+  if (!/^\s*</.test(head)) return false;
+  return (
+    /^\s*text\/html/i.test(response.headers.get('content-type') ?? '') || /<!doctype html|<html|<head|<body/i.test(head)
+  );
 }
 
 // The same input again with other options (the retry buttons).
@@ -141,9 +169,14 @@ function reopen(options) {
   if (!source) return;
   openSource(source, { ...state.runOptions, ...options });
 }
-ui.retryOpen.addEventListener('click', () => reopen({ allowOpen: true, walls: false }));
-ui.retryWalls.addEventListener('click', () => reopen({ walls: true, allowOpen: false }));
-ui.retryRepair.addEventListener('click', () => reopen({ repair: true }));
+// Each button runs the alternative it was offered for (trials.js sets data-alt).
+for (const [id, fallback] of [
+  ['retryOpen', 'allowOpen'],
+  ['retryWalls', 'walls'],
+  ['retryRepair', 'repair'],
+  ['retryWeld', 'weld'],
+])
+  ui[id].addEventListener('click', () => reopen(ALTERNATIVES[ui[id].dataset.alt || fallback].options));
 
 function selectSample(id) {
   for (const b of ui.samples.querySelectorAll('button')) {

@@ -201,6 +201,8 @@ export class Viewer {
     this.section.inputCap.setGeometry(null);
     this.setOpenEdges(null);
     this.setWitnessFaces(null);
+    this.setWitnessEdges(null);
+    this.setSourceFace(null);
   }
 
   /** The input shape's opacity, 0 (hidden) to 1 (opaque). */
@@ -222,7 +224,8 @@ export class Viewer {
 
   updateInputVisibility() {
     if (this.inputMesh) this.inputMesh.visible = this.inputVisible && this.opacity > 0;
-    if (this.inputWire) this.inputWire.visible = this.inputVisible && this.edgesVisible;
+    // Opacity 0 hides the shape: its face edges too.
+    if (this.inputWire) this.inputWire.visible = this.inputVisible && this.edgesVisible && this.opacity > 0;
     this.section.updateVisibility(this.inputVisible, this.kernelClosed);
     this.dirty = true;
   }
@@ -313,9 +316,26 @@ export class Viewer {
     this.dirty = true;
   }
 
-  /** The deepest point and the inscribed ball's radius (null: none). */
-  setBall(center, radius = 0) {
-    this.overlays.setBall(center, radius);
+  /** The deepest point and the inscribed ball's radius (null: none); see Overlays.setBall. */
+  setBall(center, radius = 0, kernelVolume = 0) {
+    this.overlays.setBall(center, radius, kernelVolume);
+    this.dirty = true;
+  }
+
+  /** The ball is drawn once the kernel is complete on screen (not while it grows). */
+  setBallComplete(on) {
+    if (this.overlays.setBallComplete(on)) this.dirty = true;
+  }
+
+  /** See Overlays.setWitnessEdges. */
+  setWitnessEdges(lines, mids = null) {
+    this.overlays.setWitnessEdges(lines, mids);
+    this.dirty = true;
+  }
+
+  /** See Overlays.setSourceFace. */
+  setSourceFace(faces, outline = null) {
+    this.overlays.setSourceFace(faces, outline);
     this.dirty = true;
   }
 
@@ -401,6 +421,7 @@ export class Viewer {
     if (!(moved || this.dirty || this.kernel.dirty)) return;
     const now = performance.now();
     if (busy && !moved && (this.softwareGL || this.renderMs > 30) && now - this.lastRender < 250) return;
+    this.overlays.updateRing(this.camera);
     this.renderer.render(this.scene, this.camera);
     const t = performance.now();
     this.renderMs = this.renderMs ? 0.8 * this.renderMs + 0.2 * (t - now) : t - now;
