@@ -315,7 +315,7 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
     assert(p.red > 100, `${p.red} red pixels for the open edges`);
   });
 
-  await test('open: "Compute with allowOpen" shows the clipped UNBOUNDED kernel, its box facet grey', async () => {
+  await test('open: "Compute as an open surface" shows the clipped UNBOUNDED kernel, its box facet grey', async () => {
     await markPending(page);
     await page.click('#retry-open');
     const s = await waitFinished(page);
@@ -341,7 +341,7 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
     assert(new URL(page.url()).searchParams.get('allowOpen') === null, 'a file has no link');
   });
 
-  await test('open: "Compute with boundary walls" bounds the open box by walls at its rim: the unit cube', async () => {
+  await test('open: "Compute with walls at the open edges" bounds the open box by walls at its rim: the unit cube', async () => {
     const e = await loadFile(page, openCube);
     assert(e.state === 'error' && e.message?.code === 'OPEN_MESH', JSON.stringify(e));
     assert(!(await page.isHidden('#retry-walls')), 'walls not offered');

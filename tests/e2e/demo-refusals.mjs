@@ -502,6 +502,22 @@ export async function demoRefusalTests(page, context, base, tmp, h) {
       ['empty-u-prism', () => page.goto(`${base}?sample=u-prism`)],
       ['error-tjunction', () => page.setInputFiles('#file-input', files['tjunction-box.off'].file)],
       ['error-open-ball', () => page.setInputFiles('#file-input', files['open-ball.off'].file)],
+      // A file, refused, then the offered action clicked (the test waits for it to be offered).
+      ...[
+        ['repaired-tjunction', 'tjunction-box.off', 'retry-repair'],
+        ['open-unbounded', 'open-box.off', 'retry-open'],
+        ['empty-with-walls', 'open-ball.off', 'retry-walls'],
+      ].map(([name, file, action]) => [
+        name,
+        async () => {
+          await page.setInputFiles('#file-input', path.join(tmp, file));
+          await waitFinished(page);
+          await offered(page);
+          await markPending(page);
+          await page.click(`#${action}`);
+        },
+      ]),
+      ['idle', () => page.goto(`${base}?sample=none`)],
     ];
     const rows = [];
     for (const [w, hgt] of [
@@ -512,7 +528,12 @@ export async function demoRefusalTests(page, context, base, tmp, h) {
       for (const [name, open] of states) {
         await markPending(page);
         await open();
-        const s = await waitFinished(page);
+        const s =
+          name === 'idle'
+            ? await page
+                .waitForFunction(() => document.getElementById('status').dataset.state === 'idle')
+                .then(() => ({}))
+            : await waitFinished(page);
         if (s.state === 'error') await offered(page);
         else if (s.steps > 0) await jumpToEnd(page);
         const f = await fold(page);
