@@ -186,8 +186,9 @@ function selectSample(id) {
 }
 
 ui.cancel.addEventListener('click', () => {
-  if (state.computing && state.worker) {
-    state.worker.cancel(); // compute() rejects with CANCELLED → message shown by failRun
+  if ((state.computing || state.trying) && state.worker) {
+    // compute() rejects with CANCELLED → message shown by failRun (a run) or trials.js (trials)
+    state.worker.cancel();
   } else if (!ui.cancel.disabled) {
     state.token++; // still reading the file: drop the run
     endRun();

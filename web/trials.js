@@ -29,6 +29,7 @@ async function runTrials(ids, token) {
   const { mesh, options } = state.input;
   const trials = {};
   state.trying = true;
+  ui.cancel.disabled = false; // trials can take a while on a big mesh
   try {
     for (const id of ids) {
       // Merging close vertices is tried only when repair alone (equal positions) is refused.
@@ -43,15 +44,17 @@ async function runTrials(ids, token) {
         });
         trials[id] = { status: r.status, volume: r.volume, warnings: r.warnings };
       } catch (err) {
-        if (err?.code === 'CANCELLED' || token !== state.token) return null;
+        if (token !== state.token) return null;
+        if (err?.code === 'CANCELLED') return 'cancelled'; // the Cancel button: offer them untried
         trials[id] = { error: err?.code ?? 'ERROR', message: err?.message ?? String(err) };
       }
       if (token !== state.token) return null;
     }
   } finally {
     state.trying = false;
+    ui.cancel.disabled = true;
+    setBusy('');
   }
-  setBusy('');
   return trials;
 }
 
@@ -73,6 +76,9 @@ export async function offerAlternatives(code, token) {
   if (state.input) {
     trials = await runTrials(ids, token);
     if (!trials) return;
+  }
+  const cancelled = trials === 'cancelled';
+  if (trials && !cancelled) {
     ranked = rankTrials(trials);
     state.trials = { source: state.source, trials, ranked };
   } else {
@@ -103,7 +109,11 @@ export async function offerAlternatives(code, token) {
     for (const id of order) addParagraph(trialInWords(id, trials[id]));
     for (const [id, t] of Object.entries(trials)) if (t.error) addParagraph(failureInWords(id, t));
   } else {
-    addParagraph('The mesh is too large to try these first: they are offered untried.');
+    addParagraph(
+      cancelled
+        ? 'Trying these first was cancelled: they are offered untried.'
+        : 'The mesh is too large to try these first: they are offered untried.',
+    );
   }
   ui.actions.dataset.state = order.length ? 'ready' : 'none';
 }

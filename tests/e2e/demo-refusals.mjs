@@ -10,6 +10,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
 import { viewPixels, setRange, controls } from './demo-features.mjs';
+import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 
 const require = createRequire(import.meta.url);
 
@@ -356,6 +357,38 @@ export async function demoRefusalTests(page, context, base, tmp, h) {
     assert(
       /16 vertices at the same position as another vertex were merged/.test(note) && !OPTION_NAMES.test(note),
       note,
+    );
+  });
+
+  await test('refusal: the trials of a 40k-triangle open mesh can be cancelled: the actions are then offered untried', async () => {
+    const big = bumpySphere(200, 101); // 40,000 triangles; the 200 around the north pole removed
+    const faces = [];
+    for (let t = 0; t < big.indices.length; t += 3) {
+      const tri = Array.from(big.indices.subarray(t, t + 3));
+      if (!tri.includes(0)) faces.push(tri);
+    }
+    const file = path.join(tmp, 'bumpy-40k-open-trials.off');
+    writeOFF(file, Array.from(big.positions), faces);
+    await loadFile(page, file);
+    const t0 = Date.now();
+    await page.waitForFunction(() => document.getElementById('actions').dataset.state !== '', null, { timeout: 30000 });
+    const during = await page.evaluate(() => ({
+      state: document.getElementById('actions').dataset.state,
+      cancel: document.getElementById('cancel').disabled,
+      busy: document.getElementById('busy-text').textContent,
+    }));
+    assert(during.state === 'trying' && !during.cancel && /^Trying first/.test(during.busy), JSON.stringify(during));
+    await page.click('#cancel');
+    const o = await offered(page);
+    const text = await page.textContent('#message');
+    console.log(
+      `     40k open mesh: cancelled the trials after ${Date.now() - t0} ms; offered ${o.map((b) => b.id).join(', ')}`,
+    );
+    assert(/Trying these first was cancelled/.test(text), text);
+    assert(
+      JSON.stringify(o.map((b) => b.id)) === '["retry-repair","retry-walls","retry-open"]' &&
+        o.every((b) => !b.outcome),
+      JSON.stringify(o),
     );
   });
 
