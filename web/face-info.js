@@ -19,6 +19,15 @@ export function kernelFaceAt(x, y) {
   const rect = canvas.getBoundingClientRect();
   const ndc = new THREE.Vector2(((x - rect.left) / rect.width) * 2 - 1, -((y - rect.top) / rect.height) * 2 + 1);
   raycaster.setFromCamera(ndc, viewer.camera);
+  // The raycast first tests the geometry's bounding sphere, which three.js computes once: the
+  // kernel's arrays grow and are replaced, so it is recomputed when the faces changed.
+  const geo = viewer.kernel.facesGeo;
+  const attr = geo.getAttribute('position'),
+    count = viewer.kernel.faceBuf.count;
+  if (geo.userData.sphereOf !== attr || geo.userData.sphereCount !== count) {
+    geo.computeBoundingSphere();
+    Object.assign(geo.userData, { sphereOf: attr, sphereCount: count });
+  }
   const hit = raycaster.intersectObject(viewer.kernel.faces, false)[0];
   return hit ? viewer.kernel.faceOfTriangle(hit.faceIndex) : -1;
 }

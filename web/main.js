@@ -11,11 +11,11 @@ import { drawRequest } from './runs.js';
 import { openSource, openUrl } from './sources.js';
 import { viewToControls, updateShareUrl } from './controls.js';
 import './playback.js';
-import { installFaceInfo } from './face-info.js';
+import { installFaceInfo, kernelFaceAt } from './face-info.js';
 import { sampleById } from './samples.js';
 
 // For the browser tests: the view (camera, scene) and the page's state, read-only by convention.
-window.kergenDemo = { viewer, state };
+window.kergenDemo = { viewer, state, kernelFaceAt };
 
 const canvas = viewer.renderer.domElement;
 canvas.setAttribute('role', 'img');

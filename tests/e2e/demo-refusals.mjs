@@ -489,25 +489,56 @@ export async function demoRefusalTests(page, context, base, tmp, h) {
         r.faceSources = src;
       });
     }
-    // Hover the middle of the view: the kernel is there (the dented cube's kernel is central).
-    const box = await page.locator('#viewport canvas').boundingBox();
-    const bar = await page.locator('#playbar').boundingBox();
-    let info = null;
-    for (const [fx, fy] of [
-      [0.5, 0.5],
-      [0.45, 0.45],
-      [0.55, 0.55],
-      [0.5, 0.4],
-    ]) {
-      await page.mouse.move(box.x + fx * box.width, box.y + fy * (bar.y - box.y));
-      await page.waitForTimeout(150);
-      info = await page.evaluate(() => {
-        const el = document.getElementById('face-info');
-        return el.hidden ? null : { text: el.textContent, face: el.dataset.face, source: el.dataset.source };
+    // Hover the centroid of the kernel face that faces the camera most (its screen position from
+    // the page's camera): the raycast must find that face.
+    const target = await page.evaluate(() => {
+      const { state, viewer } = window.kergenDemo;
+      const r = state.result,
+        o = viewer.kernel.offset,
+        cam = viewer.camera;
+      const rect = viewer.renderer.domElement.getBoundingClientRect();
+      const P = (i) => [r.vertices[3 * i] - o.x, r.vertices[3 * i + 1] - o.y, r.vertices[3 * i + 2] - o.z];
+      let best = null;
+      r.faces.forEach((loop, f) => {
+        const pts = Array.from(loop, P);
+        const c = [0, 1, 2].map((k) => pts.reduce((a, p) => a + p[k], 0) / pts.length);
+        const [a, b, d] = pts;
+        const u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+          v = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+        const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        const e = [cam.position.x - c[0], cam.position.y - c[1], cam.position.z - c[2]];
+        const facing = (n[0] * e[0] + n[1] * e[1] + n[2] * e[2]) / Math.hypot(...n) / Math.hypot(...e);
+        if (!best || facing > best.facing) best = { f, c, facing };
       });
-      if (info) break;
-    }
-    assert(info, 'no face info on hover over the kernel');
+      const p = cam.position
+        .clone()
+        .set(...best.c)
+        .project(cam);
+      return { face: best.f, x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
+    });
+    await page.mouse.move(target.x - 3, target.y - 3);
+    await page.mouse.move(target.x, target.y);
+    await page
+      .waitForFunction(() => !document.getElementById('face-info').hidden, null, { timeout: 5000 })
+      .catch(() => {});
+    const info = await page.evaluate(() => {
+      const el = document.getElementById('face-info');
+      return el.hidden ? null : { text: el.textContent, face: el.dataset.face, source: el.dataset.source };
+    });
+    const direct = await page.evaluate(({ x, y }) => {
+      const { viewer, kernelFaceAt } = window.kergenDemo;
+      const g = viewer.kernel.facesGeo;
+      return {
+        face: kernelFaceAt(x, y),
+        sphere: g.boundingSphere?.radius,
+        range: g.drawRange.count,
+        n: g.getAttribute('position').count,
+      };
+    }, target);
+    assert(
+      info,
+      `no face info on hover over the kernel: target ${JSON.stringify(target)}, direct pick ${JSON.stringify(direct)}`,
+    );
     const check = await page.evaluate(({ face, source }) => {
       const { state, viewer } = window.kergenDemo;
       return {
@@ -523,6 +554,7 @@ export async function demoRefusalTests(page, context, base, tmp, h) {
       JSON.stringify({ info, check }),
     );
     assert(check.outline, 'kernel face not outlined');
+    assert(Number(info.face) === target.face, `hovered face ${info.face}, expected ${target.face}`);
     await page.screenshot({ path: path.join(artifacts, 'flow-face-source-hover-1280.png') });
     console.log(`     hover: "${info.text}" (faceSources ${fromPackage ? 'from the package' : 'given by the test'})`);
     await page.mouse.move(1, 1);
