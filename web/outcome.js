@@ -2,6 +2,8 @@
 // the stats table apply, for each outcome (a kernel of each shape, or an error). Kept apart from
 // the page's code so that every state's text is written in one place.
 
+import { messageInWords, kernelInWords } from './alternatives.js';
+
 const fmt = (x, digits = 6) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : String(x));
 const plural = (n, one, many = `${one}s`) => `${n} ${n === 1 ? one : many}`;
 
@@ -38,10 +40,6 @@ const ERROR_HINTS = {
   MULTIPLE_COMPONENTS: 'Load one closed piece at a time.',
 };
 
-// Errors that `repair: true` can remove (T-junctions leave edges open; repeated or cancelling
-// faces make edges non-manifold), and the one `allowOpen: true` accepts.
-export const REPAIRABLE = new Set(['OPEN_MESH', 'NON_MANIFOLD_EDGE']);
-
 // Rows of the stats table (ids row-<name>), in table order.
 export const ROWS = [
   'name',
@@ -63,7 +61,8 @@ export const ROWS = [
 export function describeError(err, { openEdges = null } = {}) {
   const code = err?.code || 'ERROR';
   const title = `${ERROR_TITLES[code] ?? 'Error'} (${code})`;
-  const paragraphs = [sentence(err?.message ?? err)];
+  // The package's message without its option names: the page offers those as buttons.
+  const paragraphs = [sentence(messageInWords(err?.message ?? err))];
   if (ERROR_HINTS[code]) paragraphs.push(ERROR_HINTS[code]);
   if (openEdges)
     paragraphs.push(
@@ -74,9 +73,49 @@ export function describeError(err, { openEdges = null } = {}) {
   return { code, title, paragraphs, rows, status: `${ERROR_TITLES[code] ?? 'Error'}.` };
 }
 
+// An empty kernel with walls at the open edges: the walls may be what empties it (the shape as
+// an open surface can still have a kernel), so the page does not say the shape is not star-shaped.
+// `extra`: { witness (faces), witnessEdges (boundary edges), openSurface (the kernel without walls,
+// when it was tried: { status, volume }) }.
+function emptyWithWalls(extra, rows) {
+  const w = extra.witness ?? 0,
+    e = extra.witnessEdges ?? 0;
+  const paragraphs = [];
+  if (e > 0)
+    paragraphs.push(
+      `The walls at the ${plural(e, 'boundary edge')} and the ${plural(w, 'face')} drawn in magenta have no common point: no point is behind every face and inside every wall.`,
+    );
+  else if (w > 0)
+    paragraphs.push(
+      `The ${plural(w, 'face')} drawn in magenta have no common point behind them: no point is behind every face.`,
+    );
+  else
+    paragraphs.push(
+      'No point is behind every face and inside every wall at the open edges: the walls make the kernel empty.',
+    );
+  if (extra.openEdges > 0)
+    paragraphs.push(
+      `The ${plural(extra.openEdges, 'open edge')}, where the walls stand, ${extra.openEdges === 1 ? 'is' : 'are'} drawn in red.`,
+    );
+  const o = extra.openSurface;
+  if (o && !o.error && o.status !== 'EMPTY')
+    paragraphs.push(
+      `Without the walls (as an open surface) the kernel is ${kernelInWords(o)}: the walls empty it, not the shape.`,
+    );
+  return {
+    outcome: 'empty',
+    status: 'Empty with walls at the open edges.',
+    kind: 'empty',
+    title: 'The walls at the open edges make the kernel empty.',
+    paragraphs,
+    rows: extra.openEdges > 0 ? [...rows, 'open-edges'] : rows,
+  };
+}
+
 /**
  * A finished kernel: { outcome ('star' | 'empty' | 'flat' | 'open'), status, kind, title,
- * paragraphs, rows }. `extra`: { boxFacets (count), openEdges (count), witness (face count) }.
+ * paragraphs, rows }. `extra`: { boxFacets (count), openEdges (count), witness (face count), walls (computed
+ * with walls), witnessEdges, openSurface (see emptyWithWalls) }.
  */
 export function describeResult(result, V, E, F, extra = {}) {
   const s = result.stats ?? {};
@@ -93,6 +132,7 @@ export function describeResult(result, V, E, F, extra = {}) {
         rows: [...head, 'counts', 'volume', 'area', 'ratio', 'kernel-point', ...deepest, ...timing],
       };
     case 'EMPTY': {
+      if (extra.walls) return emptyWithWalls(extra, [...head, ...timing]);
       const w = extra.witness ?? 0;
       const paragraphs =
         w > 0

@@ -27,6 +27,7 @@ import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 import { writeThreeApp, runThreeApp } from './three-app.mjs';
 import { examplesTests } from './examples.mjs';
 import { demoFeatureTests } from './demo-features.mjs';
+import { demoRefusalTests } from './demo-refusals.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '../..');
@@ -34,13 +35,13 @@ const webDist = path.join(repo, 'web/dist');
 const sharedMeshes = path.resolve(repo, '../shared/meshes');
 const artifacts = path.join(repo, 'tests/artifacts');
 const nativeCli = process.env.KERGEN_CLI ?? path.join(repo, 'build/kergen');
-const only = process.env.E2E_ONLY ?? '';
+const only = (process.env.E2E_ONLY ?? '').split('|').filter(Boolean); // "a|b": tests whose name holds a or b
 
 const results = [];
 const skipped = [];
 
 async function test(name, fn) {
-  if (only && !name.includes(only)) return;
+  if (only.length && !only.some((s) => name.includes(s))) return;
   const t = Date.now();
   try {
     await fn();
@@ -64,7 +65,7 @@ const skipTest = (why) => {
 };
 
 function skip(name, why) {
-  if (only && !name.includes(only)) return;
+  if (only.length && !only.some((s) => name.includes(s))) return;
   skipped.push({ name, why });
   console.log(`skip ${name}: ${why}`);
 }
@@ -1222,6 +1223,22 @@ async function main() {
       artifacts,
       sharedMeshes,
       served,
+    });
+    await demoRefusalTests(page, context, base, tmp, {
+      test,
+      skip,
+      skipTest,
+      assert,
+      assertClose,
+      loadSample,
+      loadFile,
+      waitFinished,
+      markPending,
+      jumpToEnd,
+      artifacts,
+      sharedMeshes,
+      served,
+      webDist,
     });
     await themeAndBigFile(page, tmp, served);
     await threeAppTest(context, tmp);
