@@ -4,11 +4,18 @@
 // memory as OFF, OBJ, ASCII STL and binary STL and each of those is parsed, so one generated
 // sphere gives every reader's row.
 //
+// The STL path (--stl): each mesh written as binary STL in memory, then per phase what a user of
+// `kergen file.stl` meets with the default weld (1e-9 of the bounding box diagonal): the reader
+// (which merges equal positions), validate_mesh without weld, with weld 0 and with the default
+// weld (their difference is the weld), compute_kernel with the default weld, and bytes to kernel
+// (reader + compute_kernel). A checksum of repair_mesh's welded mesh (FNV-1a over its positions,
+// indices and warning counts) compares builds.
+//
 // Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), not wall time: on a machine shared
 // with builds, a wall-clock run is preempted for whole time slices (milliseconds), which no median
 // of a few runs removes; CPU time counts only the work done (cache misses included).
 //
-//   input_bench [--runs N] [--formats] FILE...
+//   input_bench [--runs N] [--formats] [--stl] FILE...
 #include <time.h>
 
 #include <charconv>
@@ -110,11 +117,45 @@ void core_row(const std::string& label, const kergen::Mesh& mesh, int runs) {
               fmt(point * per_face, 1).c_str(), fmt(total * per_face, 1).c_str());
 }
 
+uint64_t fnv1a(uint64_t h, const void* data, size_t bytes) {
+  const auto* b = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 0x100000001b3ull;
+  return h;
+}
+
+// The STL path of a mesh (see the header): ms per phase.
+void stl_row(const std::string& label, const kergen::Mesh& mesh, int runs) {
+  const std::string bytes = kergen::write_stl_binary(mesh);
+  kergen::ReadResult read;
+  const double parse = time_median(runs, [&] { read = kergen::read_mesh(bytes, kergen::MeshFormat::Stl, label); });
+  if (!read.ok()) {
+    std::printf("| %s | error: %s |\n", label.c_str(), read.message.c_str());
+    return;
+  }
+  const kergen::MeshView view = read.mesh.view();
+  kergen::Options exact, weld;
+  exact.weld = 0;
+  weld.weld = 1e-9;  // the CLI's default for STL files
+  weld.weld_relative = true;
+  const double none = time_median(runs, [&] { (void)kergen::validate_mesh(view); });
+  const double equal = time_median(runs, [&] { (void)kergen::validate_mesh(view, exact); });
+  const double welded = time_median(runs, [&] { (void)kergen::validate_mesh(view, weld); });
+  const double kernel = time_median(runs, [&] { (void)kergen::compute_kernel(view, weld); });
+  const kergen::RepairedMesh r = kergen::repair_mesh(view, weld);
+  uint64_t h = 0xcbf29ce484222325ull;
+  h = fnv1a(h, r.mesh.positions.data(), r.mesh.positions.size() * sizeof(double));
+  h = fnv1a(h, r.mesh.indices.data(), r.mesh.indices.size() * sizeof(uint32_t));
+  for (const auto& w : r.warnings) h = fnv1a(h, &w.count, sizeof w.count);
+  std::printf("| %s | %zu | %zu | %s | %s | %s | %s | %s | %s | %016llx |\n", label.c_str(), read.mesh.num_faces(),
+              read.mesh.num_vertices(), fmt(parse).c_str(), fmt(none).c_str(), fmt(equal).c_str(), fmt(welded).c_str(),
+              fmt(kernel).c_str(), fmt(parse + kernel).c_str(), static_cast<unsigned long long>(h));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int runs = 5;
-  bool formats = false;
+  bool formats = false, stl = false;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -122,8 +163,10 @@ int main(int argc, char** argv) {
       runs = std::max(1, std::atoi(argv[++i]));
     else if (a == "--formats")
       formats = true;
+    else if (a == "--stl")
+      stl = true;
     else if (a == "-h" || a == "--help") {
-      std::printf("usage: input_bench [--runs N] [--formats] FILE...\n");
+      std::printf("usage: input_bench [--runs N] [--formats] [--stl] FILE...\n");
       return 0;
     } else
       files.push_back(a);
@@ -162,5 +205,11 @@ int main(int argc, char** argv) {
       "\n| mesh | faces | validate ns/face | planes + LP ns/face | find_kernel_point ns/face | compute_kernel ns/face "
       "|\n|---|---:|---:|---:|---:|---:|\n");
   for (const auto& [name, mesh] : meshes) core_row(name, mesh, runs);
+  if (stl) {
+    std::printf(
+        "\n| as binary STL | faces | vertices read | read ms | validate ms | weld 0 ms | weld 1e-9 ms | compute_kernel "
+        "ms | bytes to kernel ms | welded mesh checksum |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    for (const auto& [name, mesh] : meshes) stl_row(name, mesh, runs);
+  }
   return 0;
 }

@@ -1,5 +1,14 @@
-// Welding (see weld.h): a hash grid of cubic cells of the tolerance's size, so that vertices
-// within the tolerance lie in the same or adjacent cells; union-find joins them.
+// Welding (see weld.h). Which pairs are compared is defined by a grid of cubic cells of the
+// tolerance's size ("fine cells"): two vertices are compared iff their fine cells differ by at most
+// one along each axis, and merged iff their distance, computed in double, is within the tolerance;
+// union-find joins them. Looking up the 27 fine cells around every vertex in a hash table cost
+// ~2.6 µs a vertex on a 500k-vertex mesh, so the grid is searched in two levels: coarse cells of
+// 2^shift fine cells each, about as wide as the mean spacing of the vertices, hold the vertices
+// (usually one each); a vertex whose fine cell is inside its coarse cell, not on its boundary,
+// has all 27 fine neighbours in its own coarse cell, and only vertices on a coarse cell's boundary
+// look into the coarse cells next to it. Coarse cells that hold many vertices (a dense cluster)
+// are searched by fine cell, as a single-level grid would, so the work stays bounded by the fine
+// cells' occupancy. The pairs compared and merged are exactly the single-level grid's.
 #include "input/weld.h"
 
 #include <algorithm>
@@ -8,22 +17,16 @@
 #include <cstdint>
 #include <vector>
 
-#include "util/flat_map.h"
+#include "util/compiler_hints.h"
 #include "util/union_find.h"
 
 namespace kergen {
 
 namespace {
 
-struct CellHash {
-  uint64_t operator()(const std::array<int64_t, 3>& c) const {
-    uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (int64_t x : c) h = (h ^ uint64_t(x)) * 0xff51afd7ed558ccdull;
-    return h ^ (h >> 29);
-  }
-};
+using Cell = std::array<int64_t, 3>;
 
-// The cell of a coordinate; exact equality (tolerance 0) uses the coordinates' bits instead.
+// The fine cell of a coordinate; exact equality (tolerance 0) uses the coordinates' bits instead.
 int64_t cell_of(double x, double tolerance) {
   if (tolerance == 0) {
     int64_t bits;
@@ -37,72 +40,287 @@ int64_t cell_of(double x, double tolerance) {
   return int64_t(std::max(-4.0e18, std::min(4.0e18, c)));
 }
 
-// The groups of vertices within `tolerance` of each other (transitively), by union-find.
-void join_close_vertices(const MeshView& mesh, double tolerance, UnionFind& groups) {
-  const size_t n = mesh.num_vertices;
-  // Cells are within +-4e18 + 1, and with tolerance 0 a coordinate's bits with -0 made +0: INT64_MIN
-  // (the bits of -0) is never one.
-  FlatMap<std::array<int64_t, 3>, uint32_t, CellHash> head({INT64_MIN, INT64_MIN, INT64_MIN}, n);
-  std::vector<uint32_t> next(n, UINT32_MAX);
-  auto pos = [&](size_t v) { return mesh.positions + 3 * v; };
-  const double t2 = tolerance * tolerance;
-  for (uint32_t v = 0; v < n; ++v) {
-    const double* p = pos(v);
-    const std::array<int64_t, 3> cell = {cell_of(p[0], tolerance), cell_of(p[1], tolerance), cell_of(p[2], tolerance)};
-    const int reach = tolerance == 0 ? 0 : 1;
-    for (int dx = -reach; dx <= reach; ++dx)
-      for (int dy = -reach; dy <= reach; ++dy)
-        for (int dz = -reach; dz <= reach; ++dz) {
-          const uint32_t* first = head.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
-          if (!first) continue;
-          for (uint32_t w = *first; w != UINT32_MAX; w = next[w]) {
-            const double* q = pos(w);
-            const double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
-            const bool close =
-                tolerance == 0 ? d[0] == 0 && d[1] == 0 && d[2] == 0 : d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= t2;
-            if (close) groups.unite(v, w);
-          }
-        }
-    auto [first, fresh] = head.try_emplace(cell, v);
-    if (!fresh) {
-      next[v] = *first;
-      *first = v;
-    }
-  }
+inline Cell fine_cell(const double* p, double tolerance) {
+  return {cell_of(p[0], tolerance), cell_of(p[1], tolerance), cell_of(p[2], tolerance)};
 }
 
-}  // namespace
+// floor(c / 2^shift), also for negative c.
+int64_t coarse_of(int64_t c, int shift) { return c >= 0 ? c >> shift : ~(~c >> shift); }
 
-WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative) {
-  WeldResult out;
-  const size_t n = mesh.num_vertices;
-  if (relative && n > 0) {
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = mesh.positions[k];
-    for (size_t v = 0; v < n; ++v)
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.positions[3 * v + k]);
-        hi[k] = std::max(hi[k], mesh.positions[3 * v + k]);
+uint64_t cell_hash(const Cell& c) {
+  uint64_t h = uint64_t(c[0]) * 0x9e3779b97f4a7c15ull ^ uint64_t(c[1]) * 0xc2b2ae3d27d4eb4full ^
+               uint64_t(c[2]) * 0x165667b19e3779f9ull;
+  h ^= h >> 32;
+  h *= 0xd6e8feb86659fd93ull;
+  return h ^ (h >> 32);
+}
+
+// Cells numbered 0, 1, 2, ... in the order first inserted (open addressing, linear probing, at
+// most half full). A slot holds 32 bits of the cell's hash and its number, so probing past another
+// cell's slot reads that cell's key only when those bits agree.
+class CellTable {
+ public:
+  static constexpr uint32_t kNone = 0xffffffffu;
+
+  explicit CellTable(size_t expected) {
+    size_t cap = 16;
+    while (cap < 2 * expected + 2) cap <<= 1;
+    slots_.assign(cap, kEmptySlot);
+    mask_ = cap - 1;
+    while ((size_t(1) << (64 - shift_)) < cap) --shift_;
+    keys_.reserve(expected);
+  }
+  void prefetch_slot(uint64_t h) const { prefetch(slots_.data() + home(h)); }
+  uint32_t find(const Cell& c, uint64_t h) const {
+    for (size_t s = home(h);; s = (s + 1) & mask_) {
+      if (slots_[s] == kEmptySlot) return kNone;
+      if (holds(slots_[s], c, h)) return uint32_t(slots_[s]);
+    }
+  }
+  // Called at most `expected` times (the table does not grow).
+  uint32_t find_or_insert(const Cell& c, uint64_t h) {
+    for (size_t s = home(h);; s = (s + 1) & mask_) {
+      if (slots_[s] == kEmptySlot) {
+        slots_[s] = uint64_t(uint32_t(h)) << 32 | keys_.size();
+        keys_.push_back(c);
+        return uint32_t(keys_.size() - 1);
       }
-    const double diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-    tolerance *= diagonal;
+      if (holds(slots_[s], c, h)) return uint32_t(slots_[s]);
+    }
   }
-  if (!(tolerance >= 0) || !std::isfinite(tolerance)) tolerance = 0;
-  out.tolerance = tolerance;
+  size_t size() const { return keys_.size(); }
+  const Cell& key(uint32_t id) const { return keys_[id]; }
+
+ private:
+  static constexpr uint64_t kEmptySlot = ~uint64_t(0);
+  size_t home(uint64_t h) const { return size_t(h >> shift_); }
+  bool holds(uint64_t slot, const Cell& c, uint64_t h) const {
+    if (uint32_t(slot >> 32) != uint32_t(h)) return false;
+    const Cell& k = keys_[uint32_t(slot)];
+    return k[0] == c[0] && k[1] == c[1] && k[2] == c[2];
+  }
+  std::vector<uint64_t> slots_;
+  std::vector<Cell> keys_;
+  size_t mask_ = 0;
+  int shift_ = 64;
+};
+
+// Vertices grouped by cell: each cell's members chained in increasing order (built while the
+// vertices are numbered in order, so no sorting).
+struct Members {
+  std::vector<uint32_t> first, last, count;  // per cell
+  std::vector<uint32_t> next;                // per vertex: the next one in its cell, or kNone
+  explicit Members(size_t n = 0) : next(n, CellTable::kNone) {}
+  // Vertex v (above every vertex added before) joins cell c (c <= the number of cells so far).
+  void add(uint32_t v, uint32_t c) {
+    if (c == count.size()) {
+      first.push_back(v);
+      last.push_back(v);
+      count.push_back(1);
+      return;
+    }
+    next[last[c]] = v;
+    last[c] = v;
+    ++count[c];
+  }
+};
+
+// A coarse cell holding more vertices than this is searched by fine cell.
+constexpr uint32_t kDenseCell = 16;
+
+class CloseVertices {
+ public:
+  CloseVertices(const double* positions, size_t n, double tolerance, int shift, UnionFind& groups)
+      : pts_(positions),
+        n_(n),
+        t_(tolerance),
+        t2_(tolerance * tolerance),
+        reach_(tolerance == 0 ? 0 : 1),
+        shift_(shift),
+        groups_(groups),
+        coarse_(n),
+        coarse_id_(n),
+        border_(n),
+        members_(n) {}
+
+  void run() {
+    assign_coarse_cells();
+    index_dense_cells();
+    for (uint32_t v = 0; v < n_; ++v)
+      if (border_[v] != 0 || members_.count[coarse_id_[v]] > 1) join_with_earlier(v);
+  }
+
+ private:
+  // Each vertex's coarse cell, and on which sides its fine cell touches that cell's boundary
+  // (bit 2k: the low side along axis k, bit 2k + 1: the high side). Hashes are computed a block
+  // ahead and their slots prefetched: on big meshes every lookup misses the caches.
+  void assign_coarse_cells() {
+    constexpr uint32_t kBlock = 32;
+    const uint64_t last = (uint64_t(1) << shift_) - 1;
+    Cell cells[kBlock];
+    uint64_t hashes[kBlock];
+    for (uint32_t first = 0; first < n_; first += kBlock) {
+      const uint32_t count = std::min<uint32_t>(kBlock, uint32_t(n_ - first));
+      for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t v = first + i;
+        const Cell f = fine_cell(pts_ + 3 * size_t(v), t_);
+        uint8_t border = 0;
+        for (int k = 0; k < 3; ++k) {
+          cells[i][k] = coarse_of(f[k], shift_);
+          const uint64_t within = uint64_t(f[k]) & last;  // f[k] - 2^shift cells[i][k]
+          border |= uint8_t((reach_ && within == 0) << (2 * k) | (reach_ && within == last) << (2 * k + 1));
+        }
+        border_[v] = border;
+        hashes[i] = cell_hash(cells[i]);
+        coarse_.prefetch_slot(hashes[i]);
+      }
+      for (uint32_t i = 0; i < count; ++i) {
+        coarse_id_[first + i] = coarse_.find_or_insert(cells[i], hashes[i]);
+        members_.add(first + i, coarse_id_[first + i]);
+      }
+    }
+  }
+
+  // The vertices of dense coarse cells, grouped by fine cell.
+  void index_dense_cells() {
+    std::vector<uint32_t> dense;
+    for (uint32_t c = 0; c < members_.count.size(); ++c)
+      if (members_.count[c] > kDenseCell)
+        for (uint32_t v = members_.first[c]; v != CellTable::kNone; v = members_.next[v]) dense.push_back(v);
+    if (dense.empty()) return;
+    std::sort(dense.begin(), dense.end());
+    fine_ = CellTable(dense.size());
+    fine_members_ = Members(n_);
+    for (uint32_t v : dense) {
+      const Cell f = fine_cell(pts_ + 3 * size_t(v), t_);
+      fine_members_.add(v, fine_.find_or_insert(f, cell_hash(f)));
+    }
+  }
+
+  // v against every earlier vertex in the 27 fine cells around its own.
+  void join_with_earlier(uint32_t v) {
+    const double* p = pts_ + 3 * size_t(v);
+    const Cell f = fine_cell(p, t_);
+    const Cell home = coarse_.key(coarse_id_[v]);
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = border_[v] >> (2 * k) & 1 ? -1 : 0;
+      hi[k] = border_[v] >> (2 * k + 1) & 1 ? 1 : 0;
+    }
+    for (int dx = lo[0]; dx <= hi[0]; ++dx)
+      for (int dy = lo[1]; dy <= hi[1]; ++dy)
+        for (int dz = lo[2]; dz <= hi[2]; ++dz) {
+          const Cell c = {home[0] + dx, home[1] + dy, home[2] + dz};
+          const uint32_t id = dx == 0 && dy == 0 && dz == 0 ? coarse_id_[v] : coarse_.find(c, cell_hash(c));
+          if (id == CellTable::kNone) continue;
+          if (members_.count[id] > kDenseCell)
+            join_in_fine_cells(v, p, f, c);
+          else
+            for (uint32_t w = members_.first[id]; w < v; w = members_.next[w]) join_if_close(v, p, f, w);
+        }
+  }
+
+  // v against the earlier vertices of the fine cells around f that lie in the coarse cell c.
+  void join_in_fine_cells(uint32_t v, const double* p, const Cell& f, const Cell& c) {
+    for (int dx = -reach_; dx <= reach_; ++dx)
+      for (int dy = -reach_; dy <= reach_; ++dy)
+        for (int dz = -reach_; dz <= reach_; ++dz) {
+          const Cell g = {f[0] + dx, f[1] + dy, f[2] + dz};
+          if (coarse_of(g[0], shift_) != c[0] || coarse_of(g[1], shift_) != c[1] || coarse_of(g[2], shift_) != c[2])
+            continue;
+          const uint32_t id = fine_.find(g, cell_hash(g));
+          if (id == CellTable::kNone) continue;
+          for (uint32_t w = fine_members_.first[id]; w < v; w = fine_members_.next[w]) join_if_close(v, p, f, w);
+        }
+  }
+
+  // The single-level grid's test: fine cells adjacent, distance within the tolerance.
+  void join_if_close(uint32_t v, const double* p, const Cell& f, uint32_t w) {
+    const double* q = pts_ + 3 * size_t(w);
+    const Cell g = fine_cell(q, t_);
+    for (int k = 0; k < 3; ++k)
+      if (!(f[k] == g[k] || (reach_ && (f[k] == g[k] + 1 || f[k] + 1 == g[k])))) return;
+    const double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+    const bool close = t_ == 0 ? d[0] == 0 && d[1] == 0 && d[2] == 0 : d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= t2_;
+    if (close) groups_.unite(v, w);
+  }
+
+  const double* pts_;
+  size_t n_;
+  double t_, t2_;
+  int reach_;  // fine cells compared around a vertex's own: 1, or 0 for exact equality
+  int shift_;  // a coarse cell is 2^shift fine cells wide
+  UnionFind& groups_;
+  CellTable coarse_;
+  std::vector<uint32_t> coarse_id_;
+  std::vector<uint8_t> border_;
+  Members members_;    // of the coarse cells
+  CellTable fine_{0};  // the fine cells of dense coarse cells' vertices
+  Members fine_members_;
+};
+
+// The diagonal of the points' bounding box.
+double diagonal_of(const double* pts, size_t n) {
+  if (n == 0) return 0;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = pts[k];
+  for (size_t v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], pts[3 * v + k]);
+      hi[k] = std::max(hi[k], pts[3 * v + k]);
+    }
+  return std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+}
+
+// The coarse cells' width in fine cells, 2^shift: about the mean spacing of n vertices on a
+// surface that spans `diagonal`, so that a coarse cell holds about one vertex and a vertex's fine
+// cell is seldom on its boundary.
+int coarse_shift(double tolerance, double diagonal, size_t n) {
+  if (tolerance == 0 || n == 0) return 0;
+  const double spacing = diagonal / std::sqrt(double(n));
+  int shift = 0;
+  while (shift < 40 && std::ldexp(tolerance, shift + 1) <= spacing) ++shift;
+  return shift;
+}
+
+std::vector<uint32_t> groups_of(const double* pts, size_t n, double tolerance, double diagonal) {
   UnionFind groups(n);
-  join_close_vertices(mesh, tolerance, groups);
-  // Each group becomes its lowest-indexed vertex (union_find.h: the smaller id is the root).
+  CloseVertices(pts, n, tolerance, coarse_shift(tolerance, diagonal, n), groups).run();
+  // (union_find.h: the smaller id is the root, so a group's root is its lowest-indexed vertex.)
   std::vector<uint32_t> root(n);
-  for (uint32_t v = 0; v < n; ++v) {
-    root[v] = groups.find(v);
-    out.merged_vertices += root[v] != v;
-  }
-  out.mesh.positions.assign(mesh.positions, mesh.positions + 3 * n);
+  for (uint32_t v = 0; v < n; ++v) root[v] = groups.find(v);
+  return root;
+}
+
+// The faces with each corner replaced by its group's vertex; equal consecutive corners collapse,
+// and faces left with fewer than three are dropped.
+void renumber_faces(const MeshView& mesh, const std::vector<uint32_t>& root, WeldResult& out) {
   const size_t faces = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
+  if (!mesh.face_sizes) {  // triangles: one stays iff its three corners stay distinct
+    out.mesh.indices.resize(mesh.num_indices);
+    out.source_face.resize(faces);
+    uint32_t* to = out.mesh.indices.data();
+    size_t kept = 0;
+    for (size_t f = 0; f < faces; ++f) {
+      const uint32_t a = root[mesh.indices[3 * f]], b = root[mesh.indices[3 * f + 1]],
+                     c = root[mesh.indices[3 * f + 2]];
+      to[3 * kept] = a;
+      to[3 * kept + 1] = b;
+      to[3 * kept + 2] = c;
+      out.source_face[kept] = uint32_t(f);
+      kept += a != b && b != c && c != a;
+    }
+    out.dropped_faces = faces - kept;
+    out.mesh.indices.resize(3 * kept);
+    out.source_face.resize(kept);
+    return;
+  }
+  out.mesh.indices.reserve(mesh.num_indices);
+  out.source_face.reserve(faces);
   bool all_triangles = true;
   std::vector<uint32_t> loop;
   for (size_t f = 0, at = 0; f < faces; ++f) {
-    const size_t size = mesh.face_sizes ? mesh.face_sizes[f] : 3;
+    const size_t size = mesh.face_sizes[f];
     loop.clear();
     for (size_t i = 0; i < size; ++i) {
       const uint32_t v = root[mesh.indices[at + i]];
@@ -120,7 +338,26 @@ WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative) 
     out.source_face.push_back(uint32_t(f));
   }
   if (all_triangles) out.mesh.face_sizes.clear();
+}
+
+}  // namespace
+
+WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative) {
+  WeldResult out;
+  const size_t n = mesh.num_vertices;
+  const double diagonal = diagonal_of(mesh.positions, n);
+  if (relative && n > 0) tolerance *= diagonal;
+  if (!(tolerance >= 0) || !std::isfinite(tolerance)) tolerance = 0;
+  out.tolerance = tolerance;
+  const std::vector<uint32_t> root = groups_of(mesh.positions, n, tolerance, diagonal);
+  for (uint32_t v = 0; v < n; ++v) out.merged_vertices += root[v] != v;
+  out.mesh.positions.assign(mesh.positions, mesh.positions + 3 * n);
+  renumber_faces(mesh, root, out);
   return out;
+}
+
+std::vector<uint32_t> weld_groups(const double* positions, size_t n, double tolerance) {
+  return groups_of(positions, n, tolerance, diagonal_of(positions, n));
 }
 
 }  // namespace kergen

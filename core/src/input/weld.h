@@ -24,7 +24,14 @@ struct WeldResult {
 // position it keeps (no coordinate is computed, so exactness downstream is unaffected). Equal
 // consecutive corners of a face collapse into one. `mesh` must have finite coordinates and
 // indices in range (checked by the caller). Expected O(n) (a hash grid of cells of the
-// tolerance's size).
+// tolerance's size, searched in two levels: weld.cpp).
 WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative);
+
+// The group of each of the n points (xyz), by the lowest-indexed point it is merged with (itself
+// if none); `tolerance` absolute and finite, 0 for equal positions only. Two points are merged
+// when their distance, computed in double, is at most the tolerance and the cubic cells of the
+// tolerance's size that hold them (floor(x / tolerance) per axis) are equal or adjacent; groups
+// close transitively. What weld_vertices renumbers the faces by.
+std::vector<uint32_t> weld_groups(const double* positions, size_t n, double tolerance);
 
 }  // namespace kergen

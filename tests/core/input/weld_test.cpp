@@ -5,8 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <map>
+#include <numeric>
 #include <random>
+#include <vector>
 
 #include "fixtures.h"
 #include "kergen/kergen.h"
@@ -123,6 +128,133 @@ TEST(Weld, MalformedInputIsReportedAsGiven) {
   EXPECT_EQ(open.error, Error::OpenMesh);
   EXPECT_NE(open.message.find("Options::weld"), std::string::npos) << open.message;
   EXPECT_NE(open.message.find("Options::allow_open"), std::string::npos) << open.message;
+}
+
+// The single-level grid weld_groups is specified by (weld.h), as weld.cpp did it before its
+// two-level search: each point against every earlier point in the 27 cells of the tolerance's
+// size around its own (only its own with tolerance 0, cells keyed by the coordinates' bits),
+// merged when the distance in double is within the tolerance; groups by their lowest index.
+std::vector<uint32_t> reference_groups(const std::vector<double>& p, double t) {
+  const size_t n = p.size() / 3;
+  auto cell_of = [t](double x) -> int64_t {
+    if (t == 0) {
+      const double y = x == 0 ? 0.0 : x;
+      int64_t bits;
+      std::memcpy(&bits, &y, sizeof bits);
+      return bits;
+    }
+    return int64_t(std::max(-4.0e18, std::min(4.0e18, std::floor(x / t))));
+  };
+  std::vector<uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x];
+    return x;
+  };
+  std::map<std::array<int64_t, 3>, std::vector<uint32_t>> cells;
+  const int reach = t == 0 ? 0 : 1;
+  for (uint32_t v = 0; v < n; ++v) {
+    const std::array<int64_t, 3> c = {cell_of(p[3 * v]), cell_of(p[3 * v + 1]), cell_of(p[3 * v + 2])};
+    for (int dx = -reach; dx <= reach; ++dx)
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dz = -reach; dz <= reach; ++dz) {
+          auto it = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == cells.end()) continue;
+          for (uint32_t w : it->second) {
+            const double d[3] = {p[3 * v] - p[3 * w], p[3 * v + 1] - p[3 * w + 1], p[3 * v + 2] - p[3 * w + 2]};
+            const bool close =
+                t == 0 ? d[0] == 0 && d[1] == 0 && d[2] == 0 : d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= t * t;
+            if (!close) continue;
+            const uint32_t a = find(v), b = find(w);
+            parent[std::max(a, b)] = std::min(a, b);
+          }
+        }
+    cells[c].push_back(v);
+  }
+  std::vector<uint32_t> root(n);
+  for (uint32_t v = 0; v < n; ++v) root[v] = find(v);
+  return root;
+}
+
+// Point clouds that probe the grid's edges: clusters whose members lie about the tolerance apart
+// (some exactly the tolerance apart, along an axis), transitive chains of steps just inside it,
+// points on a grid of the tolerance itself (on cell boundaries, around 0 where both levels of the
+// grid have a boundary), dense clusters far from the rest (many points to one coarse cell),
+// coordinates far from 0 (where x / tolerance rounds), and repeated positions with -0 and +0.
+std::vector<double> probe_cloud(std::mt19937_64& rng, double t, int kind) {
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<double> p;
+  auto put = [&](double x, double y, double z) { p.insert(p.end(), {x, y, z}); };
+  const double offset = kind % 3 == 2 ? 1e6 : 0.0;
+  const int clusters = 40 + int(rng() % 80);
+  for (int c = 0; c < clusters; ++c) {
+    // Centres on a grid of 2^-30 (t is a power of two here, or 3 times one): sums with
+    // multiples of t are exact, so ties at exactly t occur.
+    const double cx = offset + std::ldexp(std::round(unit(rng) * 0x1p30), -30);
+    const double cy = std::ldexp(std::round(unit(rng) * 0x1p30), -30),
+                 cz = std::ldexp(std::round(unit(rng) * 0x1p30), -30);
+    switch (rng() % 5) {
+      case 0:  // a cluster about t apart
+        for (int i = 0, m = 2 + int(rng() % 8); i < m; ++i) {
+          const double r = t * (0.5 + unit(rng) * 0.6);
+          put(cx + r * unit(rng), cy + r * unit(rng), cz + r * unit(rng));
+        }
+        break;
+      case 1:  // exactly t apart along an axis
+        put(cx, cy, cz);
+        put(cx + t, cy, cz);
+        put(cx, cy - t, cz);
+        put(cx, cy, cz + 2 * t);
+        break;
+      case 2:  // a chain of steps just inside t
+        for (int i = 0, m = 3 + int(rng() % 30); i < m; ++i) put(cx + 0.99 * t * i, cy + 0.1 * t * i, cz);
+        break;
+      case 3:  // points on the grid of t around 0 and around the centre
+        for (int i = 0; i < 12; ++i) {
+          const double gx = t * double(int(rng() % 5) - 2), gy = t * double(int(rng() % 5) - 2);
+          const double gz = t * double(int(rng() % 5) - 2);
+          put(gx + (rng() % 2 ? 0.0 : -0.0), gy, gz);
+          put(cx + gx, cy + gy, cz + gz);
+        }
+        break;
+      default:  // repeated positions, -0 and +0
+        put(cx, cy, cz);
+        put(cx, cy, cz);
+        put(0.0, cy, cz);
+        put(-0.0, cy, cz);
+        break;
+    }
+  }
+  if (kind % 3 == 1) {  // a dense cluster: hundreds of points within a few t
+    const double cx = unit(rng), cy = unit(rng), cz = unit(rng);
+    for (int i = 0; i < 600; ++i) put(cx + 6 * t * unit(rng), cy + 6 * t * unit(rng), cz + 6 * t * unit(rng));
+  }
+  // Shuffled points, so that groups' lowest indices are anywhere.
+  const size_t n = p.size() / 3;
+  std::vector<size_t> order(n);
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<double> shuffled(p.size());
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) shuffled[3 * i + k] = p[3 * order[i] + k];
+  return shuffled;
+}
+
+TEST(Weld, GroupsAreTheSingleLevelGridsOnProbeClouds) {
+  std::mt19937_64 rng(33);
+  size_t merged = 0, points = 0;
+  for (int round = 0; round < 300; ++round) {
+    // (Tolerances from about the clouds' spacing, where the grid has one level, down to 2^-27.)
+    const double t = round % 4 == 3 ? 0.0 : std::ldexp(round % 2 ? 3.0 : 1.0, -4 - int(rng() % 24));
+    const std::vector<double> p = probe_cloud(rng, t, round);
+    const std::vector<uint32_t> expected = reference_groups(p, t);
+    ASSERT_EQ(kergen::weld_groups(p.data(), p.size() / 3, t), expected) << "round " << round << ", t " << t;
+    for (uint32_t v = 0; v < expected.size(); ++v) merged += expected[v] != v;
+    points += expected.size();
+  }
+  // The clouds do merge (and do not merge everything).
+  EXPECT_GT(merged, points / 10);
+  EXPECT_LT(merged, points - points / 10);
 }
 
 }  // namespace
