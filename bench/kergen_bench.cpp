@@ -12,6 +12,8 @@
 //     --epick-max-faces N     skip the Epick baseline above N input faces (default: no limit)
 //     --qhull-max-faces N     skip the Qhull baseline above N input faces (default: no limit)
 //     --baseline-budget-ms T  stop repeating a baseline once one run took longer than T (default 2000)
+//     --no-cgal62             skip CGAL 6.2's PMP::kernel (built only with -DKERGEN_CGAL62_DIR, see README)
+//     --cgal62-timeout-s T    stop a CGAL 6.2 measurement after T seconds (default 60)
 //     --meshes DIR            shared mesh folder for the default list (default: the build's KERGEN_SHARED_MESHES)
 //     --family DIR            also run every mesh file of DIR and print one summary row for them
 //                             (ratio geomean, minimum, how many are slower than each baseline)
@@ -30,6 +32,8 @@
 #include <CGAL/convex_hull_3.h>
 #include <CGAL/version.h>
 #include <benchmark/benchmark.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -47,6 +51,7 @@
 #include <vector>
 
 #include "bench_util.h"
+#include "fixtures.h"  // tests/core: the sphere generators of the dense rows
 #include "kergen/io.h"
 #include "kergen/kergen.h"
 #include "streaming_rows.h"
@@ -68,7 +73,8 @@ using kergen_bench::now_ms;
 
 struct Args {
   int runs = 5;
-  bool json = false, quick = false, epeck = true, epick = true, qhull = true, streaming = false;
+  bool json = false, quick = false, epeck = true, epick = true, qhull = true, cgal62 = true, streaming = false;
+  int cgal62_timeout_s = 60;
   size_t epeck_max_faces = std::numeric_limits<size_t>::max();
   size_t epick_max_faces = std::numeric_limits<size_t>::max();
   size_t qhull_max_faces = std::numeric_limits<size_t>::max();
@@ -118,7 +124,7 @@ struct Row {
   double volume = 0;
   double ours_ms = 0;
   kergen::Stats stats;
-  Baseline epick, epeck, qhull;
+  Baseline epick, epeck, qhull, cgal62;
   bool star = false;
   std::string reference;  // non-star: the star mesh our time is compared with
   double reference_ms = 0;
@@ -188,13 +194,98 @@ Baseline run_baseline(const kergen::Mesh& m, bool flip, const std::array<double,
   return b;
 }
 
+// The dense rows of the default list: generated spheres whose kernel is (nearly) the whole shape,
+// so the kernel has about as many vertices as the input has faces (or more: the two float
+// triangles of a UV quad are not exactly coplanar, and the kernel keeps both). A path of this
+// form names one (see generated_mesh).
+constexpr const char* kGeneratedPrefix = "generated:";
+const char* const kDenseRows[] = {"generated:uv sphere 40k", "generated:uv sphere 200k",
+                                  "generated:near-convex bumpy sphere 40k"};
+// UV spheres 200 x 100 (39,600 triangles) and 400 x 250 (199,200); the bumpy sphere of the
+// streaming rows (amplitude 0.01, 200 x 101: 40,000 triangles).
+bool generated_mesh(const std::string& path, kergen::Mesh& mesh) {
+  if (path == kDenseRows[0])
+    mesh = kergen_test::uv_sphere(200, 100, 0);
+  else if (path == kDenseRows[1])
+    mesh = kergen_test::uv_sphere(400, 250, 0);
+  else if (path == kDenseRows[2])
+    mesh = kergen_test::bumpy_sphere(200, 101, 0.01);
+  else
+    return false;
+  return true;
+}
+
+// CGAL 6.2's Polygon_mesh_processing::kernel, run by the cgal62_kernel program (compiled against
+// CGAL 6.2's headers, which must not meet the system CGAL's in this program) on the mesh file, or
+// on a temporary OFF copy of a generated mesh; stopped after --cgal62-timeout-s.
+Baseline run_cgal62(const std::string& path, const kergen::Mesh& mesh, bool flip, const Args& args) {
+  Baseline b;
+#ifndef KERGEN_CGAL62_BIN
+  (void)path, (void)mesh, (void)flip, (void)args;
+  b.skipped = "not built (bench/get-cgal62.sh, then cmake -DKERGEN_CGAL62_DIR=...)";
+  return b;
+#else
+  std::string file = path, temp;
+  if (path.rfind(kGeneratedPrefix, 0) == 0) {
+    temp = (fs::temp_directory_path() / ("kergen_bench_" + std::to_string(::getpid()) + ".off")).string();
+    std::ofstream(temp) << kergen::write_off(mesh);  // (shortest round-trip digits: the same doubles)
+    file = temp;
+  }
+  const std::string cmd = "timeout " + std::to_string(args.cgal62_timeout_s) + " '" KERGEN_CGAL62_BIN "' '" + file +
+                          "' " + std::to_string(args.runs) + " " + std::to_string(args.baseline_budget_ms) + " " +
+                          (flip ? "1" : "0") + " 2>/dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  char line[256] = {0};
+  const bool got = pipe && std::fgets(line, sizeof line, pipe);
+  const int status = pipe ? pclose(pipe) : -1;
+  if (!temp.empty()) fs::remove(temp);
+  double ms = 0;
+  int runs = 0;
+  size_t vertices = 0, faces = 0;
+  if (got && std::sscanf(line, "ms %lf runs %d vertices %zu faces %zu", &ms, &runs, &vertices, &faces) == 4) {
+    b.ran = true;
+    b.ms = ms;
+    b.runs = runs;
+    b.raw_vertices = vertices;
+  } else if (status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 124) {
+    b.skipped = "> " + std::to_string(args.cgal62_timeout_s) + " s (stopped)";
+  } else {
+    b.skipped = "failed";
+  }
+  return b;
+#endif
+}
+
+// "CGAL 6.2.1 PMP::kernel" from the helper, or a note that it was not built.
+std::string cgal62_version() {
+#ifdef KERGEN_CGAL62_BIN
+  FILE* pipe = popen("'" KERGEN_CGAL62_BIN "' --version", "r");
+  char line[64] = {0};
+  const bool got = pipe && std::fgets(line, sizeof line, pipe);
+  if (pipe) pclose(pipe);
+  std::string v = got ? line : "?";
+  while (!v.empty() && (v.back() == '\n' || v.back() == ' ')) v.pop_back();
+  return "CGAL " + v + " PMP::kernel";
+#else
+  return "CGAL 6.2 column not built";
+#endif
+}
+
 Row bench_mesh(const std::string& path, const std::string& label, const Args& args) {
   Row row;
   row.mesh = label;
-  kergen::ReadResult rr = kergen::read_mesh_file(path);
-  if (!rr.ok()) {
-    row.error = rr.message;
-    return row;
+  kergen::ReadResult rr;
+  if (path.rfind(kGeneratedPrefix, 0) == 0) {
+    if (!generated_mesh(path, rr.mesh)) {
+      row.error = "unknown generated mesh " + path;
+      return row;
+    }
+  } else {
+    rr = kergen::read_mesh_file(path);
+    if (!rr.ok()) {
+      row.error = rr.message;
+      return row;
+    }
   }
   row.faces = rr.mesh.num_faces();
   const kergen::MeshView view = rr.mesh.view();
@@ -261,6 +352,8 @@ Row bench_mesh(const std::string& path, const std::string& label, const Args& ar
            [&] { return run_baseline<Epeck>(rr.mesh, flip, c, args); });
   baseline(row.qhull, args.qhull, args.qhull_max_faces, "qhull",
            [&] { return kergen_bench::run_qhull(rr.mesh, flip, c, k.volume, args.runs, args.baseline_budget_ms); });
+  baseline(row.cgal62, args.cgal62, std::numeric_limits<size_t>::max(), "cgal62",
+           [&] { return run_cgal62(path, rr.mesh, flip, args); });
   return row;
 }
 
@@ -280,12 +373,18 @@ std::vector<std::pair<std::string, std::string>> default_list(const Args& args) 
     for (int i = 1; i <= 6; ++i) add(std::string("refinements/") + s + std::to_string(i) + ".off");
   for (const char* d : {"tet10", "tet20", "tet30", "voro"})
     for (const char* i : {"0", "500"}) add(std::string("polyhedra/") + d + "/" + i + ".off");
+  for (const char* name : {"bot_eye", "plus", "button", "rt4_arm"}) add(std::string("thingi/") + name + ".off");
+  for (const char* g : kDenseRows) list.emplace_back(g, std::string(g).substr(std::strlen(kGeneratedPrefix)));
   return list;
 }
+
+// Our time per kernel vertex in microseconds (the cost the dense rows are about).
+std::string per_vertex_cell(const Row& r) { return r.V ? fmt(1000 * r.ours_ms / double(r.V), 2) : "-"; }
 
 std::string baseline_cell(const Baseline& b) {
   if (b.ran) return fmt(b.ms);
   if (b.skipped.rfind("n/a", 0) == 0) return "n/a";
+  if (b.skipped.rfind("> ", 0) == 0) return b.skipped.substr(0, b.skipped.find(" s") + 2);  // "> 60 s"
   return "skip";
 }
 std::string ratio_cell(const Baseline& b, double ours) {
@@ -354,8 +453,10 @@ struct BaselineInfo {
   const char* json_key;  // JSON field
   Baseline Row::*member;
 };
-const std::array<BaselineInfo, 3> kBaselines{
-    {{"Epick", "cgal_epick", &Row::epick}, {"Epeck", "cgal_epeck", &Row::epeck}, {"Qhull", "qhull", &Row::qhull}}};
+const std::array<BaselineInfo, 4> kBaselines{{{"Epick", "cgal_epick", &Row::epick},
+                                              {"Epeck", "cgal_epeck", &Row::epeck},
+                                              {"Qhull", "qhull", &Row::qhull},
+                                              {"CGAL 6.2", "cgal62_pmp_kernel", &Row::cgal62}}};
 constexpr size_t kQhullIndex = 2;  // kBaselines[kQhullIndex] is Qhull
 using PerBaseline = std::array<bool, kBaselines.size()>;
 
@@ -431,7 +532,8 @@ struct FamilySummary {
 const char* const kUsage =
     "usage: kergen_bench [--runs N] [--json] [--quick] [--no-epeck] [--no-epick] [--no-qhull]\n"
     "                    [--epeck-max-faces N] [--epick-max-faces N] [--qhull-max-faces N]\n"
-    "                    [--baseline-budget-ms T] [--meshes DIR] [--family DIR]... [--families]\n"
+    "                    [--baseline-budget-ms T] [--no-cgal62] [--cgal62-timeout-s T]\n"
+    "                    [--meshes DIR] [--family DIR]... [--families]\n"
     "                    [--streaming [--streaming-budget-ms T] [--streaming-cap-ms T]] [mesh files...]\n";
 
 // Exits with 2 on a usage error. `families_default`: --families was given.
@@ -459,6 +561,10 @@ Args parse_args(int argc, char** argv, bool& families_default) {
       args.epick = false;
     else if (a == "--no-qhull")
       args.qhull = false;
+    else if (a == "--no-cgal62")
+      args.cgal62 = false;
+    else if (a == "--cgal62-timeout-s")
+      args.cgal62_timeout_s = std::max(1, std::atoi(next().c_str()));
     else if (a == "--epeck-max-faces")
       args.epeck_max_faces = std::strtoull(next().c_str(), nullptr, 10);
     else if (a == "--epick-max-faces")
@@ -559,9 +665,9 @@ void print_json(const std::vector<Row>& rows, const std::vector<FamilySummary>& 
     os << ",\"faces\":" << r.faces << ",\"distinct_planes\":" << r.planes << ",\"culled_faces\":" << r.culled
        << ",\"merged_planes\":" << s.distinct_planes << ",\"active_planes\":" << s.active_planes << ",\"type\":\""
        << r.type << "\",\"V\":" << r.V << ",\"E\":" << r.E << ",\"F\":" << r.F << ",\"volume\":" << r.volume
-       << ",\"ours_ms\":" << r.ours_ms << ",\"phases_ms\":{\"validate\":" << s.ms_validate
-       << ",\"planes\":" << s.ms_planes << ",\"lp\":" << s.ms_lp << ",\"trace\":" << s.ms_trace
-       << ",\"assemble\":" << s.ms_assemble << ",\"total\":" << s.ms_total << "}"
+       << ",\"ours_ms\":" << r.ours_ms << ",\"us_per_kernel_vertex\":" << (r.V ? 1000 * r.ours_ms / double(r.V) : 0)
+       << ",\"phases_ms\":{\"validate\":" << s.ms_validate << ",\"planes\":" << s.ms_planes << ",\"lp\":" << s.ms_lp
+       << ",\"trace\":" << s.ms_trace << ",\"assemble\":" << s.ms_assemble << ",\"total\":" << s.ms_total << "}"
        << ",\"traced_lines\":" << s.traced_lines << ",\"exact_fallbacks\":" << s.exact_fallbacks;
     for (const BaselineInfo& b : kBaselines)
       os << ",\"" << b.json_key << "\":" << json_baseline(r.*b.member, r.ours_ms);
@@ -593,14 +699,15 @@ std::string row_note(const Row& r) {
 // The mesh table, then the geometric mean of each ratio over the rows that have it.
 void print_row_table(const std::vector<Row>& rows) {
   std::printf(
-      "| mesh | faces | planes | culled | kernel | V | E | F | ours | Epick | Epeck | Qhull | Epick/ours | "
-      "Epeck/ours | Qhull/ours | validate | planes | lp | trace | assemble | note |\n");
+      "| mesh | faces | planes | culled | kernel | V | E | F | ours | µs/V | Epick | Epeck | Qhull | CGAL 6.2 | "
+      "Epick/ours | Epeck/ours | Qhull/ours | CGAL 6.2/ours | validate | planes | lp | trace | assemble | note |\n");
   std::printf(
-      "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+      "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+      "---:|---|\n");
   std::array<RatioStats, kBaselines.size()> ratios;
   for (const Row& r : rows) {
     if (!r.error.empty()) {
-      std::printf("| %s | %zu | | | ERROR | | | | %s | | | | | | | | | | | | %s |\n", r.mesh.c_str(), r.faces,
+      std::printf("| %s | %zu | | | ERROR | | | | %s | | | | | | | | | | | | | | | %s |\n", r.mesh.c_str(), r.faces,
                   r.ours_ms > 0 ? fmt(r.ours_ms).c_str() : "", r.error.c_str());
       continue;
     }
@@ -612,10 +719,11 @@ void print_row_table(const std::vector<Row>& rows) {
       ratio_cells += ratio_cell(base, r.ours_ms) + " | ";
       ratios[b].add(base, r.ours_ms, r.mesh);
     }
-    std::printf("| %s | %zu | %zu | %zu | %s | %zu | %zu | %zu | %s | %s%s%s | %s | %s | %s | %s | %s |\n",
+    std::printf("| %s | %zu | %zu | %zu | %s | %zu | %zu | %zu | %s | %s | %s%s%s | %s | %s | %s | %s | %s |\n",
                 r.mesh.c_str(), r.faces, r.planes, r.culled, r.type.c_str(), r.V, r.E, r.F, fmt(r.ours_ms).c_str(),
-                times.c_str(), ratio_cells.c_str(), fmt(s.ms_validate).c_str(), fmt(s.ms_planes).c_str(),
-                fmt(s.ms_lp).c_str(), fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(), row_note(r).c_str());
+                per_vertex_cell(r).c_str(), times.c_str(), ratio_cells.c_str(), fmt(s.ms_validate).c_str(),
+                fmt(s.ms_planes).c_str(), fmt(s.ms_lp).c_str(), fmt(s.ms_trace).c_str(), fmt(s.ms_assemble).c_str(),
+                row_note(r).c_str());
   }
   std::string summary;
   for (size_t b = 0; b < kBaselines.size(); ++b) {
@@ -631,9 +739,10 @@ void print_row_table(const std::vector<Row>& rows) {
 void print_family_table(const std::vector<FamilySummary>& families, bool after_rows) {
   std::printf(
       "%s| family | meshes | errors | kernel types | ours: median ms | Epick/ours: geomean | min | slower | "
-      "Epeck/ours: geomean | min | slower | Qhull/ours: geomean | min | slower |\n",
+      "Epeck/ours: geomean | min | slower | Qhull/ours: geomean | min | slower | CGAL 6.2/ours: geomean | min | "
+      "slower |\n",
       after_rows ? "\n" : "");
-  std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const FamilySummary& f : families) std::printf("%s\n", f.table_row().c_str());
   bool any = false;
   for (const FamilySummary& f : families)
@@ -679,10 +788,10 @@ int main(int argc, char** argv) {
   const std::string load_at_start = loadavg_string();
   if (!args.json) {
     std::printf(
-        "# kergen_bench | %s | CGAL %s | %s | %s, %u threads, load average %s at start | median of %d run(s) | "
+        "# kergen_bench | %s | CGAL %s | %s | %s | %s, %u threads, load average %s at start | median of %d run(s) | "
         "times in ms, end to end (parse excluded)\n",
-        compiler.c_str(), CGAL_VERSION_STR, kergen_bench::qhull_version().c_str(), cpu_string().c_str(),
-        std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs);
+        compiler.c_str(), CGAL_VERSION_STR, kergen_bench::qhull_version().c_str(), cgal62_version().c_str(),
+        cpu_string().c_str(), std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs);
     std::fflush(stdout);
   }
   if (args.streaming) {
