@@ -33,26 +33,6 @@ kergen::Options walls() {
   return o;
 }
 
-// A flat square frustum, open at the top: the bottom [-3, 3]^2 at z = 0 (face 0, two triangles:
-// faces 0 and 1), the rim [-2, 2]^2 at z = 1. Its faces' half-spaces hold the pyramid they lean
-// into; the walls at the rim (perpendicular to the sides, leaning outward) hold only points below
-// z = x - 1 and z = -x - 1 (so z <= -1) and the like in y: nothing above the bottom.
-Mesh open_frustum() {
-  Mesh m;
-  for (double z : {0.0, 1.0}) {
-    const double r = z == 0 ? 3 : 2;
-    for (const auto& [x, y] : {std::pair{-r, -r}, {r, -r}, {r, r}, {-r, r}}) kergen_test::add_point(m, x, y, z);
-  }
-  kergen_test::add_face(m, {0, 2, 1});  // bottom, seen from below
-  kergen_test::add_face(m, {0, 3, 2});
-  for (uint32_t i = 0; i < 4; ++i) {  // sides: bottom edge i -> i+1, rim above it
-    const uint32_t j = (i + 1) % 4;
-    kergen_test::add_face(m, {i, j, 4 + j});
-    kergen_test::add_face(m, {i, 4 + j, 4 + i});
-  }
-  return m;
-}
-
 // The bumpy sphere (fixtures.h) without faces first .. first + 3: an open ball. Its kernel is a
 // small region near the centre, which the walls at the hole, leaning with the bumps, may cut off.
 Mesh open_bumpy_ball(size_t first) {
@@ -155,7 +135,7 @@ size_t check_wall_witness(const Mesh& m, const kergen::Kernel& k, const std::str
 }
 
 TEST(WallWitness, OpenFrustumNeedsTheBottomAndWalls) {
-  const Mesh m = open_frustum();
+  const Mesh m = kergen_test::open_frustum();
   kergen::Options clip;
   clip.allow_open = true;
   const kergen::Kernel clipped = kergen::compute_kernel(m.view(), clip);
