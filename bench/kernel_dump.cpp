@@ -7,7 +7,10 @@
 // Per file: read_mesh_file, then compute_kernel (default options; STL welded by default as the
 // CLI does), find_kernel_point, validate_mesh and repair_mesh (repair = true). --from-first also
 // runs compute_kernel with Options::from at the first input vertex (the distance-ordered trace).
+// (Fields added later print on lines of their own, face_sources and witness_boundary_edges*, so
+// that a dump without them compares with an older build's.)
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -31,6 +34,12 @@ void print_ids(FILE* out, const char* name, const std::vector<uint32_t>& v) {
   std::fputc('\n', out);
 }
 
+void print_ints(FILE* out, const char* name, const std::vector<int32_t>& v) {
+  std::fprintf(out, "%s %zu:", name, v.size());
+  for (int32_t x : v) std::fprintf(out, " %d", x);
+  std::fputc('\n', out);
+}
+
 void print_warnings(FILE* out, const std::vector<kergen::Warning>& warnings) {
   for (const auto& w : warnings)
     std::fprintf(out, "warning %s %zu %s\n", kergen::warning_kind_name(w.kind), w.count, w.message.c_str());
@@ -44,8 +53,10 @@ void dump_kernel(FILE* out, const char* label, const kergen::Kernel& k) {
   print_ids(out, "face_indices", k.face_indices);
   print_ids(out, "face_sizes", k.face_sizes);
   print_ids(out, "triangles", k.triangles);
+  print_ints(out, "face_sources", k.face_sources);
   std::fprintf(out, "volume %a area %a shape_volume %a ratio %a\n", k.volume, k.area, k.shape_volume, k.volume_ratio);
   print_ids(out, "witness", k.witness_faces);
+  print_ids(out, "witness_boundary_edges", k.witness_boundary_edges);
   std::fprintf(out, "kernel_point %d %a %a %a deepest %d %a %a %a r %a\n", int(k.has_kernel_point), k.kernel_point[0],
                k.kernel_point[1], k.kernel_point[2], int(k.has_deepest_point), k.deepest_point[0], k.deepest_point[1],
                k.deepest_point[2], k.inscribed_radius);
@@ -76,6 +87,7 @@ void dump_file(FILE* out, const std::string& path, bool from_first) {
   std::fprintf(out, "point %s star=%d %a %a %a msg=%s\n", kergen::error_name(p.error), int(p.star_shaped), p.point[0],
                p.point[1], p.point[2], p.message.c_str());
   print_ids(out, "point_witness", p.witness_faces);
+  print_ids(out, "witness_boundary_edges_of_point", p.witness_boundary_edges);
   print_warnings(out, p.warnings);
   kergen::Validation v = kergen::validate_mesh(view, options);
   std::fprintf(out, "validate %s volume %a msg=%s\n", kergen::error_name(v.error), v.volume, v.message.c_str());

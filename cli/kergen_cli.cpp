@@ -316,9 +316,14 @@ std::string json_line(const MeshOutcome& m) {
   s += ",\"kernel_point\":" + json_point(computed && k.has_kernel_point, k.kernel_point);
   s += ",\"deepest_point\":" + json_point(computed && k.has_deepest_point, k.deepest_point);
   s += ",\"inscribed_radius\":" + (computed && k.has_deepest_point ? json_number(k.inscribed_radius) : "null");
-  s += ",\"witness_faces\":[";
-  for (size_t i = 0; i < k.witness_faces.size(); ++i) s += (i ? "," : "") + std::to_string(k.witness_faces[i]);
-  s += "]";
+  auto json_array = [&](const char* name, const auto& values) {
+    s += ",\"" + std::string(name) + "\":[";
+    for (size_t i = 0; i < values.size(); ++i) s += (i ? "," : "") + std::to_string(values[i]);
+    s += "]";
+  };
+  json_array("face_sources", k.face_sources);
+  json_array("witness_faces", k.witness_faces);
+  json_array("witness_boundary_edges", k.witness_boundary_edges);
   s += ",\"warnings\":[";
   for (size_t i = 0; i < k.warnings.size(); ++i) {
     const kergen::Warning& w = k.warnings[i];
@@ -373,10 +378,18 @@ void append_human(std::string& out, const MeshOutcome& m) {
   appendf(out, "  area        %.10g\n", k.area);
   if (k.has_kernel_point)
     appendf(out, "  point       %.10g %.10g %.10g\n", k.kernel_point[0], k.kernel_point[1], k.kernel_point[2]);
+  const bool walls = !k.witness_boundary_edges.empty();
   if (!k.witness_faces.empty()) {
     appendf(out, "  witness     faces");
     for (uint32_t f : k.witness_faces) appendf(out, " %u", f);
-    appendf(out, " (no point sees all of them from the inside)\n");
+    appendf(out, walls ? " (no point sees all of them from the inside and lies inside the walls below)\n"
+                       : " (no point sees all of them from the inside)\n");
+  }
+  if (walls) {
+    appendf(out, "  witness     walls at boundary edges");
+    for (size_t i = 0; i + 1 < k.witness_boundary_edges.size(); i += 2)
+      appendf(out, " %u->%u", k.witness_boundary_edges[i], k.witness_boundary_edges[i + 1]);
+    appendf(out, k.witness_faces.empty() ? " (no point lies inside all of them)\n" : "\n");
   }
   if (k.has_deepest_point)
     appendf(out, "  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],

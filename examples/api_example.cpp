@@ -35,6 +35,11 @@ int main() {
   std::printf("%s: %zu vertices, %zu edges (%d streamed), %zu faces, volume %g of %g\n",
               kergen::kernel_type_name(k.type), k.num_vertices(), k.num_edges(), edges_seen, k.num_faces(), k.volume,
               k.shape_volume);
+  // What bounds it: the input face each kernel face lies on (the bottom 0, the top 1, the sides
+  // y = 0 and x = 0, faces 2 and 7, and the L's inner sides y = 1 and x = 1, faces 4 and 5).
+  std::printf("on input faces");
+  for (int32_t source : k.face_sources) std::printf(" %d", source);
+  std::printf("\n");
 
   // Emptiness test only (one LP), and the kernel written as a mesh file.
   kergen::KernelPoint p = kergen::find_kernel_point(mesh.view());

@@ -6,11 +6,11 @@
 //                message, and never Error::Internal (that is a bug, not a verdict on the input).
 //   error == Ok: array sizes consistent (xyz triples, edge pairs, face loops summing to the index
 //                count, triangles = sum(size - 2)), every id in range, every coordinate finite,
-//                per-type shape (Empty: nothing but its witness, 0 or 2 to 4 faces, increasing, in range;
-//                others: no witness; Point: 1 vertex; Segment: 2 vertices, 1 edge;
-//                Polyhedron complete: closed, V - E + F = 2, positive volume not above the shape's),
-//                kernel vertices (and the kernel point) inside every input face's half-space up to
-//                output rounding, and (closed input) inside the input's bounding box.
+//                per-type shape (Empty: nothing but its witness, 0 or 2 to 4 faces and walls, faces
+//                increasing, in range; others: no witness; one face source per face, in range; Point: 1 vertex;
+//                Segment: 2 vertices, 1 edge; Polyhedron complete: closed, V - E + F = 2, positive volume not above the
+//                shape's), kernel vertices (and the kernel point) inside every input face's half-space up to output
+//                rounding, and (closed input) inside the input's bounding box.
 #pragma once
 
 #include <algorithm>
@@ -161,11 +161,21 @@ inline void check_kernel(const kergen::MeshView& mesh, const kergen::Kernel& k, 
     for (double c : k.kernel_point) KFUZZ_CHECK(std::isfinite(c), type + ": non-finite kernel point");
   const size_t input_faces = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
   KFUZZ_CHECK(k.witness_faces.empty() || k.type == KernelType::Empty, type + ": a witness of a non-empty kernel");
-  KFUZZ_CHECK(k.witness_faces.size() != 1 && k.witness_faces.size() <= 4,
-              type + ": " + std::to_string(k.witness_faces.size()) + " witness faces");
+  const size_t walls = k.witness_boundary_edges.size() / 2, witness = k.witness_faces.size() + walls;
+  KFUZZ_CHECK(witness != 1 && witness <= 4, type + ": " + std::to_string(witness) + " witness faces and walls");
   for (size_t i = 0; i < k.witness_faces.size(); ++i)
     KFUZZ_CHECK(k.witness_faces[i] < input_faces && (i == 0 || k.witness_faces[i - 1] < k.witness_faces[i]),
                 type + ": witness faces out of range or not increasing");
+  KFUZZ_CHECK(k.witness_boundary_edges.size() % 2 == 0 && (walls == 0 || k.type == KernelType::Empty),
+              type + ": witness boundary edges are not pairs of an empty kernel's witness");
+  for (uint32_t v : k.witness_boundary_edges)
+    KFUZZ_CHECK(v < mesh.num_vertices, type + ": witness boundary edge vertex out of range");
+  // One face source per face: an input face, or a mark of the box (Unbounded only) or of a wall.
+  KFUZZ_CHECK(k.face_sources.size() == F, type + ": not one face source per face");
+  for (int32_t s : k.face_sources)
+    KFUZZ_CHECK((s >= 0 && size_t(s) < input_faces) || s == kergen::kFaceSourceWall ||
+                    (s == kergen::kFaceSourceBox && k.type == KernelType::Unbounded),
+                type + ": face source " + std::to_string(s) + " out of range");
   // Volumes are plain doubles: at extreme scales they may underflow to 0 or overflow to inf.
   if (!allow_open) KFUZZ_CHECK(!(k.shape_volume < 0), "negative shape volume " + std::to_string(k.shape_volume));
 

@@ -28,7 +28,7 @@ const mode = process.argv[2];
 if (mode === 'restore') {
   restore();
 } else if (mode === 'swap') {
-  for (const f of ['dist/kergen.mjs', 'dist/kergen.wasm']) {
+  for (const f of ['dist/kergen.mjs', 'dist/kergen.wasm', 'dist/constants.js']) {
     if (!fs.existsSync(path.join(root, f))) {
       console.error(`pack: ${f} is missing: run npm run build:wasm first`);
       process.exit(1);

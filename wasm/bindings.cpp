@@ -63,14 +63,15 @@ enum Option : uint32_t {
 };
 
 // Result block: u32 head[kHeadWords], f64 scalars[kScalars], f64 warning counts[head[numWarnings]],
-// f64 vertices, u32 edges, face indices, face sizes, triangles, witness faces, u8 bytes (writeMesh's file), then
+// f64 vertices, u32 edges, face indices, face sizes, triangles, witness faces, i32 face sources,
+// u32 witness boundary edges, u8 bytes (writeMesh's file), then
 // the text: NUL-terminated UTF-8 strings: name (kernel status, "" for findPoint, or the error
 // code), message ("" unless error), then kind and message of each warning.
 // clang-format off
 #define KERGEN_HEAD_WORDS(X) \
   X(ok) X(complete) X(hasKernelPoint) X(hasDeepestPoint) X(starShaped) X(numWarnings) X(textBytes) \
   X(numVertexValues) X(numEdgeValues) X(numFaceIndices) X(numFaces) X(numTriangleValues) \
-  X(numWitnessFaces) X(numBytes)
+  X(numWitnessFaces) X(numFaceSources) X(numWitnessBoundaryEdgeValues) X(numBytes)
 // clang-format on
 enum Head : uint32_t {
 #define KERGEN_ENUM(name) kHead_##name,
@@ -131,6 +132,8 @@ struct Out {
   const std::vector<uint32_t>* face_sizes = nullptr;
   const std::vector<uint32_t>* triangles = nullptr;
   const std::vector<uint32_t>* witness_faces = nullptr;
+  const std::vector<int32_t>* face_sources = nullptr;
+  const std::vector<uint32_t>* witness_boundary_edges = nullptr;
   const std::string* bytes = nullptr;
 
   void set_mesh(const kergen::Mesh& m) {
@@ -145,6 +148,8 @@ struct Out {
     face_sizes = &k.face_sizes;
     triangles = &k.triangles;
     witness_faces = &k.witness_faces;
+    face_sources = &k.face_sources;
+    witness_boundary_edges = &k.witness_boundary_edges;
   }
 };
 
@@ -159,6 +164,7 @@ uintptr_t pack(Out& o) {
   static const std::vector<kergen::Warning> kNone;
   static const std::vector<double> kNoValues;
   static const std::vector<uint32_t> kNoIndices;
+  static const std::vector<int32_t> kNoSources;
   static const std::string kNoBytes;
   const std::vector<kergen::Warning>& ws = o.warnings ? *o.warnings : kNone;
   const std::vector<double>& vertices = o.vertices ? *o.vertices : kNoValues;
@@ -167,6 +173,8 @@ uintptr_t pack(Out& o) {
   const std::vector<uint32_t>& face_sizes = o.face_sizes ? *o.face_sizes : kNoIndices;
   const std::vector<uint32_t>& triangles = o.triangles ? *o.triangles : kNoIndices;
   const std::vector<uint32_t>& witness_faces = o.witness_faces ? *o.witness_faces : kNoIndices;
+  const std::vector<int32_t>& face_sources = o.face_sources ? *o.face_sources : kNoSources;
+  const std::vector<uint32_t>& wall_edges = o.witness_boundary_edges ? *o.witness_boundary_edges : kNoIndices;
   const std::string& bytes_out = o.bytes ? *o.bytes : kNoBytes;
 
   std::string text = o.name;
@@ -189,12 +197,14 @@ uintptr_t pack(Out& o) {
   o.head[kHead_numFaces] = static_cast<uint32_t>(face_sizes.size());
   o.head[kHead_numTriangleValues] = static_cast<uint32_t>(triangles.size());
   o.head[kHead_numWitnessFaces] = static_cast<uint32_t>(witness_faces.size());
+  o.head[kHead_numFaceSources] = static_cast<uint32_t>(face_sources.size());
+  o.head[kHead_numWitnessBoundaryEdgeValues] = static_cast<uint32_t>(wall_edges.size());
   o.head[kHead_numBytes] = static_cast<uint32_t>(bytes_out.size());
 
-  const size_t bytes =
-      sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
-      4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size() + witness_faces.size()) +
-      bytes_out.size() + text.size();
+  const size_t bytes = sizeof o.head + sizeof o.scalars + 8 * (counts.size() + vertices.size()) +
+                       4 * (edges.size() + face_indices.size() + face_sizes.size() + triangles.size() +
+                            witness_faces.size() + face_sources.size() + wall_edges.size()) +
+                       bytes_out.size() + text.size();
   char* block = static_cast<char*>(std::malloc(bytes));
   if (!block) return 0;
   char* at = put(block, o.head, kHeadWords);
@@ -206,6 +216,8 @@ uintptr_t pack(Out& o) {
   at = put(at, face_sizes.data(), face_sizes.size());
   at = put(at, triangles.data(), triangles.size());
   at = put(at, witness_faces.data(), witness_faces.size());
+  at = put(at, face_sources.data(), face_sources.size());
+  at = put(at, wall_edges.data(), wall_edges.size());
   at = put(at, bytes_out.data(), bytes_out.size());
   put(at, text.data(), text.size());
   return reinterpret_cast<uintptr_t>(block);
@@ -328,7 +340,7 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
 }
 
 // findPoint(request, numPositionValues, numIndices, numFaceSizes) → result block address
-// (starShaped, the point in the kernel point slots, witness faces, warnings).
+// (starShaped, the point in the kernel point slots, witness faces and boundary edges, warnings).
 uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   return guarded([&]() -> uintptr_t {
     const kergen::KernelPoint p =
@@ -340,6 +352,7 @@ uintptr_t find_point(uintptr_t request, uint32_t num_values, uint32_t num_indice
     o.head[kHead_hasKernelPoint] = p.star_shaped;
     put_xyz(p.point, o.scalars + kScalar_kernelPoint);
     o.witness_faces = &p.witness_faces;
+    o.witness_boundary_edges = &p.witness_boundary_edges;
     o.warnings = &p.warnings;
     return pack(o);
   });
@@ -421,7 +434,8 @@ val memory_stats() {
 }
 
 // The layout object index.js reads at init(): every list above by name, the step event's byte
-// offsets, and the names the codes in the blocks stand for.
+// offsets, the names the codes in the blocks stand for, and the face source marks (kergen.h;
+// scripts/build-wasm.sh writes them into dist/constants.js, which the package exports).
 val wire_format() {
   auto fields = [](std::initializer_list<std::pair<const char*, uint32_t>> list, const char* count_name,
                    uint32_t count) {
@@ -471,6 +485,10 @@ val wire_format() {
   for (int o = 0; o <= static_cast<int>(kergen::OpenBoundary::Perpendicular); ++o)
     open_boundaries.call<void>("push", std::string(kergen::open_boundary_name(static_cast<kergen::OpenBoundary>(o))));
   w.set("openBoundaries", open_boundaries);
+  val face_source = val::object();  // Kernel::face_sources values that name no input face
+  face_source.set("box", kergen::kFaceSourceBox);
+  face_source.set("wall", kergen::kFaceSourceWall);
+  w.set("faceSource", face_source);
   return w;
 }
 

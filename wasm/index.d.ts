@@ -203,9 +203,22 @@ export interface KernelStats {
 }
 
 /**
- * A computed kernel. Its six typed arrays (`vertices`, `edges`, `faceIndices`, `faceSizes`,
- * `triangles`, `witnessFaces`) are copies out of the wasm heap into one fresh ArrayBuffer, which they share as
- * views (use `.slice()` for an array with a buffer of its own, e.g. before transferring only it).
+ * `KernelResult.faceSources` value of a face of the clipping box of an 'UNBOUNDED' kernel (it
+ * lies on no input face's plane). The core's `kergen::kFaceSourceBox`, passed on by the build
+ * (dist/constants.js, from the module's wire format); importable before init().
+ */
+export const FACE_SOURCE_BOX: number;
+/**
+ * `KernelResult.faceSources` value of a face that lies on a boundary wall of `open:
+ * 'perpendicular'` (and on no input face's plane). The core's `kergen::kFaceSourceWall`.
+ */
+export const FACE_SOURCE_WALL: number;
+
+/**
+ * A computed kernel. Its eight typed arrays (`vertices`, `edges`, `faceIndices`, `faceSizes`,
+ * `triangles`, `faceSources`, `witnessFaces`, `witnessBoundaryEdges`) are copies out of the wasm
+ * heap into one fresh ArrayBuffer, which they share as views (use `.slice()` for an array with a
+ * buffer of its own, e.g. before transferring only it).
  */
 export interface KernelResult {
   status: KernelStatus;
@@ -223,6 +236,16 @@ export interface KernelResult {
   faceSizes: Uint32Array;
   /** The faces fan-triangulated, 3 vertex ids per triangle (three.js BufferGeometry index). */
   triangles: Uint32Array;
+  /**
+   * What bounds the kernel: one entry per face (in face order; a partial result: per face
+   * returned), the input face whose plane the face lies on with the same inner side, the lowest
+   * index among the faces of that oriented plane (indices of the faces given; with `weld` or
+   * `repair` too, the plane then that of the welded, repaired face; a non-planar polygon split
+   * into triangles, for its triangles' planes). FACE_SOURCE_BOX for a face of the clipping box
+   * ('UNBOUNDED'), FACE_SOURCE_WALL for a face on a boundary wall (`open: 'perpendicular'`).
+   * A 'POLYGON' has one face; 'EMPTY', 'POINT' and 'SEGMENT' none.
+   */
+  faceSources: Int32Array;
   /** Kernel volume (0 unless 'POLYHEDRON' and complete). */
   volume: number;
   /** Kernel surface area ('POLYGON': the polygon's area). */
@@ -232,16 +255,22 @@ export interface KernelResult {
   /** volume / shapeVolume. */
   volumeRatio: number;
   /**
-   * Why the kernel is 'EMPTY': at most four input faces (indices of the faces given, in
-   * increasing order; with `weld` or `repair` too) whose inner half-spaces have no common point,
-   * so no point sees all of them from the inside (Helly's theorem: four suffice in 3D). Minimal,
-   * one face per plane (the lowest-indexed one), checked with exact arithmetic before it is
-   * returned. A non-planar polygon split into triangles is named for its triangles' planes.
-   * Empty when the kernel is not empty, and when no set of faces alone shows it (with
-   * `allowOpen`: half-spaces that meet only outside the clipping box). Computed only for an
-   * empty kernel.
+   * Why the kernel is 'EMPTY': at most four half-spaces, of input faces and (with `open:
+   * 'perpendicular'`) of boundary walls (witnessBoundaryEdges), that have no common point, so no
+   * point sees all those faces from the inside and lies inside those walls (Helly's theorem:
+   * four suffice in 3D). Minimal, one face per plane (the lowest-indexed one; a wall only when
+   * no face lies in its plane), checked with exact arithmetic before it is returned. Here the
+   * faces: indices of the faces given, in increasing order (with `weld` or `repair` too); a
+   * non-planar polygon split into triangles is named for its triangles' planes. Empty when the
+   * kernel is not empty, and when no set of faces and walls alone shows it (with `allowOpen`:
+   * half-spaces that meet only outside the clipping box). Computed only for an empty kernel.
    */
   witnessFaces: Uint32Array;
+  /**
+   * The boundary walls of the witness (see witnessFaces), each named by the boundary edge it
+   * stands on: vertex id pairs a, b (the edge as its face's loop runs from a to b), flat.
+   */
+  witnessBoundaryEdges: Uint32Array;
   /** A kernel vertex (null when 'EMPTY'). */
   kernelPoint: Vec3 | null;
   /** Centre of the largest inscribed ball (with options.deepestPoint and a full-dimensional kernel). */
@@ -258,6 +287,8 @@ export interface KernelPointResult {
   point: Vec3 | null;
   /** When not star-shaped: why (see KernelResult.witnessFaces); empty otherwise. */
   witnessFaces: Uint32Array;
+  /** Its boundary walls as edges (see KernelResult.witnessBoundaryEdges). */
+  witnessBoundaryEdges: Uint32Array;
   warnings: KernelWarning[];
 }
 

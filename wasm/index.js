@@ -6,9 +6,14 @@
 // built for web+worker and finds kergen.wasm with `new URL('kergen.wasm', import.meta.url)`; in
 // Node this module reads the .wasm with fs, loaded by a dynamic import that only runs in Node.
 import createKergenModule from '../dist/kergen.mjs';
+import { FACE_SOURCE_BOX, FACE_SOURCE_WALL } from '../dist/constants.js';
 import { KergenError } from './errors.js';
 
 export { KergenError };
+// kernel.faceSources values that name no input face (kergen.h's kFaceSourceBox and
+// kFaceSourceWall): dist/constants.js is written by the wasm build from the module's
+// wireFormat(), so they are there before init() (and for a KernelWorker's results too).
+export { FACE_SOURCE_BOX, FACE_SOURCE_WALL };
 
 // Kept in variables (not literals) so that bundlers neither resolve nor emit them for the web.
 const NODE_FS = 'node:fs/promises';
@@ -164,6 +169,8 @@ const WIRE_NAMES = {
     'numFaces',
     'numTriangleValues',
     'numWitnessFaces',
+    'numFaceSources',
+    'numWitnessBoundaryEdgeValues',
     'numBytes',
     'words',
   ],
@@ -179,6 +186,7 @@ const WIRE_NAMES = {
     'count',
   ],
   step: ['kind', 'id', 'a', 'b', 'loop', 'loopSize', 'position'],
+  faceSource: ['box', 'wall'],
 };
 const camelCase = (name) => name.replace(/_([a-z])/g, (_, c) => c.toUpperCase());
 
@@ -196,6 +204,8 @@ export function checkWireFormat(w) {
     if (!Array.isArray(w?.[list])) missing.push(list);
   if (missing.length === 0 && !['vertex', 'edge', 'face'].every((k) => w.stepKinds.includes(k)))
     missing.push('stepKinds');
+  if (missing.length === 0 && (w.faceSource.box !== FACE_SOURCE_BOX || w.faceSource.wall !== FACE_SOURCE_WALL))
+    missing.push(`faceSource as dist/constants.js gives it (${FACE_SOURCE_BOX}, ${FACE_SOURCE_WALL})`);
   if (missing.length) {
     throw new KergenError(
       'WASM_LOAD_FAILED',
@@ -483,7 +493,7 @@ function readResult(m, ptr) {
     const s = (ptr + 4 * H.words) / 8; // scalars
     const counts = s + S.count; // warning counts
     const v = counts + numWarnings;
-    // The six arrays lie back to back in the block (the vertices' f64 values, then the u32
+    // The eight arrays lie back to back in the block (the vertices' f64 values, then the 32-bit
     // arrays): one copy into one fresh buffer, then views of it. (Each fresh typed array of more
     // than a few values costs about a microsecond in V8, most of a tiny mesh's overhead here.)
     const numVertexValues = u32[h + H.numVertexValues];
@@ -492,8 +502,17 @@ function readResult(m, ptr) {
     const numFaces = u32[h + H.numFaces];
     const numTriangleValues = u32[h + H.numTriangleValues];
     const numWitnessFaces = u32[h + H.numWitnessFaces];
+    const numFaceSources = u32[h + H.numFaceSources];
+    const numWallEdgeValues = u32[h + H.numWitnessBoundaryEdgeValues];
     const arraysStart = v * 8;
-    const u32Values = numEdgeValues + numFaceIndices + numFaces + numTriangleValues + numWitnessFaces;
+    const u32Values =
+      numEdgeValues +
+      numFaceIndices +
+      numFaces +
+      numTriangleValues +
+      numWitnessFaces +
+      numFaceSources +
+      numWallEdgeValues;
     const arrays = m.HEAPU8.slice(arraysStart, arraysStart + 8 * numVertexValues + 4 * u32Values).buffer;
     const vertices = new Float64Array(arrays, 0, numVertexValues);
     let at = 8 * numVertexValues;
@@ -502,6 +521,8 @@ function readResult(m, ptr) {
     const faceSizes = new Uint32Array(arrays, (at += 4 * numFaceIndices), numFaces);
     const triangles = new Uint32Array(arrays, (at += 4 * numFaces), numTriangleValues);
     const witnessFaces = new Uint32Array(arrays, (at += 4 * numTriangleValues), numWitnessFaces);
+    const faceSources = new Int32Array(arrays, (at += 4 * numWitnessFaces), numFaceSources);
+    const witnessBoundaryEdges = new Uint32Array(arrays, (at += 4 * numFaceSources), numWallEdgeValues);
     const bytesStart = (v * 2 + 2 * numVertexValues + u32Values) * 4;
     const numBytes = u32[h + H.numBytes];
     const textStart = bytesStart + numBytes;
@@ -523,6 +544,8 @@ function readResult(m, ptr) {
       faceSizes,
       triangles,
       witnessFaces,
+      faceSources,
+      witnessBoundaryEdges,
       bytes: numBytes ? m.HEAPU8.slice(bytesStart, textStart) : null,
       volume: f64[s + S.volume],
       area: f64[s + S.area],
@@ -557,7 +580,9 @@ function shapeResult(raw) {
     faceIndices,
     faceSizes,
     triangles: raw.triangles,
+    faceSources: raw.faceSources,
     witnessFaces: raw.witnessFaces,
+    witnessBoundaryEdges: raw.witnessBoundaryEdges,
     volume: raw.volume,
     area: raw.area,
     shapeVolume: raw.shapeVolume,
@@ -665,7 +690,13 @@ function callMeshEntry(fn, entry, positions, indices, options) {
  */
 export function findKernelPointSync(positions, indices, options = {}) {
   const raw = callMeshEntry('findKernelPoint', 'findPoint', positions, indices, options);
-  return { starShaped: raw.starShaped, point: raw.kernelPoint, witnessFaces: raw.witnessFaces, warnings: raw.warnings };
+  return {
+    starShaped: raw.starShaped,
+    point: raw.kernelPoint,
+    witnessFaces: raw.witnessFaces,
+    witnessBoundaryEdges: raw.witnessBoundaryEdges,
+    warnings: raw.warnings,
+  };
 }
 
 /** Async variant of findKernelPointSync (loads the module on first use). */

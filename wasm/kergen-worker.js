@@ -50,6 +50,8 @@ function resultTransferables(result) {
     result.faceIndices.buffer,
     result.faceSizes.buffer,
     result.witnessFaces.buffer,
+    result.faceSources.buffer,
+    result.witnessBoundaryEdges.buffer,
   ];
   return list.filter((b) => b.byteLength > 0); // may repeat a buffer: see unique()
 }

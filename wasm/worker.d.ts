@@ -16,7 +16,7 @@ import type {
   RepairMeshOptions,
 } from './index.js';
 
-export { KergenError } from './index.js';
+export { KergenError, FACE_SOURCE_BOX, FACE_SOURCE_WALL } from './index.js';
 export type { KernelResult, StepEvent, KernelOptions, KergenErrorCode, PositionsInput, IndicesInput } from './index.js';
 
 export interface KernelWorkerOptions {

@@ -15,6 +15,10 @@
 // main thread.
 import { KergenError } from './errors.js';
 
+// The marks of result.faceSources (as the package's main entry exports them), for pages that use
+// only the worker.
+export { FACE_SOURCE_BOX, FACE_SOURCE_WALL } from '../dist/constants.js';
+
 function isDetached(buffer) {
   if (buffer.byteLength !== 0) return false;
   try {

@@ -58,7 +58,8 @@ bool trace_certified(const Setup& s, const Options& options, int unscale_exp, Cu
 }
 
 // The traced kernel `tr` assembled into `out` (polytope.h), its face events emitted while the
-// caller goes on and `steps` stays under Options::max_steps; then its type (Unbounded when the
+// caller goes on and `steps` stays under Options::max_steps, each face's source (face_source);
+// then its type (Unbounded when the
 // clipping box holds a vertex), the deepest point when asked for, and the volume ratio. False
 // when `out` is final: the traced edges do not close (Error::Internal).
 bool assemble(const Setup& s, const Options& options, int unscale_exp, const TraceResult& tr, uint64_t& steps,
@@ -78,11 +79,14 @@ bool assemble(const Setup& s, const Options& options, int unscale_exp, const Tra
     return go;
   };
   double scaled_volume = 0;
-  if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume)) {
+  std::vector<uint32_t> face_planes;
+  if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume, &face_planes)) {
     out.error = Error::Internal;
     out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
     return false;
   }
+  out.face_sources.reserve(face_planes.size());
+  for (uint32_t h : face_planes) out.face_sources.push_back(face_source(s, h));
   for (const auto& v : tr.vertices)
     for (uint32_t p : v.tight)
       if (s.is_box[p]) out.type = KernelType::Unbounded;
@@ -117,7 +121,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   out.shape_volume = std::ldexp(s.mesh.volume, 3 * unscale_exp);
   if (s.rejected_early) {
     out.type = KernelType::Empty;
-    out.witness_faces = input_witness(s);
+    input_witness(s, out.witness_faces, out.witness_boundary_edges);
     out.stats.ms_total = ms_since(t_total);
     return out;
   }
@@ -130,7 +134,7 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   }
   if (s.lp.outcome == LpResult::Outcome::Infeasible) {
     out.type = KernelType::Empty;
-    out.witness_faces = input_witness(s);
+    input_witness(s, out.witness_faces, out.witness_boundary_edges);
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     out.type = KernelType::Unbounded;
     if (!certify_no_contact(s, out.error, out.message, out.warnings)) {
@@ -179,7 +183,7 @@ KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
   } else if (s.lp.outcome == LpResult::Outcome::Unbounded) {
     r.star_shaped = true;  // non-empty but unbounded (open input)
   } else {
-    r.witness_faces = input_witness(s);
+    input_witness(s, r.witness_faces, r.witness_boundary_edges);
   }
   return r;
 }

@@ -38,9 +38,9 @@ void build_plane_set(const FaceCulling& faces, Setup& s, Stats& stats) {
   s.planes->set_extent(s.mesh.extent());
   std::vector<uint32_t> face_plane;
   if (faces.culled)
-    build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane);
+    build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane, &s.plane_face);
   else
-    build_planes(s.mesh, *s.planes, face_plane);
+    build_planes(s.mesh, *s.planes, face_plane, &s.plane_face);
   stats.distinct_planes = s.planes->size();
   s.active.reserve(s.planes->size() + 6);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
@@ -93,6 +93,14 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
 
   build_plane_set(faces, s, stats);
   solve_start_lp(options, s, stats);
+}
+
+int32_t face_source(const Setup& s, uint32_t plane) {
+  // (A culled face is never the lowest of a kernel face's class: its plane holds the face-sample
+  // kernel, hence the kernel, strictly inside, and so does every plane of its class.)
+  if (plane >= s.plane_face.size() || s.is_box[plane]) return kFaceSourceBox;
+  const uint32_t f = s.plane_face[plane];
+  return f >= s.surface_faces ? kFaceSourceWall : int32_t(s.mesh.input_face(f));
 }
 
 CulledTrace trace_kernel(const Setup& s, const Options& options) {

@@ -22,6 +22,9 @@ struct Setup {
   std::vector<uint32_t> active;  // the LP's constraints: the mesh planes (+ the box for open meshes)
   std::vector<uint32_t> box;
   std::vector<char> is_box;
+  // For each mesh plane (ids below its size; the box's and the LP's bounds follow), the lowest
+  // prepared face of its class: what a kernel face on it lies on (face_source).
+  std::vector<uint32_t> plane_face;
   LpResult lp;
   bool rejected_early = false;  // empty kernel proven before the plane classes were built
   double center[3] = {0, 0, 0};
@@ -32,6 +35,10 @@ struct Setup {
 // after validation when s.mesh.error is set, and before the planes when face culling proves the
 // kernel empty (s.rejected_early, with that LP's result in s.lp).
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats);
+
+// What kernel face on `plane` lies on (Kernel::face_sources): the input face of the plane's lowest
+// prepared face, kFaceSourceWall when that is a boundary wall, kFaceSourceBox for a box plane.
+int32_t face_source(const Setup& s, uint32_t plane);
 
 // The kernel traced from the LP's vertex over the mesh's planes (plane culling, then cuts), in
 // the order Options::from asks for; no step events (step_replay.h replays them from it).

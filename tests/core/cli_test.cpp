@@ -14,6 +14,7 @@
 
 #include "fixtures.h"
 #include "kergen/io.h"
+#include "open_surfaces.h"
 
 namespace {
 
@@ -431,6 +432,49 @@ TEST_F(CliTest, OpenPerpendicularWallsAnOpenCube) {
   EXPECT_EQ(json_raw(walls.out, "status"), "POLYHEDRON");
   EXPECT_DOUBLE_EQ(json_number(walls.out, "volume"), 1.0);
   EXPECT_EQ(run("--open sideways " + shell_quote(path)).exit_code, 2);
+}
+
+// face_sources and witness_boundary_edges are the library's, as flat JSON arrays; the readable
+// summary names the witness's walls on a line of their own.
+TEST_F(CliTest, FaceSourcesAndWallsOfTheWitness) {
+  auto json_ints = [](const auto& values) {
+    std::string s = "[";
+    for (size_t i = 0; i < values.size(); ++i) s += (i ? "," : "") + std::to_string(values[i]);
+    return s + "]";
+  };
+  kergen::Options walled;
+  walled.open_boundary = kergen::OpenBoundary::Perpendicular;
+  kergen::Options clipped;
+  clipped.allow_open = true;
+  const kergen::Mesh cube = kergen_test::open_cube();
+  const std::string cube_path = (dir_ / "open_cube.off").string();
+  ASSERT_EQ(kergen::write_mesh_file(cube_path, cube), kergen::Error::Ok);
+  for (const auto& [flag, options] : {std::pair{"clip", clipped}, {"perpendicular", walled}}) {
+    const CliRun r = run("--json --open " + std::string(flag) + " " + shell_quote(cube_path));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const kergen::Kernel k = kergen::compute_kernel(cube.view(), options);
+    EXPECT_EQ(json_raw(r.out, "face_sources"), json_ints(k.face_sources)) << flag;
+    EXPECT_EQ(json_raw(r.out, "witness_boundary_edges"), "[]") << flag;
+  }
+  const kergen::Mesh frustum = kergen_test::open_frustum();
+  const std::string path = (dir_ / "frustum.off").string();
+  ASSERT_EQ(kergen::write_mesh_file(path, frustum), kergen::Error::Ok);
+  const kergen::Kernel k = kergen::compute_kernel(frustum.view(), walled);
+  ASSERT_EQ(k.type, kergen::KernelType::Empty);
+  ASSERT_FALSE(k.witness_boundary_edges.empty());
+  const CliRun r = run("--json --open perpendicular " + shell_quote(path));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(json_raw(r.out, "status"), "EMPTY");
+  EXPECT_EQ(json_raw(r.out, "face_sources"), "[]");
+  EXPECT_EQ(json_raw(r.out, "witness_faces"), json_ints(k.witness_faces));
+  EXPECT_EQ(json_raw(r.out, "witness_boundary_edges"), json_ints(k.witness_boundary_edges));
+  const CliRun text = run("--open perpendicular " + shell_quote(path));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  std::string walls = "  witness     walls at boundary edges";
+  for (size_t i = 0; i < k.witness_boundary_edges.size(); i += 2)
+    walls += " " + std::to_string(k.witness_boundary_edges[i]) + "->" + std::to_string(k.witness_boundary_edges[i + 1]);
+  EXPECT_TRUE(has(text.out, walls + "\n")) << text.out;
+  EXPECT_TRUE(has(text.out, "and lies inside the walls below")) << text.out;
 }
 
 TEST_F(CliTest, WriteRepairedSavesWhatTheKernelIsComputedOn) {

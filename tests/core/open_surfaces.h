@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "fixtures.h"
@@ -85,6 +86,26 @@ inline Mesh disc(int n) {
   add_point(m, 0, 0, 0);
   for (int j = 0; j < n; ++j) add_point(m, std::cos(2 * pi * j / n), std::sin(2 * pi * j / n), 0);
   for (int j = 0; j < n; ++j) add_face(m, {0, uint32_t(1 + j), uint32_t(1 + (j + 1) % n)});
+  return m;
+}
+
+// A flat square frustum, open at the top: the bottom [-3, 3]^2 at z = 0 (two triangles, faces 0
+// and 1), the rim [-2, 2]^2 at z = 1 (vertices 4 to 7). Its faces' half-spaces hold the pyramid they lean
+// into; the walls at the rim (perpendicular to the sides, leaning outward) hold only points below
+// z = x - 1 and z = -x - 1 (so z <= -1) and the like in y: nothing above the bottom.
+inline Mesh open_frustum() {
+  Mesh m;
+  for (double z : {0.0, 1.0}) {
+    const double r = z == 0 ? 3 : 2;
+    for (const auto& [x, y] : {std::pair{-r, -r}, {r, -r}, {r, r}, {-r, r}}) kergen_test::add_point(m, x, y, z);
+  }
+  kergen_test::add_face(m, {0, 2, 1});  // bottom, seen from below
+  kergen_test::add_face(m, {0, 3, 2});
+  for (uint32_t i = 0; i < 4; ++i) {  // sides: bottom edge i -> i+1, rim above it
+    const uint32_t j = (i + 1) % 4;
+    kergen_test::add_face(m, {i, j, 4 + j});
+    kergen_test::add_face(m, {i, 4 + j, 4 + i});
+  }
   return m;
 }
 

@@ -52,14 +52,25 @@ test('result arrays are copies out of the heap: later calls and heap growth leav
   const m = lPrism();
   const r = K.computeKernelSync(m.positions, m.indices, { faceSizes: m.faceSizes ?? undefined });
   assert.equal(r.status, 'POLYHEDRON');
-  const names = ['vertices', 'edges', 'faceIndices', 'faceSizes', 'triangles'];
+  const names = [
+    'vertices',
+    'edges',
+    'faceIndices',
+    'faceSizes',
+    'triangles',
+    'faceSources',
+    'witnessFaces',
+    'witnessBoundaryEdges',
+  ];
   const saved = names.map((k) => Array.from(r[k]));
-  // One fresh buffer (not the wasm memory), shared by the five arrays, each aligned for its type.
+  // One fresh buffer (not the wasm memory), shared by the eight arrays, each aligned for its type.
   for (const k of names) {
     assert.equal(r[k].buffer, r.vertices.buffer, `${k} is a view of the result's buffer`);
     assert.equal(r[k].byteOffset % r[k].BYTES_PER_ELEMENT, 0, `${k} aligned`);
   }
-  const ends = names.map((k) => [r[k].byteOffset, r[k].byteOffset + r[k].byteLength]).sort((a, b) => a[0] - b[0]);
+  const ends = names
+    .map((k) => [r[k].byteOffset, r[k].byteOffset + r[k].byteLength])
+    .sort((a, b) => a[0] - b[0] || a[1] - b[1]); // (an empty view first at its offset)
   for (let i = 1; i < ends.length; i++) assert.ok(ends[i][0] >= ends[i - 1][1], 'the views do not overlap');
   assert.equal(r.vertices.buffer.byteLength, ends[ends.length - 1][1], 'the buffer holds the arrays and nothing else');
   // A different mesh, then a large one (a prism over a 50,000-gon: the heap grows), then the

@@ -1,6 +1,7 @@
 // The wasm build gives the same answers as the native CLI (`build/kergen --json FILE`) on the
 // shared real meshes: same status (or the same error code), the same volume within 1e-9
-// relative and the same witness faces of an empty kernel. The OFF files are read here by a separate test-only JS parser.
+// relative, the same face sources (kernel face by kernel face) and the same witness faces of an
+// empty kernel. The OFF files are read here by a separate test-only JS parser.
 import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -51,7 +52,12 @@ function runWasm(file) {
   }
   try {
     const r = K.computeKernelSync(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes ?? undefined });
-    return { status: r.status, volume: r.volume, witnessFaces: Array.from(r.witnessFaces) };
+    return {
+      status: r.status,
+      volume: r.volume,
+      faceSources: Array.from(r.faceSources),
+      witnessFaces: Array.from(r.witnessFaces),
+    };
   } catch (err) {
     if (!(err instanceof K.KergenError)) throw err;
     return { error: err.code, message: err.message };
@@ -93,6 +99,12 @@ function compareFolder(folder) {
       const scale = Math.max(Math.abs(n.volume), Math.abs(w.volume));
       if (Math.abs(n.volume - w.volume) > 1e-9 * scale) {
         problems.push(`${name}: volume native ${n.volume} vs wasm ${w.volume}`);
+        continue;
+      }
+      if (JSON.stringify(n.face_sources) !== JSON.stringify(w.faceSources)) {
+        problems.push(
+          `${name}: face sources native ${JSON.stringify(n.face_sources)} vs wasm ${JSON.stringify(w.faceSources)}`,
+        );
         continue;
       }
       if (JSON.stringify(n.witness_faces) !== JSON.stringify(w.witnessFaces)) {

@@ -133,6 +133,7 @@ test('the tarball holds the runtime files only', (t) => {
     'LICENSE',
     'dist/kergen.mjs',
     'dist/kergen.wasm',
+    'dist/constants.js',
     'wasm/index.js',
     'wasm/index.d.ts',
     'wasm/worker.js',

@@ -13,6 +13,8 @@ import {
   repairMesh,
   repairMeshSync,
   KergenError,
+  FACE_SOURCE_BOX,
+  FACE_SOURCE_WALL,
   type RepairedMesh,
   type KernelPhase,
   type KernelProgress,
@@ -21,7 +23,12 @@ import {
   type StepEvent,
   type Vec3,
 } from 'kergen-wasm';
-import { KernelWorker, type ProgressEvent } from 'kergen-wasm/worker';
+import {
+  KernelWorker,
+  FACE_SOURCE_BOX as WORKER_BOX,
+  FACE_SOURCE_WALL as WORKER_WALL,
+  type ProgressEvent,
+} from 'kergen-wasm/worker';
 
 const positions = new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]);
 const indices = new Uint32Array([0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]);
@@ -92,7 +99,15 @@ async function main(): Promise<void> {
   const again2 = repairMeshSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2], { weld: true, open: 'perpendicular' });
   void [verdict, saved, again2.warnings, repaired.message];
   const walled: KernelResult = await computeKernel(positions, indices, { open: 'perpendicular' });
-  void walled;
+  // What bounds the kernel: per face an input face index, or a mark for the box and the walls.
+  const sources: Int32Array = walled.faceSources;
+  const bounded: string[] = Array.from(sources, (s: number) =>
+    s === FACE_SOURCE_BOX ? 'box' : s === FACE_SOURCE_WALL ? 'wall' : `face ${s}`,
+  );
+  // The walls of a witness, as the boundary edges they stand on (vertex id pairs).
+  const wallEdges: Uint32Array = walled.witnessBoundaryEdges;
+  const firstWall: [number, number] | null = wallEdges.length ? [wallEdges[0], wallEdges[1]] : null;
+  void [bounded, firstWall];
 
   const sync = computeKernelSync([0, 0, 0, 1, 0, 0, 0, 1, 0], [0, 1, 2], { allowOpen: true, faceSizes: [3] });
   const complete: boolean = sync.complete;
@@ -104,6 +119,8 @@ async function main(): Promise<void> {
   // Why a shape is not star-shaped: input face indices (empty unless the kernel is empty).
   const why: Uint32Array = kp.starShaped ? new Uint32Array(0) : kp.witnessFaces;
   const whyToo: Uint32Array = sync.witnessFaces;
+  const walls: Uint32Array = kp.witnessBoundaryEdges;
+  void walls;
   const star: boolean = await isStarShaped(positions, indices);
   const heap: number = memoryStats().heapUsed + memoryStats().heapSize;
   void [complete, why, whyToo, star, heap];
@@ -130,6 +147,9 @@ async function main(): Promise<void> {
     },
   });
   void fromWorker.edges;
+  const workerSources: Int32Array = fromWorker.faceSources;
+  const boxFaces: number = workerSources.filter((s) => s === WORKER_BOX || s === WORKER_WALL).length;
+  void boxFaces;
   const { mesh, result: fileKernel } = await worker.computeFile(new Uint8Array(8), {
     name: 'a.stl',
     onMesh: (m) => void m.faceSizes,
@@ -155,6 +175,8 @@ void writeMesh({ positions: [], indices: [] }, 'ply');
 // @ts-expect-error: phases are a closed set
 const badPhase: KernelPhase = 'loading';
 void badPhase;
+// @ts-expect-error: the face source marks are constants
+FACE_SOURCE_BOX = 0;
 // @ts-expect-error: statuses are a closed set
 const bad: KernelResult['status'] = 'CONCAVE';
 void bad;

@@ -274,22 +274,32 @@ struct StatsField {
 };
 std::array<StatsField, 14> stats_fields(const Stats& s);
 
-// The witness of an empty kernel (Kernel::witness_faces, KernelPoint::witness_faces): at most
-// four faces whose inner half-spaces have no common point, so that no point sees all of them
-// from the inside. By Helly's theorem four suffice in 3D; the set is minimal (each face is
-// needed), found from the LP's infeasible constraints and checked with exact arithmetic before it
-// is given (Farkas weights: a positive combination of the faces' plane equations that is
-// positive everywhere). One face per plane: the lowest-indexed face lying in it with the same
-// inner side.
-//   Indices are those of the faces given in the MeshView, also with Options::weld and repair
-// (the plane is then that of the welded, repaired face); a non-planar polygon split into
-// triangles (Warning::Kind::NonPlanarFacesSplit) is named for its triangles' planes, once even
-// if two of them are in the set. Separate pieces (Warning::Kind::SeparateShells) get one too.
-// Empty when the kernel is not empty, and when no set of faces alone shows it: with
-// Options::allow_open, half-spaces that meet only outside the box the kernel is clipped to; with
-// OpenBoundary::Perpendicular, a conflict that needs a boundary wall (no input face); and, in
-// theory, faces whose planes meet only beyond ~2^100 times the mesh's size. Computed only for
-// an empty kernel (no cost otherwise).
+// The witness of an empty kernel (Kernel::witness_faces, KernelPoint::witness_faces, and with
+// OpenBoundary::Perpendicular witness_boundary_edges): at most four half-spaces, the inner sides
+// of faces and of boundary walls, that have no common point, so that no point sees all of those
+// faces from the inside and lies inside those walls. By Helly's theorem four suffice in 3D; the
+// set is minimal (each one is needed), found from the LP's infeasible constraints and checked
+// with exact arithmetic before it is given (Farkas weights: a positive combination of the plane
+// equations that is positive everywhere). One face per plane: the lowest-indexed face lying in it
+// with the same inner side (a wall only when no face does).
+//   Faces: indices of the faces given in the MeshView, also with Options::weld and repair (the
+// plane is then that of the welded, repaired face); a non-planar polygon split into triangles
+// (Warning::Kind::NonPlanarFacesSplit) is named for its triangles' planes, once even if two of
+// them are in the set. Separate pieces (Warning::Kind::SeparateShells) get one too.
+//   Walls (OpenBoundary::Perpendicular): each named by the boundary edge it stands on, as the
+// input vertex ids (a, b) in the order its face's loop runs from a to b (after weld and repair:
+// the ids of the vertices kept), pairs in increasing order of their face.
+//   Empty when the kernel is not empty, and when no set of faces and walls alone shows it: for
+// an open mesh (allow_open or walls), half-spaces that meet only outside the box the kernel is
+// clipped to (a bowl whose faces face its centre, walled: they meet far below it); and, in
+// theory, planes that meet only beyond ~2^100 times the mesh's size. Computed only for an empty
+// kernel (no cost otherwise).
+
+// Kernel::face_sources values that name no input face: a face of the box that clips an
+// Unbounded kernel, and a face lying on a boundary wall of OpenBoundary::Perpendicular (on no
+// input face's plane).
+constexpr int32_t kFaceSourceBox = -1;
+constexpr int32_t kFaceSourceWall = -2;
 
 struct Kernel {
   Error error = Error::Ok;
@@ -308,8 +318,20 @@ struct Kernel {
   double shape_volume = 0;  // volume enclosed by the input mesh
   double volume_ratio = 0;  // volume / shape_volume
 
-  // Why the kernel is Empty (see the witness above): input face indices, increasing.
+  // What bounds the kernel: for each face (in face order; with a stopped run, each face
+  // reported), the input face whose plane it lies on, with the same inner side: the lowest index
+  // among the faces of that oriented plane (a face seen from the other side, as a flat kernel's
+  // opposite faces are, does not count). Indices and planes as for witness_faces below (with
+  // weld and repair, the welded, repaired face's plane; a split non-planar polygon, for its
+  // triangles' planes). kFaceSourceBox for a face of the clipping box (Unbounded), and
+  // kFaceSourceWall for a face lying on a boundary wall's plane only. A Polygon's one face: its
+  // plane's; Empty, Point and Segment kernels have no faces. (Found with the planes: no cost.)
+  std::vector<int32_t> face_sources;
+
+  // Why the kernel is Empty (see the witness above): input face indices, increasing, and the
+  // boundary walls in the conflict as the edges they stand on, (a, b) vertex id pairs, 2 * W.
   std::vector<uint32_t> witness_faces;
+  std::vector<uint32_t> witness_boundary_edges;
 
   bool has_kernel_point = false;  // the LP vertex (a kernel vertex); false when Empty
   std::array<double, 3> kernel_point{};
@@ -336,9 +358,10 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options = {});
 struct KernelPoint {
   Error error = Error::Ok;
   std::string message;
-  bool star_shaped = false;             // kernel non-empty
-  std::array<double, 3> point{};        // a kernel vertex (when star_shaped)
-  std::vector<uint32_t> witness_faces;  // when not star_shaped: why (the witness above)
+  bool star_shaped = false;                      // kernel non-empty
+  std::array<double, 3> point{};                 // a kernel vertex (when star_shaped)
+  std::vector<uint32_t> witness_faces;           // when not star_shaped: why (the witness above),
+  std::vector<uint32_t> witness_boundary_edges;  // its walls: (a, b) vertex id pairs
   std::vector<Warning> warnings;
 };
 KernelPoint find_kernel_point(const MeshView& mesh, const Options& options = {});

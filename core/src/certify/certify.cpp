@@ -37,13 +37,18 @@ void refuse_nested_shells(const PreparedMesh& m, Error& error, std::string& mess
             "inside the first, not a void)";
 }
 
-std::vector<uint32_t> input_witness(const Setup& s) {
-  std::vector<uint32_t> faces = witness_faces(s.mesh, s.lp.conflict);
-  for (uint32_t f : faces)
-    if (f >= s.surface_faces) return {};  // a boundary wall is no input face: no witness to name
-  for (uint32_t& f : faces) f = s.mesh.input_face(f);
+void input_witness(const Setup& s, std::vector<uint32_t>& faces, std::vector<uint32_t>& boundary_edges) {
+  faces.clear();
+  boundary_edges.clear();
+  for (uint32_t f : witness_faces(s.mesh, s.lp.conflict)) {
+    if (f < s.surface_faces) {
+      faces.push_back(s.mesh.input_face(f));
+    } else {  // a boundary wall (open_boundary.h): the triangle (a, b, c) of its edge a -> b
+      boundary_edges.push_back(s.mesh.rep[f][0]);
+      boundary_edges.push_back(s.mesh.rep[f][1]);
+    }
+  }
   faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  return faces;
 }
 
 bool certify_no_contact(const Setup& s, Error& error, std::string& message, std::vector<Warning>& warnings) {

@@ -2,8 +2,9 @@
 // The intersection of the faces' inner half-spaces is the kernel only for a surface that bounds
 // one solid, and validation cannot decide that alone (a surface may cross itself, or consist of
 // pieces nested alike). So each answer has its certificate here:
-// - EMPTY: input_witness names at most four input faces whose inner half-spaces have no common
-//   point, checked exactly (witness.h), so that the answer can be checked without the LP.
+// - EMPTY: input_witness names at most four input faces and boundary walls whose inner
+//   half-spaces have no common point, checked exactly (witness.h), so that the answer can be
+//   checked without the LP.
 // - a kernel, mesh of several pieces: refuse_nested_shells. A point that sees every piece from
 //   inside lies inside every piece: a second solid inside the first, which no solid's surface is.
 // - a traced bounded full-dimensional kernel of a closed surface: certify_embedding, the ray
@@ -30,10 +31,11 @@
 
 namespace kergen {
 
-// The witness of an empty kernel (witness.h) as input face indices, increasing and distinct (the
-// triangles of a split polygon are named by the polygon); empty when it would need a boundary
-// wall, which is no input face.
-std::vector<uint32_t> input_witness(const Setup& s);
+// The witness of an empty kernel (witness.h): its faces as input face indices, increasing and
+// distinct (the triangles of a split polygon are named by the polygon), and its boundary walls
+// as the edges they stand on, (a, b) pairs of vertex ids (kergen.h). Both empty when there is
+// no witness.
+void input_witness(const Setup& s, std::vector<uint32_t>& faces, std::vector<uint32_t>& boundary_edges);
 
 // Several pieces and a non-empty intersection of the faces' half-spaces: a point in it sees
 // every piece from inside, so it lies inside every piece: they are nested alike (a second solid

@@ -118,10 +118,12 @@ std::vector<std::pair<uint32_t, uint32_t>> facet_ranges(const std::vector<PlaneE
 
 // Each facet's edges oriented exactly and walked into one CCW loop, appended to the output faces
 // and triangles (and announced while `emit_face` wants more). False when a complete trace leaves
-// a facet that is not one closed loop (a stopped run leaves facets open).
+// a facet that is not one closed loop (a stopped run leaves facets open). Each face's plane goes
+// to `face_planes` when given.
 bool walk_facets(const PlaneSet& ps, const TraceResult& trace, const std::vector<PlaneEdge>& grouped,
                  const std::vector<std::pair<uint32_t, uint32_t>>& facets,
-                 const std::function<bool(const StepEvent&)>& emit_face, Kernel& out) {
+                 const std::function<bool(const StepEvent&)>& emit_face, Kernel& out,
+                 std::vector<uint32_t>* face_planes) {
   const size_t V = trace.vertices.size();
   bool announce = true, ok = true;
   // Per vertex: the next one along the facet being walked; the facet's tails (at most V) and
@@ -163,6 +165,7 @@ bool walk_facets(const PlaneSet& ps, const TraceResult& trace, const std::vector
       continue;
     }
     uint32_t fid = uint32_t(out.face_sizes.size());
+    if (face_planes) face_planes->push_back(h);
     out.face_sizes.push_back(uint32_t(loop_size));
     out.face_indices.insert(out.face_indices.end(), loop, loop + loop_size);
     for (size_t i = 1; i + 1 < loop_size; ++i) {
@@ -254,7 +257,8 @@ void area_and_vol6(const VertexCoordinates& c, size_t V, const std::vector<uint3
 }  // namespace
 
 bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, Kernel& out,
-                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume) {
+                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume,
+                       std::vector<uint32_t>* face_planes) {
   scaled_volume = 0;
   const size_t V = trace.vertices.size(), E = trace.edges.size();
   VertexCoordinates coords(V);
@@ -285,7 +289,8 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   out.face_sizes.reserve(facets.size());
   out.face_indices.reserve(corners);
   out.triangles.reserve(3 * (corners - std::min(corners, 2 * facets.size())));
-  bool ok = walk_facets(ps, trace, grouped, facets, emit_face, out);
+  if (face_planes) face_planes->reserve(facets.size());
+  bool ok = walk_facets(ps, trace, grouped, facets, emit_face, out, face_planes);
 
   double area = 0, vol6 = 0;
   area_and_vol6(coords, V, out.triangles, area, vol6);

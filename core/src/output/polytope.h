@@ -1,7 +1,9 @@
 // From traced vertices and edges to the output polytope: type, facets as CCW loops, volume, area.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "kergen/kergen.h"
 #include "solve/tracer.h"
@@ -12,9 +14,11 @@ namespace kergen {
 // area of `out`. A plane is a facet iff it holds >= 3 edges; its loop is walked counter-clockwise
 // seen from outside, decided exactly per edge. `emit_face` is called per facet, in order; it
 // returns false to stop (the remaining facets are still assembled but not announced).
-// `scaled_volume` receives the volume in the plane set's units. Returns false if the traced edges do not close into a
-// valid polytope (internal error).
+// `scaled_volume` receives the volume in the plane set's units; `face_planes`, when given, each
+// output face's plane (its facet plane; a polygon's: the lower of its two). Returns false if
+// the traced edges do not close into a valid polytope (internal error).
 bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, Kernel& out,
-                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume);
+                       const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume,
+                       std::vector<uint32_t>* face_planes = nullptr);
 
 }  // namespace kergen

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 #include "util/compiler_hints.h"
 #include "util/flat_map.h"
@@ -313,7 +314,9 @@ struct FaceLists {
 
 void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane);
 
-void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
+// (plane_face_out: see the header; ids in fl's numbering.)
+void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std::vector<uint32_t>& face_plane,
+                  std::vector<uint32_t>* plane_face_out) {
   const size_t nf = fl.num_faces;
   const std::array<uint32_t, 3>* rep = fl.rep;
   // Plane ids index the per-plane arrays below, from the first one added here.
@@ -364,7 +367,8 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
   for (const auto& pr : apart) distinct.insert(pair_key(uf.find(pr[0]), uf.find(pr[1])));
 
   // 2. Class representatives (the smallest face of each union) in face order, matched through
-  //    the cell table; a new plane takes the representative's triangle. face_plane holds each
+  //    the cell table; a new plane takes the representative's triangle (the first one met, so
+  //    the class's lowest face: every union's lowest face is its representative). face_plane holds each
   //    representative's plane as soon as it is matched, so every other face (larger than its
   //    representative) takes it in the same pass.
   face_plane.resize(nf);
@@ -461,6 +465,7 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
 
   // 3. Incidence.
   face_incidence(fl, ps, face_plane);
+  if (plane_face_out) *plane_face_out = std::move(plane_face);
 }
 
 void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
@@ -508,14 +513,15 @@ void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_
 
 }  // namespace
 
-void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane) {
+void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& face_plane,
+                  std::vector<uint32_t>* plane_face) {
   const FaceLists all{m.rep.data(),      m.num_faces(),         m.adjacent.data(),
                       m.adjacent.size(), m.loop_offsets.data(), m.loops.data()};
-  build_planes(m, all, ps, face_plane);
+  build_planes(m, all, ps, face_plane, plane_face);
 }
 
 void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, PlaneSet& ps,
-                  std::vector<uint32_t>& face_plane) {
+                  std::vector<uint32_t>& face_plane, std::vector<uint32_t>* plane_face) {
   // The faces renumbered 0..n-1 in the order given: their triangles, loops, and the pairs among
   // them that share an edge, found by matching their loops' edges in a hash table: time in the
   // chosen faces, not in the mesh (a scan of the mesh's pairs cost more than the classes of the
@@ -557,7 +563,9 @@ void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, Pla
     }
   }
   const FaceLists some{rep.data(), n, adjacent.data(), adjacent.size(), loop_offsets.data(), loops.data()};
-  build_planes(m, some, ps, face_plane);
+  build_planes(m, some, ps, face_plane, plane_face);
+  if (plane_face)
+    for (uint32_t& k : *plane_face) k = faces[k];
 }
 
 }  // namespace kergen
