@@ -73,9 +73,10 @@ export function drawnTriangles(positions, indices, faceSizes) {
   return Uint32Array.from(out);
 }
 
-// The faces' edges, each once (polygons without their drawing diagonals), as vertex-id pairs:
-// keys sorted in a typed array (a Set of a million keys is several times slower).
-export function faceEdges(indices, faceSizes, nv) {
+// Every face's edges as sorted keys min·nv + max (a Float64Array: exact below 2^53, and sorting
+// a typed array is several times faster than a Set of a million keys); an edge shared by two
+// faces appears twice. Degenerate edges (a face repeating a vertex) are left out.
+function sortedEdgeKeys(indices, faceSizes, nv) {
   const nFaces = faceSizes ? faceSizes.length : indices.length / 3;
   const keys = new Float64Array(indices.length);
   let n = 0;
@@ -84,19 +85,33 @@ export function faceEdges(indices, faceSizes, nv) {
     for (let j = 0; j < k; j++) {
       const a = indices[at + j],
         b = indices[at + ((j + 1) % k)];
-      keys[n++] = a < b ? a * nv + b : b * nv + a;
+      if (a !== b) keys[n++] = a < b ? a * nv + b : b * nv + a;
     }
     at += k;
   }
-  keys.sort();
-  const lines = new Uint32Array(2 * n);
+  return keys.subarray(0, n).sort();
+}
+
+// The vertex-id pairs of the sorted keys that occur `once` only (or, with once = false, of every
+// distinct key).
+function edgePairs(sorted, nv, once) {
+  const pairs = new Uint32Array(2 * sorted.length);
   let m = 0;
-  for (let i = 0; i < n; i++) {
-    if (i > 0 && keys[i] === keys[i - 1]) continue;
-    lines[m++] = Math.floor(keys[i] / nv);
-    lines[m++] = keys[i] % nv;
+  for (let i = 0; i < sorted.length;) {
+    let j = i + 1;
+    while (j < sorted.length && sorted[j] === sorted[i]) j++;
+    if (!once || j - i === 1) {
+      pairs[m++] = Math.floor(sorted[i] / nv);
+      pairs[m++] = sorted[i] % nv;
+    }
+    i = j;
   }
-  return lines.slice(0, m);
+  return pairs.slice(0, m);
+}
+
+// The faces' edges, each once (polygons without their drawing diagonals), as vertex-id pairs.
+export function faceEdges(indices, faceSizes, nv) {
+  return edgePairs(sortedEdgeKeys(indices, faceSizes, nv), nv, false);
 }
 
 // Vertex clustering on a grid of `res` cells along the longest side: every vertex moves to the
@@ -230,31 +245,11 @@ export function drawingBuffers(d) {
   return [...new Set([d.positions.buffer, d.triangles.buffer, d.edges?.buffer].filter((b) => b && b.byteLength > 0))];
 }
 
-// The edges used by one face only (a hole's rim), as vertex-id pairs: the same sorted keys as
-// faceEdges(), kept where a key occurs once. (An edge used by three or more faces is a
-// non-manifold edge, not an open one: the package reports it as NON_MANIFOLD_EDGE.)
+// The edges used by one face only (a hole's rim), as vertex-id pairs: the keys of faceEdges()
+// that occur once. (An edge used by three or more faces is a non-manifold edge, not an open one:
+// the package reports it as NON_MANIFOLD_EDGE.)
 export function boundaryEdges(indices, faceSizes, nv) {
-  const nFaces = faceSizes ? faceSizes.length : indices.length / 3;
-  const keys = new Float64Array(indices.length);
-  let n = 0;
-  for (let f = 0, at = 0; f < nFaces; f++) {
-    const k = faceSizes ? faceSizes[f] : 3;
-    for (let j = 0; j < k; j++) {
-      const a = indices[at + j],
-        b = indices[at + ((j + 1) % k)];
-      if (a !== b) keys[n++] = a < b ? a * nv + b : b * nv + a;
-    }
-    at += k;
-  }
-  const sorted = keys.subarray(0, n).sort();
-  const pairs = [];
-  for (let i = 0; i < n;) {
-    let j = i + 1;
-    while (j < n && sorted[j] === sorted[i]) j++;
-    if (j - i === 1) pairs.push(Math.floor(sorted[i] / nv), sorted[i] % nv);
-    i = j;
-  }
-  return Uint32Array.from(pairs);
+  return edgePairs(sortedEdgeKeys(indices, faceSizes, nv), nv, true);
 }
 
 // Line-segment positions (float32, relative to `center`) of vertex-id pairs.

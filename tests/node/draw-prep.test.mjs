@@ -3,7 +3,7 @@
 // edge once, and a simplified copy of a big mesh that stays within a grid cell of it.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { prepareDrawing, faceEdges, drawnTriangles, simplify } from '../../web/draw-prep.js';
+import { prepareDrawing, faceEdges, boundaryEdges, drawnTriangles, simplify } from '../../web/draw-prep.js';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 
 // An L prism (non-convex hexagon caps, quad sides): 12 vertices, 8 faces, 18 edges.
@@ -56,6 +56,36 @@ test('face edges: each edge of the faces once, no polygon diagonals', () => {
   for (let i = 0; i < e.length; i += 2) keys.add(`${Math.min(e[i], e[i + 1])}-${Math.max(e[i], e[i + 1])}`);
   assert.equal(keys.size, 18);
   assert.ok(!keys.has('0-4'), 'a cap diagonal is not an edge');
+});
+
+const edgeSet = (pairs) => {
+  const keys = new Set();
+  for (let i = 0; i < pairs.length; i += 2)
+    keys.add(`${Math.min(pairs[i], pairs[i + 1])}-${Math.max(pairs[i], pairs[i + 1])}`);
+  return keys;
+};
+
+test('boundary edges: the rim of a removed face, each once; none on a closed mesh; polygon and triangle faces', () => {
+  const m = lPrism();
+  assert.equal(boundaryEdges(m.indices, m.faceSizes, 12).length, 0, 'closed: no open edge');
+  // Without the top hexagon (face 1: 1 3 5 7 9 11), its six edges are open.
+  const sizes = Array.from(m.faceSizes);
+  const faces = [];
+  for (let f = 0, at = 0; f < sizes.length; at += sizes[f], f++)
+    if (f !== 1) faces.push(Array.from(m.indices.subarray(at, at + sizes[f])));
+  const open = boundaryEdges(Uint32Array.from(faces.flat()), Uint32Array.from(faces.map((f) => f.length)), 12);
+  assert.deepEqual([...edgeSet(open)].sort(), ['1-3', '3-5', '5-7', '7-9', '9-11', '1-11'].sort());
+  assert.equal(open.length / 2, 6);
+  // Triangles (faceSizes null): one triangle has three open edges; a triangle repeating a vertex
+  // walks its one real edge both ways (no open edge) and adds no edge from a vertex to itself.
+  assert.equal(edgeSet(boundaryEdges(Uint32Array.of(0, 1, 2), null, 3)).size, 3);
+  assert.equal(boundaryEdges(Uint32Array.of(0, 1, 1), null, 3).length, 0);
+  assert.deepEqual([...edgeSet(faceEdges(Uint32Array.of(0, 1, 1), null, 3))], ['0-1']);
+  // faceEdges and boundaryEdges agree on the edges of one triangle.
+  assert.deepEqual(
+    edgeSet(faceEdges(Uint32Array.of(0, 1, 2), null, 3)),
+    edgeSet(boundaryEdges(Uint32Array.of(0, 1, 2), null, 3)),
+  );
 });
 
 test('prepareDrawing: float32 positions centred on the bounding box; bad indices are not drawn', () => {
