@@ -108,8 +108,12 @@ export class Viewer {
     geo.translate(0, 0, -1);
     geo.setIndex(new THREE.BufferAttribute(Uint32Array.from(geo.index.array), 1));
     // One dummy per material in the scene (kernel, newest edge, kernel point) and the input's.
-    const dummies = [new THREE.Mesh(geo, this.inputMaterial), new THREE.LineSegments(geo, this.wireMaterial)];
-    dummies[0].renderOrder = 2;
+    const dummies = [
+      new THREE.Mesh(geo, this.inputMaterial),
+      new THREE.Mesh(geo, this.smoothInputMaterial),
+      new THREE.LineSegments(geo, this.wireMaterial),
+    ];
+    dummies[0].renderOrder = dummies[1].renderOrder = 2;
     this.scene.traverse((o) => {
       if (o.isMesh) dummies.push(new THREE.Mesh(geo, o.material));
       else if (o.isLineSegments) dummies.push(new THREE.LineSegments(geo, o.material));
@@ -140,6 +144,10 @@ export class Viewer {
       polygonOffsetFactor: 2,
       polygonOffsetUnits: 4,
     });
+    // A simplified copy of a big input (draw-prep.js simplify) is shaded smoothly, with normals
+    // from the original surface: facet shading of its irregular triangles looked like shards.
+    this.smoothInputMaterial = this.inputMaterial.clone();
+    this.smoothInputMaterial.flatShading = false;
     this.wireMaterial = new THREE.LineBasicMaterial({
       color: 0x7a5a2a,
       transparent: true,
@@ -206,11 +214,13 @@ export class Viewer {
   /** The input shape's opacity, 0 (hidden) to 1 (opaque). */
   setOpacity(x) {
     this.opacity = x;
-    this.inputMaterial.opacity = x;
-    // Opaque: write depth so the shape hides what is behind it, as a solid does.
-    this.inputMaterial.transparent = x < 1;
-    this.inputMaterial.depthWrite = x >= 1;
-    this.inputMaterial.needsUpdate = true;
+    for (const m of [this.inputMaterial, this.smoothInputMaterial]) {
+      m.opacity = x;
+      // Opaque: write depth so the shape hides what is behind it, as a solid does.
+      m.transparent = x < 1;
+      m.depthWrite = x >= 1;
+      m.needsUpdate = true;
+    }
     this.updateInputVisibility();
   }
 
@@ -252,7 +262,8 @@ export class Viewer {
       const geo = new THREE.BufferGeometry();
       geo.setAttribute('position', new THREE.BufferAttribute(d.positions, 3));
       geo.setIndex(new THREE.BufferAttribute(d.triangles, 1));
-      this.inputMesh = new THREE.Mesh(geo, this.inputMaterial);
+      if (d.normals) geo.setAttribute('normal', new THREE.BufferAttribute(d.normals, 3));
+      this.inputMesh = new THREE.Mesh(geo, d.normals ? this.smoothInputMaterial : this.inputMaterial);
       this.inputMesh.renderOrder = 2;
       this.inputMesh.frustumCulled = false; // no bounding sphere to compute over every vertex
       this.inputGroup.add(this.inputMesh);
@@ -368,7 +379,8 @@ export class Viewer {
       return;
     }
     this.clipKey = clipKey;
-    this.inputMaterial.clippingPlanes = this.wireMaterial.clippingPlanes = s.planesFor(false);
+    this.inputMaterial.clippingPlanes = this.smoothInputMaterial.clippingPlanes = s.planesFor(false);
+    this.wireMaterial.clippingPlanes = s.planesFor(false);
     // What lies inside the kernel (ball, deepest point, kernel point) is cut with it.
     const kernelMaterials = [
       this.kernel.faces.material,
@@ -381,7 +393,7 @@ export class Viewer {
       m.clippingPlanes = s.planesFor(true);
       m.needsUpdate = true;
     }
-    this.inputMaterial.needsUpdate = this.wireMaterial.needsUpdate = true;
+    this.inputMaterial.needsUpdate = this.smoothInputMaterial.needsUpdate = this.wireMaterial.needsUpdate = true;
     s.updateVisibility(this.inputVisible, this.kernelClosed);
     this.dirty = true;
   }
@@ -389,7 +401,7 @@ export class Viewer {
   /** Whether the kernel drawn is a closed solid (its section can be capped). */
   setKernelClosed(closed) {
     this.kernelClosed = closed;
-    this.section.kernelCap.setGeometry(closed ? this.kernel.facesGeo : null);
+    this.section.kernelCap.setGeometry(closed ? this.kernel.surfaceGeometry : null);
     this.section.updateVisibility(this.inputVisible, this.kernelClosed);
     this.dirty = true;
   }
