@@ -20,7 +20,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
-import { SAMPLES, sampleById } from '../../web/samples.js';
+import { SAMPLES, sampleById, radialSphere } from '../../web/samples.js';
 import { checkSamples, expectedKernel } from './samples-check.mjs';
 import { serve, writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
@@ -1067,6 +1067,73 @@ async function themeAndBigFile(page, tmp, served) {
   });
 }
 
+// 13. A kernel of ~100k triangles (a nearly convex UV sphere's) is drawn from a simplified copy
+// once complete, the real faces for the replay's prefixes; frame times while orbiting printed.
+async function bigKernelTest(page, tmp) {
+  await test('a big kernel (~100k triangles) is drawn from a simplified copy; prefixes draw the real faces', async () => {
+    const file = path.join(tmp, 'sphere-100x160.off');
+    writeOFF(
+      file,
+      radialSphere(100, 160, () => 1),
+    );
+    const s = await loadFile(page, file);
+    assert(s.status === 'POLYHEDRON', `status ${s.status}`);
+    await jumpToEnd(page);
+    const note = await page.textContent('#edges-note');
+    const m = /The whole kernel \(([\d,]+) triangles\) is drawn from a simplified copy \(([\d,]+) triangles\)/.exec(
+      note,
+    );
+    assert(m, `the page says the kernel is drawn simplified: "${note}"`);
+    const [full, drawn] = [m[1], m[2]].map((x) => Number(x.replace(/,/g, '')));
+    assert(full > 50000 && drawn <= 24000 && drawn > 5000, `${full} triangles drawn as ${drawn}`);
+    const whole = await shoot(page, 'big-kernel-simplified.png');
+    assert(whole.blue > 20000, `the simplified kernel is drawn: ${whole.blue} blue pixels`);
+    const flags = await page.evaluate(() => {
+      const k = window.kergenDemo.viewer.kernel;
+      return { simple: k.simple.visible, faces: k.faces.visible };
+    });
+    assert(flags.simple && !flags.faces, `complete: the copy is drawn, not the faces (${JSON.stringify(flags)})`);
+    const half = await scrubTo(page, Math.floor(s.steps * 0.9));
+    const prefix = await shoot(page, 'big-kernel-prefix.png');
+    const flags2 = await page.evaluate(() => {
+      const k = window.kergenDemo.viewer.kernel;
+      return { simple: k.simple.visible, faces: k.faces.visible };
+    });
+    assert(flags2.faces && !flags2.simple, `a prefix draws the real faces (${JSON.stringify(flags2)})`);
+    assert(prefix.blue > 2000 && half.shown.faces > 0, `prefix: ${prefix.blue} blue pixels, ${half.shown.faces} faces`);
+    await jumpToEnd(page);
+    // Frame deltas while the view is dragged (printed: timing is not asserted in a test).
+    const box = await page.locator('#viewport').boundingBox();
+    await page.evaluate(() => {
+      window.__frames = [];
+      let last = performance.now();
+      const tick = (t) => {
+        window.__frames.push(t - last);
+        last = t;
+        if (!window.__stopFrames) requestAnimationFrame(tick);
+      };
+      window.__stopFrames = false;
+      requestAnimationFrame(tick);
+    });
+    const cx = box.x + box.width / 2,
+      cy = box.y + box.height / 3;
+    await page.mouse.move(cx, cy);
+    await page.mouse.down();
+    for (let i = 1; i <= 60; i++) {
+      await page.mouse.move(cx + 150 * Math.sin(i / 8), cy + 40 * Math.cos(i / 11));
+      await page.waitForTimeout(16);
+    }
+    await page.mouse.up();
+    const frames = (await page.evaluate(() => ((window.__stopFrames = true), window.__frames)))
+      .slice(2)
+      .sort((a, b) => a - b);
+    console.log(
+      `     big kernel: ${full} triangles drawn as ${drawn}; orbiting: ${frames.length} frames, median ${frames[frames.length >> 1]?.toFixed(0)} ms, ` +
+        `longest ${frames.at(-1)?.toFixed(0)} ms (load average ${os.loadavg()[0].toFixed(1)})`,
+    );
+  });
+}
+
 // A fresh three.js app (tests/e2e/three-app.mjs) built with Vite against the package: the input
 // mesh still renders after KernelWorker computed its kernel (its arrays were copied, not
 // detached), no GL error, the kernel drawn, and a wrong wasmUrl reported with its HTTP status.
@@ -1286,6 +1353,7 @@ async function main() {
       served,
     });
     await themeAndBigFile(page, tmp, served);
+    await bigKernelTest(page, tmp);
     await threeAppTest(context, tmp);
 
     await test('no uncaught errors or console errors in the page', async () => {
