@@ -1028,19 +1028,22 @@ async function themeAndBigFile(page, tmp, served) {
     const file = path.join(tmp, 'bumpy-1m.stl');
     writeBinarySTL(file, bumpySphere(1000, 501));
     served.set('/__files/bumpy-1m.stl', file);
-    await jumpToEnd(page); // an idle page: no replay frames of the previous mesh
+    // Each drop starts on an idle page: no replay frames of the previous mesh (jumpToEnd).
     // On a machine loaded by other work a task of the page's own can be stretched past 100 ms
-    // (the page before the demo-feature work measured 131 / 72 / 70 ms here under a load
-    // average of 8 on 2 cores): up to three drops until one has no such task; each is printed,
-    // the best one is asserted.
-    let r = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
-    for (let attempt = 2; attempt <= 3 && r.longest >= 100; attempt++) {
-      console.log(
-        `     1M STL: drop ${attempt - 1} had a ${r.longest.toFixed(0)} ms task (${r.longTasks} long tasks); dropping it again`,
-      );
+    // (with software WebGL the page's thread waits for each frame's pixels: a frame rasterized
+    // while both cores are busy): up to three drops until one has no such task; each is printed,
+    // the best one is asserted. E2E_1M_DROPS=N makes exactly N drops (all printed).
+    const wanted = Number(process.env.E2E_1M_DROPS ?? 0);
+    let r = null;
+    for (let attempt = 1; attempt <= (wanted || 3); attempt++) {
+      if (!wanted && r && r.longest < 100) break;
       await jumpToEnd(page);
-      const again = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
-      if (again.longest < r.longest) r = again;
+      const drop = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
+      console.log(
+        `     1M STL drop ${attempt}: longest main-thread task ${drop.longest.toFixed(0)} ms (${drop.longTasks} long tasks), ` +
+          `drop → kernel shown ${(drop.shownMs / 1000).toFixed(2)} s (load average ${os.loadavg()[0].toFixed(1)})`,
+      );
+      if (!r || drop.longest < r.longest) r = drop;
     }
     assert(r.status === 'POLYHEDRON', `status ${r.status}: ${r.statusText} ${r.message}`);
     assert(r.inputFaces === 1000000, `input faces ${r.inputFaces}`);
