@@ -402,6 +402,7 @@ async function shoot(page, name, { fullPage = false } = {}) {
       const { data, width, height } = ctx.getImageData(x0, y0, Math.round(clip.width), Math.round(clip.height));
       let blue = 0,
         amber = 0,
+        tinted = 0,
         lum = 0;
       for (let i = 0; i < data.length; i += 4) {
         const r = data[i],
@@ -409,10 +410,11 @@ async function shoot(page, name, { fullPage = false } = {}) {
           b = data[i + 2];
         if (b >= 90 && b >= 1.8 * r && b >= 1.25 * g) blue++; // kernel blue #1e6fff, lit or shaded
         if (r >= g + 25 && g >= b + 25) amber++; // the input's amber
+        if (r >= b + 20 && r >= g && g >= b) tinted++; // amber at any opacity and shade, pale too
         lum += 0.2126 * r + 0.7152 * g + 0.0722 * b;
       }
       const n = width * height;
-      return { blue, amber, total: n, blueFraction: blue / n, meanLuminance: lum / n };
+      return { blue, amber, tinted, total: n, blueFraction: blue / n, meanLuminance: lum / n };
     },
     { b64: png.toString('base64'), clip },
   );
@@ -1058,11 +1060,13 @@ async function themeAndBigFile(page, tmp, served) {
     console.log(
       `     1M STL: drop → kernel shown ${(r.shownMs / 1000).toFixed(2)} s (status after ${(r.doneMs / 1000).toFixed(2)} s);` +
         ` worker compute ${r.timeText}; page: ${r.wallText}; kernel V ${r.vertices} E ${r.edges} F ${r.faces}, ${r.steps} steps;` +
-        ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber pixels`,
+        ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber, ${px.tinted} amber-tinted pixels`,
     );
     assert(r.longest < 100, `longest main-thread task ${r.longest.toFixed(0)} ms`);
     assert(px.blue > 2000, `kernel hardly visible: ${px.blue} kernel-blue pixels`);
-    assert(px.amber > 1000, `input hardly visible: ${px.amber} amber pixels`);
+    // The simplified input is shaded smoothly, mostly a pale amber (translucent, lit) that the
+    // saturated-amber count misses: its tint is counted.
+    assert(px.tinted > 10000, `input hardly visible: ${px.tinted} amber-tinted pixels`);
     assert(!(await page.isChecked('#show-edges')), 'face edges are off by default for a million faces');
     if (r.wallMs >= 1000)
       assert(/^\d+(\.\d)? s \(/.test(r.wallText), `durations over a second in seconds: "${r.wallText}"`);
