@@ -4,7 +4,9 @@
 // convex, so its kernel has ~310k vertices) is dropped on the page, the whole kernel is shown,
 // and the mouse drags the view for ~3 s while requestAnimationFrame deltas are recorded.
 //
-//   node bench/frame_bench.mjs [--nlat A --nlon B] [--drags N] [--shot FILE.png]
+//   node bench/frame_bench.mjs [--nlat A --nlon B] [--drags N] [--shot FILE.png] [--dist DIR]
+//
+// --dist: the built page to serve (default web/dist; e.g. an older build, to compare).
 //
 // Prints the kernel's size, the frame count, and the median / 90th percentile / longest frame
 // delta per drag (a frame is rendered on every animation frame while the camera moves). Needs
@@ -23,6 +25,7 @@ const nlat = Number(opt('--nlat', '250'));
 const nlon = Number(opt('--nlon', '400'));
 const drags = Number(opt('--drags', '3'));
 const shot = opt('--shot', '');
+const dist = path.resolve(opt('--dist', path.join(repo, 'web/dist')));
 
 const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-frames-'));
 const file = path.join(tmp, `sphere-${nlat}x${nlon}.off`);
@@ -33,7 +36,7 @@ for (let i = 0; i < m.positions.length; i += 3)
 for (let i = 0; i < m.indices.length; i += 3) lines.push(`3 ${m.indices[i]} ${m.indices[i + 1]} ${m.indices[i + 2]}`);
 fs.writeFileSync(file, lines.join('\n') + '\n');
 
-const server = await serve(path.join(repo, 'web/dist'), new Map([['/__files/sphere.off', file]]));
+const server = await serve(dist, new Map([['/__files/sphere.off', file]]));
 const { page, close } = await launch();
 const pct = (xs, p) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor(p * xs.length))];
 try {
