@@ -106,7 +106,11 @@ export interface KernelProgress {
 export interface KernelOptions {
   /** Grow the kernel from the kernel vertex extreme towards this point. */
   from?: Vec3;
-  /** Called once per discovered vertex / edge / face; return `false` to stop (result: complete = false). */
+  /**
+   * Called once per discovered vertex / edge / face; return `false` to stop (result: complete = false).
+   * KernelWorker's onStep receives the same objects, in the same order: its worker sends them in
+   * batches of typed arrays (transferred), turned back into these objects on the receiving thread.
+   */
   onStep?: (event: StepEvent) => void | boolean;
   /**
    * Called synchronously as each phase begins. If it throws, later phases are not reported, the

@@ -1,24 +1,26 @@
 // The module worker spawned by KernelWorker (worker.js). It loads the wasm module once and runs
 // one job per message: a computation on arrays ('compute'), a file read + computation
 // ('computeFile': the bytes are parsed here, so a big file never costs the page's thread), or a
-// mesh written to file bytes ('writeMesh'), or the mesh after weld and repair ('repairMesh'). Step events are forwarded in batches (every ~50 ms or
-// 2048 events: a kernel of a million steps is a few hundred messages, each cheap to receive), and
-// result buffers are transferred back.
+// mesh written to file bytes ('writeMesh'), or the mesh after weld and repair ('repairMesh').
+// Step events are forwarded in batches of typed arrays (step-batch.js; every ~50 ms or 4096
+// events: a kernel of a million steps is a few hundred messages of transferred buffers, which the
+// page receives without cloning an object per event), and result buffers are transferred back.
 //
 // Protocol (main → worker):  { type: 'init', wasmUrl? }
 //                            { type: 'compute', id, wasmUrl?, positions, indices, faceSizes?, options, wantSteps }
 //                            { type: 'computeFile', id, wasmUrl?, bytes, format?, name?, options, wantSteps, wantMesh }
 //                            { type: 'writeMesh', id, wasmUrl?, mesh, format }
 //                            { type: 'repairMesh', id, wasmUrl?, positions, indices, faceSizes?, options }
-// Protocol (worker → main):  { type: 'steps', id, events, steps }
+// Protocol (worker → main):  { type: 'steps', id, batch, steps }     (batch: step-batch.js)
 //                            { type: 'progress', id, phase, steps, count?, bytes? }
 //                            { type: 'mesh', id, mesh }                  (computeFile with wantMesh, before computing)
 //                            { type: 'result', id, result, mesh? }  |  { type: 'error', id, code, message }
 import * as kergen from './index.js';
+import { StepBatchWriter, batchBuffers } from './step-batch.js';
 
 const { init, computeKernelSync, KergenError } = kergen;
 
-const BATCH_EVENTS = 2048;
+const BATCH_EVENTS = 4096;
 const BATCH_MS = 50;
 
 let ready = null;
@@ -74,20 +76,21 @@ const copyMesh = (mesh) => ({
 // Runs computeKernelSync with batched step events and phase progress posted for job `id`.
 function computeWithEvents(id, positions, indices, faceSizes, msg) {
   let steps = 0;
-  let batch = [];
+  const batch = msg.wantSteps ? new StepBatchWriter(BATCH_EVENTS) : null;
   let lastFlush = now();
   const flush = () => {
-    if (msg.wantSteps && batch.length > 0) {
-      self.postMessage({ type: 'steps', id, events: batch, steps });
-      batch = [];
+    if (batch && batch.count > 0) {
+      const events = batch.take();
+      self.postMessage({ type: 'steps', id, batch: events, steps }, batchBuffers(events));
     }
     self.postMessage({ type: 'progress', id, phase: 'tracing', steps });
     lastFlush = now();
   };
+  // The clock is read every 64 steps: a step costs far less than reading it.
   const onStep = (event) => {
     steps++;
-    if (msg.wantSteps) batch.push(event);
-    if (batch.length >= BATCH_EVENTS || now() - lastFlush >= BATCH_MS) flush();
+    if (batch) batch.push(event);
+    if ((batch && batch.count >= BATCH_EVENTS) || ((steps & 63) === 0 && now() - lastFlush >= BATCH_MS)) flush();
   };
   // The core announces each phase once as it begins, with the number of items it works on.
   const onProgress = ({ phase, count }) => {

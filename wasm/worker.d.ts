@@ -55,8 +55,11 @@ export interface WorkerComputeFileOptions extends WorkerComputeOptions {
 // The worker reports its own progress (below), not computeKernel's phases.
 export interface WorkerComputeOptions extends Omit<KernelOptions, 'onProgress'> {
   /**
-   * Called on the main thread for every step, in order (delivered in batches of up to ~50 ms or
-   * 2048 events). Returning `false` cancels the computation: the promise rejects with 'CANCELLED'.
+   * Called on the main thread for every step, in order, with the same event objects as
+   * computeKernel's onStep. The worker sends them in batches of typed arrays (every ~50 ms or
+   * 4096 events, transferred, not cloned object by object), decoded here. Returning `false`
+   * cancels the computation: the promise rejects with 'CANCELLED'; after `cancel()` (from onStep,
+   * say) no further event is delivered.
    */
   onStep?: KernelOptions['onStep'];
   /** Called on the main thread once per phase, and while tracing at most every ~50 ms. */

@@ -11,9 +11,10 @@
 // The input arrays are *copied* to the worker: the caller's arrays (a three.js geometry's
 // attribute arrays, say) stay usable. `{ transfer: true }` transfers whole-buffer typed arrays
 // instead (no copy; they are detached in the caller); so for computeFile's bytes. Step events
-// arrive in batches (every ~50 ms or 2048 events) and are replayed in order through onStep on the
-// main thread.
+// arrive in batches of typed arrays (every ~50 ms or 4096 events; step-batch.js) and are replayed
+// in order through onStep on the main thread, as event objects.
 import { KergenError } from './errors.js';
+import { forEachStep } from './step-batch.js';
 
 // The marks of result.faceSources (as the package's main entry exports them), for pages that use
 // only the worker.
@@ -137,21 +138,7 @@ export class KernelWorker {
     if (!job) return; // a message from a job that was cancelled
     switch (msg.type) {
       case 'steps':
-        if (job.onStep) {
-          for (const event of msg.events) {
-            let keepGoing;
-            try {
-              keepGoing = job.onStep(event);
-            } catch (err) {
-              this._abort(job, err);
-              return;
-            }
-            if (keepGoing === false) {
-              this._abort(job, new KergenError('CANCELLED', 'stopped by onStep returning false'));
-              return;
-            }
-          }
-        }
+        this._deliverSteps(job, msg.batch);
         break;
       case 'progress':
         if (job.onProgress) {
@@ -177,6 +164,27 @@ export class KernelWorker {
       default:
         break;
     }
+  }
+
+  // One batch of step events, decoded into event objects for onStep, in order. An onStep that
+  // throws or returns false stops the job; after cancel() or dispose() (from onStep, say) no
+  // further event of the batch is delivered.
+  _deliverSteps(job, batch) {
+    if (!job.onStep) return;
+    const onStep = job.onStep;
+    let live = true;
+    let finished;
+    try {
+      finished = forEachStep(batch, (event) => {
+        if (onStep(event) === false) return false;
+        live = this._jobs.get(job.id) === job;
+        return live;
+      });
+    } catch (err) {
+      this._abort(job, err);
+      return;
+    }
+    if (!finished && live) this._abort(job, new KergenError('CANCELLED', 'stopped by onStep returning false'));
   }
 
   // A throwing callback stops its job, as onStep's does.

@@ -73,9 +73,10 @@ export function drawnTriangles(positions, indices, faceSizes) {
   return Uint32Array.from(out);
 }
 
-// The faces' edges, each once (polygons without their drawing diagonals), as vertex-id pairs:
-// keys sorted in a typed array (a Set of a million keys is several times slower).
-export function faceEdges(indices, faceSizes, nv) {
+// Every face's edges as sorted keys min·nv + max (a Float64Array: exact below 2^53, and sorting
+// a typed array is several times faster than a Set of a million keys); an edge shared by two
+// faces appears twice. Degenerate edges (a face repeating a vertex) are left out.
+function sortedEdgeKeys(indices, faceSizes, nv) {
   const nFaces = faceSizes ? faceSizes.length : indices.length / 3;
   const keys = new Float64Array(indices.length);
   let n = 0;
@@ -84,24 +85,41 @@ export function faceEdges(indices, faceSizes, nv) {
     for (let j = 0; j < k; j++) {
       const a = indices[at + j],
         b = indices[at + ((j + 1) % k)];
-      keys[n++] = a < b ? a * nv + b : b * nv + a;
+      if (a !== b) keys[n++] = a < b ? a * nv + b : b * nv + a;
     }
     at += k;
   }
-  keys.sort();
-  const lines = new Uint32Array(2 * n);
+  return keys.subarray(0, n).sort();
+}
+
+// The vertex-id pairs of the sorted keys that occur `once` only (or, with once = false, of every
+// distinct key).
+function edgePairs(sorted, nv, once) {
+  const pairs = new Uint32Array(2 * sorted.length);
   let m = 0;
-  for (let i = 0; i < n; i++) {
-    if (i > 0 && keys[i] === keys[i - 1]) continue;
-    lines[m++] = Math.floor(keys[i] / nv);
-    lines[m++] = keys[i] % nv;
+  for (let i = 0; i < sorted.length;) {
+    let j = i + 1;
+    while (j < sorted.length && sorted[j] === sorted[i]) j++;
+    if (!once || j - i === 1) {
+      pairs[m++] = Math.floor(sorted[i] / nv);
+      pairs[m++] = sorted[i] % nv;
+    }
+    i = j;
   }
-  return lines.slice(0, m);
+  return pairs.slice(0, m);
+}
+
+// The faces' edges, each once (polygons without their drawing diagonals), as vertex-id pairs.
+export function faceEdges(indices, faceSizes, nv) {
+  return edgePairs(sortedEdgeKeys(indices, faceSizes, nv), nv, false);
 }
 
 // Vertex clustering on a grid of `res` cells along the longest side: every vertex moves to the
-// mean of its cell's vertices, and triangles that collapse are dropped. The shape stays within a
-// cell of the original, which is all a semi-transparent overlay needs.
+// mean of its cell's vertices; triangles that collapse are dropped, and so are repeats of a
+// triangle (the same three cells: two sheets of the surface folded onto each other, which a
+// translucent overlay would draw twice as dark). The shape stays within a cell of the original.
+// Each cell's normal is the sum of its original triangles' area-weighted normals, so that the
+// copy can be shaded smoothly, as the original surface looks, instead of facet by facet.
 function cluster(pos, triangles, res) {
   const lo = [Infinity, Infinity, Infinity],
     hi = [-Infinity, -Infinity, -Infinity];
@@ -132,22 +150,66 @@ function cluster(pos, triangles, res) {
     sums[4 * id + 2] += pos[3 * v + 2];
     sums[4 * id + 3]++;
   }
-  const positions = new Float32Array((sums.length / 4) * 3);
-  for (let id = 0; id < sums.length / 4; id++) {
+  const cells = sums.length / 4;
+  const positions = new Float32Array(cells * 3);
+  for (let id = 0; id < cells; id++) {
     for (let c = 0; c < 3; c++) positions[3 * id + c] = sums[4 * id + c] / sums[4 * id + 3];
   }
+  const normals = new Float32Array(cells * 3);
   const out = new Uint32Array(triangles.length);
+  const seen = new Set();
   let m = 0;
   for (let t = 0; t < triangles.length; t += 3) {
-    const a = remap[triangles[t]],
-      b = remap[triangles[t + 1]],
-      c = remap[triangles[t + 2]];
+    const i = triangles[t],
+      j = triangles[t + 1],
+      k = triangles[t + 2];
+    addNormal(pos, i, j, k, normals, remap);
+    const a = remap[i],
+      b = remap[j],
+      c = remap[k];
     if (a === b || b === c || a === c) continue;
+    // The three cells in increasing order, as one number (exact: cells³ < 2^53).
+    const s0 = Math.min(a, b, c),
+      s2 = Math.max(a, b, c),
+      s1 = a + b + c - s0 - s2;
+    const key = (s0 * cells + s1) * cells + s2;
+    if (seen.has(key)) continue;
+    seen.add(key);
     out[m++] = a;
     out[m++] = b;
     out[m++] = c;
   }
-  return { positions, triangles: out.slice(0, m) };
+  for (let id = 0; id < cells; id++) {
+    const x = normals[3 * id],
+      y = normals[3 * id + 1],
+      z = normals[3 * id + 2];
+    const len = Math.hypot(x, y, z) || 1;
+    normals[3 * id] = x / len;
+    normals[3 * id + 1] = y / len;
+    normals[3 * id + 2] = z / len;
+  }
+  return { positions, triangles: out.slice(0, m), normals };
+}
+
+// Adds triangle (i, j, k)'s area-weighted normal to its vertices' cells (each cell once).
+function addNormal(pos, i, j, k, normals, remap) {
+  const ux = pos[3 * j] - pos[3 * i],
+    uy = pos[3 * j + 1] - pos[3 * i + 1],
+    uz = pos[3 * j + 2] - pos[3 * i + 2];
+  const vx = pos[3 * k] - pos[3 * i],
+    vy = pos[3 * k + 1] - pos[3 * i + 1],
+    vz = pos[3 * k + 2] - pos[3 * i + 2];
+  const nx = uy * vz - uz * vy,
+    ny = uz * vx - ux * vz,
+    nz = ux * vy - uy * vx;
+  const a = remap[i],
+    b = remap[j],
+    c = remap[k];
+  for (const cell of a === b ? (b === c ? [a] : [a, c]) : a === c || b === c ? [a, b] : [a, b, c]) {
+    normals[3 * cell] += nx;
+    normals[3 * cell + 1] += ny;
+    normals[3 * cell + 2] += nz;
+  }
 }
 
 // A coarser copy of a big surface to draw, with at most about `target` triangles. Software WebGL
@@ -164,6 +226,21 @@ export function simplify(pos, triangles, target) {
     res = Math.max(4, Math.floor(res * Math.sqrt((3 * target) / c.triangles.length) * 0.95));
   }
   return best;
+}
+
+/**
+ * A simplified copy of a triangulated surface to draw (a big kernel): float64 `vertices` (xyz)
+ * moved by -`center` to float32, then simplify()'d to about `maxTriangles`. Returns
+ * { positions, triangles }.
+ */
+export function simplifySurface(vertices, triangles, center, maxTriangles) {
+  const pos = new Float32Array(vertices.length);
+  for (let i = 0; i < vertices.length; i += 3) {
+    pos[i] = vertices[i] - center[0];
+    pos[i + 1] = vertices[i + 1] - center[1];
+    pos[i + 2] = vertices[i + 2] - center[2];
+  }
+  return simplify(pos, triangles, maxTriangles);
 }
 
 /**
@@ -209,6 +286,7 @@ export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } 
       simplified: true,
       positions: s.positions,
       triangles: s.triangles,
+      normals: s.normals,
       edges: edges ? faceEdges(s.triangles, null, s.positions.length / 3) : null,
     };
   }
@@ -227,34 +305,18 @@ export function prepareDrawing(mesh, { edges = false, maxTriangles = Infinity } 
 
 /** The buffers of a prepareDrawing() result, for a transfer list. */
 export function drawingBuffers(d) {
-  return [...new Set([d.positions.buffer, d.triangles.buffer, d.edges?.buffer].filter((b) => b && b.byteLength > 0))];
+  return [
+    ...new Set(
+      [d.positions.buffer, d.triangles.buffer, d.edges?.buffer, d.normals?.buffer].filter((b) => b && b.byteLength > 0),
+    ),
+  ];
 }
 
-// The edges used by one face only (a hole's rim), as vertex-id pairs: the same sorted keys as
-// faceEdges(), kept where a key occurs once. (An edge used by three or more faces is a
-// non-manifold edge, not an open one: the package reports it as NON_MANIFOLD_EDGE.)
+// The edges used by one face only (a hole's rim), as vertex-id pairs: the keys of faceEdges()
+// that occur once. (An edge used by three or more faces is a non-manifold edge, not an open one:
+// the package reports it as NON_MANIFOLD_EDGE.)
 export function boundaryEdges(indices, faceSizes, nv) {
-  const nFaces = faceSizes ? faceSizes.length : indices.length / 3;
-  const keys = new Float64Array(indices.length);
-  let n = 0;
-  for (let f = 0, at = 0; f < nFaces; f++) {
-    const k = faceSizes ? faceSizes[f] : 3;
-    for (let j = 0; j < k; j++) {
-      const a = indices[at + j],
-        b = indices[at + ((j + 1) % k)];
-      if (a !== b) keys[n++] = a < b ? a * nv + b : b * nv + a;
-    }
-    at += k;
-  }
-  const sorted = keys.subarray(0, n).sort();
-  const pairs = [];
-  for (let i = 0; i < n;) {
-    let j = i + 1;
-    while (j < n && sorted[j] === sorted[i]) j++;
-    if (j - i === 1) pairs.push(Math.floor(sorted[i] / nv), sorted[i] % nv);
-    i = j;
-  }
-  return Uint32Array.from(pairs);
+  return edgePairs(sortedEdgeKeys(indices, faceSizes, nv), nv, true);
 }
 
 // Line-segment positions (float32, relative to `center`) of vertex-id pairs.

@@ -5,9 +5,18 @@
 // that show a mesh is not star-shaped).
 //
 // main → worker: { type: 'prepare', id, mesh, edges, maxTriangles } | { type: 'edges', id } |
-//                { type: 'open-edges', id } | { type: 'faces', id, faces } | { type: 'noop', id }
+//                { type: 'open-edges', id } | { type: 'faces', id, faces } | { type: 'noop', id } |
+//                { type: 'simplify', id, vertices, triangles, center, maxTriangles }
 // worker → main: { id, drawing } | { id, edges } | { id, count, lines } | { id, triangles, lines, centers } | { id }
-import { prepareDrawing, drawingBuffers, faceEdges, openEdgeLines, faceHighlight } from './draw-prep.js';
+//                | { id, positions, triangles }   (simplify: a big kernel's display copy)
+import {
+  prepareDrawing,
+  drawingBuffers,
+  faceEdges,
+  openEdgeLines,
+  faceHighlight,
+  simplifySurface,
+} from './draw-prep.js';
 
 let drawn = null; // the mesh whose edges can still be asked for: the drawn one (maybe simplified)
 let input = null; // the input as parsed (open edges and faces are the input's, never a simplified copy's)
@@ -25,6 +34,10 @@ self.onmessage = ({ data }) => {
     if (drawing.triangles === drawn.indices) drawing.triangles = drawn.indices.slice();
     if (drawing.positions === drawn.positions) drawing.positions = drawn.positions.slice();
     self.postMessage({ id: data.id, drawing }, drawingBuffers(drawing));
+  } else if (data.type === 'simplify') {
+    // A kernel is a convex polytope, drawn facet by facet (flat): its copy needs no normals.
+    const { positions, triangles } = simplifySurface(data.vertices, data.triangles, data.center, data.maxTriangles);
+    self.postMessage({ id: data.id, positions, triangles }, [positions.buffer, triangles.buffer]);
   } else if (data.type === 'noop') {
     self.postMessage({ id: data.id }); // started: nothing to do
   } else if (data.type === 'edges') {

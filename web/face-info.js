@@ -23,7 +23,7 @@ export function kernelFaceAt(x, y) {
   // kernel's arrays grow and are replaced, so it is recomputed when the faces changed.
   const geo = viewer.kernel.facesGeo;
   const attr = geo.getAttribute('position'),
-    count = viewer.kernel.faceBuf.count;
+    count = viewer.kernel.faceIndex.count;
   if (geo.userData.sphereOf !== attr || geo.userData.sphereCount !== count) {
     geo.computeBoundingSphere();
     Object.assign(geo.userData, { sphereOf: attr, sphereCount: count });

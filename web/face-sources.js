@@ -5,12 +5,12 @@
 // in an empty kernel's witness). Results of a package without them leave both undefined: the page
 // then keeps its older behaviour (box facets found geometrically, unbounded.js; no face info).
 
+// The package's marks, the core's values (kergen::kFaceSourceBox, kFaceSourceWall): from the
+// worker entry, as importing the main one would load the wasm glue on this thread.
+import { FACE_SOURCE_BOX, FACE_SOURCE_WALL } from 'kergen-wasm/worker';
 import { boxFacets } from './unbounded.js';
 
-// The package's documented marks (FACE_SOURCE_BOX, FACE_SOURCE_WALL in kergen-wasm). The page
-// loads only the worker entry: importing the main one would load the wasm glue on this thread.
-export const FACE_SOURCE_BOX = -1;
-export const FACE_SOURCE_WALL = -2;
+export { FACE_SOURCE_BOX, FACE_SOURCE_WALL };
 
 /** The kernel faces that are the clip box's: from the marks when the result has them. */
 export function boxFaceIds(result, maxAbs) {

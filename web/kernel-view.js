@@ -7,12 +7,12 @@ export const KERNEL_BLUE = 0x1e6fff;
 const KERNEL_EDGE = 0x0a2f80;
 const FRONT_COLOR = 0xffb000;
 
-// A growable Float32 attribute (xyz) whose draw range is set separately. Only the items added
-// since the last frame are uploaded (upload()): re-sending a kernel of a million elements every
-// frame would cost more than drawing it.
+// A growable Float32 attribute (xyz) shared by several geometries, whose draw ranges are set
+// separately. Only the items added since the last frame are uploaded (upload()): re-sending a
+// kernel of a million elements every frame would cost more than drawing it.
 class GrowableBuffer {
-  constructor(geometry, name = 'position', itemSize = 3) {
-    this.geometry = geometry;
+  constructor(geometries, name = 'position', itemSize = 3) {
+    this.geometries = geometries;
     this.name = name;
     this.itemSize = itemSize;
     this.count = 0;
@@ -23,7 +23,7 @@ class GrowableBuffer {
     if (this.attr) array.set(this.attr.array.subarray(0, this.count * this.itemSize));
     this.attr = new THREE.BufferAttribute(array, this.itemSize);
     this.attr.setUsage(THREE.DynamicDrawUsage);
-    this.geometry.setAttribute(this.name, this.attr);
+    for (const g of this.geometries) g.setAttribute(this.name, this.attr);
     this.uploaded = this.count; // a new attribute is uploaded whole on its first draw
   }
   push(x, y, z) {
@@ -46,6 +46,39 @@ class GrowableBuffer {
   reset() {
     this.count = 0;
     this.alloc(256);
+  }
+}
+
+// A growable index (Uint32) of one geometry, uploaded as GrowableBuffer is: edges and faces index
+// the kernel's vertices, so each vertex is stored, uploaded and transformed once (a triangle soup
+// repeated every vertex ~6 times).
+class GrowableIndex {
+  constructor(geometry) {
+    this.geometry = geometry;
+    this.count = 0;
+    this.alloc(1024);
+  }
+  alloc(n) {
+    const array = new Uint32Array(n);
+    if (this.attr) array.set(this.attr.array.subarray(0, this.count));
+    this.attr = new THREE.BufferAttribute(array, 1);
+    this.attr.setUsage(THREE.DynamicDrawUsage);
+    this.geometry.setIndex(this.attr);
+    this.uploaded = this.count;
+  }
+  push(i) {
+    if (this.count === this.attr.array.length) this.alloc(2 * this.count);
+    this.attr.array[this.count++] = i;
+  }
+  upload() {
+    if (this.count === this.uploaded) return;
+    this.attr.addUpdateRange(this.uploaded, this.count - this.uploaded);
+    this.attr.needsUpdate = true;
+    this.uploaded = this.count;
+  }
+  reset() {
+    this.count = 0;
+    this.alloc(1024);
   }
 }
 
@@ -80,9 +113,9 @@ export class KernelView {
     this.pointsGeo = new THREE.BufferGeometry();
     this.linesGeo = new THREE.BufferGeometry();
     this.facesGeo = new THREE.BufferGeometry();
-    this.pointBuf = new GrowableBuffer(this.pointsGeo);
-    this.lineBuf = new GrowableBuffer(this.linesGeo);
-    this.faceBuf = new GrowableBuffer(this.facesGeo);
+    this.pointBuf = new GrowableBuffer([this.pointsGeo, this.linesGeo, this.facesGeo]);
+    this.lineIndex = new GrowableIndex(this.linesGeo);
+    this.faceIndex = new GrowableIndex(this.facesGeo);
     this.points = new THREE.Points(
       this.pointsGeo,
       new THREE.PointsMaterial({ color: KERNEL_EDGE, size: 6, sizeAttenuation: false }),
@@ -108,7 +141,12 @@ export class KernelView {
       this.frontGeo,
       new THREE.PointsMaterial({ color: FRONT_COLOR, size: 10, sizeAttenuation: false }),
     );
-    for (const o of [this.faces, this.lines, this.points, this.front, this.frontPoint]) {
+    // A big complete kernel is drawn from a simplified copy (setSimplified): software WebGL pays
+    // per triangle, and 600k triangles took ~280 ms a frame where most cover less than a pixel.
+    this.simpleGeo = new THREE.BufferGeometry();
+    this.simple = new THREE.Mesh(this.simpleGeo, this.faces.material);
+    this.simple.visible = false;
+    for (const o of [this.faces, this.simple, this.lines, this.points, this.front, this.frontPoint]) {
       o.frustumCulled = false;
       this.group.add(o);
     }
@@ -119,15 +157,16 @@ export class KernelView {
 
   reset() {
     this.kinds = new GrowableArray(Uint8Array);
-    // After k events: points, line vertices, face-triangle vertices, faces (4 numbers per k).
+    // After k events: points, line indices, face-triangle indices, faces (4 numbers per k).
     this.prefix = new GrowableArray(Uint32Array);
     for (let i = 0; i < 4; i++) this.prefix.push(0);
     this.slot = []; // vertex id → its point index
     this.triFace = new GrowableArray(Uint32Array); // drawn triangle → its kernel face id (picking)
     this.nFaces = 0;
     this.pointBuf.reset();
-    this.lineBuf.reset();
-    this.faceBuf.reset();
+    this.lineIndex.reset();
+    this.faceIndex.reset();
+    this.setSimplified(null);
     this.shown = -1;
     this.show(0);
   }
@@ -152,17 +191,19 @@ export class KernelView {
       const a = this.slot[ev.a],
         b = this.slot[ev.b];
       if (a === undefined || b === undefined) return false;
-      this.lineBuf.push(...this.pointAt(a));
-      this.lineBuf.push(...this.pointAt(b));
+      this.lineIndex.push(a);
+      this.lineIndex.push(b);
     } else if (kind === KIND.face) {
-      const loop = Array.from(ev.loop, (id) => this.slot[id]);
-      if (loop.length < 3 || loop.some((i) => i === undefined)) return false;
-      const p0 = this.pointAt(loop[0]);
+      const loop = ev.loop,
+        slot = this.slot;
+      if (loop.length < 3) return false;
+      for (let k = 0; k < loop.length; k++) if (slot[loop[k]] === undefined) return false;
+      // A fan: the kernel's faces are convex polygons.
       for (let k = 1; k + 1 < loop.length; k++) {
         this.triFace.push(ev.id);
-        this.faceBuf.push(...p0);
-        this.faceBuf.push(...this.pointAt(loop[k]));
-        this.faceBuf.push(...this.pointAt(loop[k + 1]));
+        this.faceIndex.push(slot[loop[0]]);
+        this.faceIndex.push(slot[loop[k]]);
+        this.faceIndex.push(slot[loop[k + 1]]);
       }
       this.nFaces++;
     } else {
@@ -170,8 +211,8 @@ export class KernelView {
     }
     this.kinds.push(kind);
     this.prefix.push(this.pointBuf.count);
-    this.prefix.push(this.lineBuf.count);
-    this.prefix.push(this.faceBuf.count);
+    this.prefix.push(this.lineIndex.count);
+    this.prefix.push(this.faceIndex.count);
     this.prefix.push(this.nFaces);
     return true;
   }
@@ -179,6 +220,28 @@ export class KernelView {
   /** The kernel face id of drawn triangle `t` (a raycast's faceIndex on `faces`). */
   faceOfTriangle(t) {
     return t < this.triFace.length ? this.triFace.array[t] : -1;
+  }
+
+  /**
+   * A simplified copy of the complete kernel's faces (float32 positions in the kernel's frame,
+   * triangles), drawn instead of them once every event is shown; null: none.
+   */
+  setSimplified(positions, triangles) {
+    this.simpleGeo.dispose();
+    this.simpleGeo = new THREE.BufferGeometry();
+    if (positions) {
+      this.simpleGeo.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+      this.simpleGeo.setIndex(new THREE.BufferAttribute(triangles, 1));
+    }
+    this.simple.geometry = this.simpleGeo;
+    this.hasSimplified = !!positions;
+    this.shown = -1; // show() picks the copy or the faces again
+    this.dirty = true;
+  }
+
+  /** The geometry the complete kernel's faces are drawn with (the section cap counts it). */
+  get surfaceGeometry() {
+    return this.hasSimplified ? this.simpleGeo : this.facesGeo;
   }
 
   countsAt(k) {
@@ -189,7 +252,7 @@ export class KernelView {
   // Draws the state after the first k events; returns the partial counts.
   show(k) {
     k = Math.max(0, Math.min(this.length, Math.floor(k)));
-    for (const b of [this.pointBuf, this.lineBuf, this.faceBuf]) b.upload();
+    for (const b of [this.pointBuf, this.lineIndex, this.faceIndex]) b.upload();
     if (k !== this.shown) {
       const p = this.prefix.array;
       // Big kernels: vertex dots and edge lines only while there are few enough to read (and
@@ -199,14 +262,17 @@ export class KernelView {
       this.pointsGeo.setDrawRange(0, p[4 * k]);
       this.linesGeo.setDrawRange(0, p[4 * k + 1]);
       this.facesGeo.setDrawRange(0, p[4 * k + 2]);
+      const whole = this.hasSimplified && k === this.length;
+      this.faces.visible = !whole;
+      this.simple.visible = whole;
       // Highlight the newest element: the last edge, or the last vertex.
       const pos = this.frontGeo.getAttribute('position');
       const kind = k > 0 ? this.kinds.array[k - 1] : 0;
       let n = 0;
       if (kind === KIND.edge) {
-        const lines = this.lineBuf.attr.array,
-          e = 3 * (p[4 * k + 1] - 2);
-        pos.array.set(lines.subarray(e, e + 6), 0);
+        const e = p[4 * k + 1] - 2;
+        pos.array.set(this.pointAt(this.lineIndex.attr.array[e]), 0);
+        pos.array.set(this.pointAt(this.lineIndex.attr.array[e + 1]), 3);
         n = 2;
       } else if (kind === KIND.vertex) {
         const v = this.pointAt(p[4 * k] - 1);

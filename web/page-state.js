@@ -10,6 +10,10 @@ export const INLINE_FACES = 20000;
 export const EDGE_FACES = 50000;
 // Above this many triangles the view draws a simplified copy of the input (draw-prep.js simplify).
 export const DRAW_TRIANGLES = 10000;
+// Above this many triangles a complete kernel is drawn from a simplified copy of about
+// KERNEL_DRAW_TRIANGLES (the kernel's own faces for any shorter prefix of the replay).
+export const KERNEL_SIMPLIFY_TRIANGLES = 50000;
+export const KERNEL_DRAW_TRIANGLES = 20000;
 // A full replay at speed 1× takes at most this long, whatever the kernel's size.
 export const REPLAY_SECONDS = 10;
 export const MIN_STEPS_PER_S = 40;

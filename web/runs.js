@@ -4,7 +4,17 @@
 import { KernelWorker } from 'kergen-wasm/worker';
 import { applySection } from './controls.js';
 import { faceHighlight, openEdgeLines, prepareDrawing } from './draw-prep.js';
-import { DRAW_TRIANGLES, EDGE_FACES, INLINE_FACES, STREAM, state, ui, viewer } from './page-state.js';
+import {
+  DRAW_TRIANGLES,
+  EDGE_FACES,
+  INLINE_FACES,
+  KERNEL_DRAW_TRIANGLES,
+  KERNEL_SIMPLIFY_TRIANGLES,
+  STREAM,
+  state,
+  ui,
+  viewer,
+} from './page-state.js';
 import {
   clearStats,
   fmtCount,
@@ -231,6 +241,7 @@ async function showOpenEdges(token) {
 async function finish(result, token) {
   state.result = result;
   const wall = performance.now() - state.t0;
+  const simplified = simplifiedKernel(result);
   // Events and result use the same ids; add anything the stream did not deliver (in id order).
   const V = result.vertices.length / 3,
     E = result.edges.length / 2,
@@ -273,8 +284,33 @@ async function finish(result, token) {
       openSurface: state.trials?.trials.allowOpen,
     });
   }
+  const simple = await simplified;
+  if (token !== state.token) return;
+  if (simple?.positions) {
+    viewer.kernel.setSimplified(simple.positions, simple.triangles);
+    ui.edgesNote.textContent +=
+      ` The whole kernel (${fmtCount(result.triangles.length / 3)} triangles) is drawn from a simplified copy` +
+      ` (${fmtCount(simple.triangles.length / 3)} triangles); its numbers and exports are exact.`;
+  }
   showStats(result, wall, V, E, F);
   showOutcome(result, V, E, F, extra);
+}
+
+// A big kernel's display copy, made in the drawing worker (null for a small one).
+function simplifiedKernel(result) {
+  if (!(result.triangles?.length / 3 > KERNEL_SIMPLIFY_TRIANGLES)) return null;
+  const vertices = result.vertices.slice(),
+    triangles = result.triangles.slice();
+  return drawRequest(
+    {
+      type: 'simplify',
+      vertices,
+      triangles,
+      center: viewer.kernel.offset.toArray(),
+      maxTriangles: KERNEL_DRAW_TRIANGLES,
+    },
+    [vertices.buffer, triangles.buffer],
+  );
 }
 
 // The faces of an empty kernel's certificate (input indices), highlighted.

@@ -96,29 +96,63 @@ export class Viewer {
     this.warmUp();
   }
 
-  // Draws one frame with a triangle of every material at page load: compiling a shader and, with
-  // software WebGL, generating its pipeline on first use cost a few hundred ms, which would
-  // otherwise fall in the middle of a file's computation.
+  // Draws one frame with every material at page load: compiling a shader and, with software
+  // WebGL, generating its pipeline on first use cost a few hundred ms, which would otherwise fall
+  // in the middle of a file's computation. A pipeline is built per material *and* vertex layout
+  // (attributes, index type), so each material is drawn with the layouts the page draws it with:
+  // position only (the kernel's indexed faces and edges, the flat-shaded input, overlays without
+  // an index), position + normal (the smoothly shaded simplified input), and the ball's own
+  // sphere (16-bit index).
   warmUp() {
     // A 100 × 100 grid (20k triangles) filling the view in front of the camera (at the origin,
     // looking down -z until the first fit()): software rasterizers build their pixel stage and
     // start their threads only when fragments are drawn, and a drawing of this size is what a
     // big input costs.
-    const geo = new THREE.PlaneGeometry(2, 2, 100, 100);
-    geo.translate(0, 0, -1);
-    geo.setIndex(new THREE.BufferAttribute(Uint32Array.from(geo.index.array), 1));
-    // One dummy per material in the scene (kernel, newest edge, kernel point) and the input's.
-    const dummies = [new THREE.Mesh(geo, this.inputMaterial), new THREE.LineSegments(geo, this.wireMaterial)];
-    dummies[0].renderOrder = 2;
-    this.scene.traverse((o) => {
-      if (o.isMesh) dummies.push(new THREE.Mesh(geo, o.material));
-      else if (o.isLineSegments) dummies.push(new THREE.LineSegments(geo, o.material));
-      else if (o.isPoints) dummies.push(new THREE.Points(geo, o.material));
-    });
+    const grid = new THREE.PlaneGeometry(2, 2, 100, 100);
+    grid.translate(0, 0, -1);
+    grid.setIndex(new THREE.BufferAttribute(Uint32Array.from(grid.index.array), 1));
+    // The other layouts on a coarse grid covering the same pixels (what builds a pipeline is
+    // drawing fragments, not the triangle count).
+    const coarse = new THREE.PlaneGeometry(2, 2, 4, 4);
+    coarse.translate(0, 0, -1);
+    const index = new THREE.BufferAttribute(Uint32Array.from(coarse.index.array), 1);
+    const layout = (names, indexed) => {
+      const g = new THREE.BufferGeometry();
+      for (const n of names) g.setAttribute(n, coarse.getAttribute(n));
+      if (indexed) g.setIndex(index);
+      return g;
+    };
+    const layouts = [
+      grid,
+      layout(['position'], true),
+      layout(['position'], false),
+      layout(['position', 'normal'], true),
+    ];
+    const dummies = [];
+    const add = (o) => {
+      const Kind = o.isMesh ? THREE.Mesh : o.isLineSegments ? THREE.LineSegments : o.isPoints ? THREE.Points : null;
+      if (!Kind) return;
+      for (const geo of layouts) {
+        const dummy = new Kind(geo, o.material);
+        dummy.renderOrder = o.renderOrder;
+        dummies.push(dummy);
+      }
+    };
+    add(new THREE.Mesh(grid, this.inputMaterial));
+    add(new THREE.Mesh(grid, this.smoothInputMaterial));
+    add(new THREE.LineSegments(grid, this.wireMaterial));
+    this.scene.traverse((o) => add(o));
     this.inputGroup.add(...dummies);
+    // Hidden objects (the ball, overlays) are drawn once too, with their own geometry.
+    const hidden = [];
+    this.scene.traverse((o) => {
+      if (!o.visible) hidden.push(o);
+    });
+    for (const o of hidden) o.visible = true;
     this.renderer.render(this.scene, this.camera);
+    for (const o of hidden) o.visible = false;
     this.inputGroup.remove(...dummies);
-    geo.dispose();
+    for (const g of [...layouts, coarse]) g.dispose();
     this.dirty = true;
   }
 
@@ -140,6 +174,10 @@ export class Viewer {
       polygonOffsetFactor: 2,
       polygonOffsetUnits: 4,
     });
+    // A simplified copy of a big input (draw-prep.js simplify) is shaded smoothly, with normals
+    // from the original surface: facet shading of its irregular triangles looked like shards.
+    this.smoothInputMaterial = this.inputMaterial.clone();
+    this.smoothInputMaterial.flatShading = false;
     this.wireMaterial = new THREE.LineBasicMaterial({
       color: 0x7a5a2a,
       transparent: true,
@@ -208,11 +246,13 @@ export class Viewer {
   /** The input shape's opacity, 0 (hidden) to 1 (opaque). */
   setOpacity(x) {
     this.opacity = x;
-    this.inputMaterial.opacity = x;
-    // Opaque: write depth so the shape hides what is behind it, as a solid does.
-    this.inputMaterial.transparent = x < 1;
-    this.inputMaterial.depthWrite = x >= 1;
-    this.inputMaterial.needsUpdate = true;
+    for (const m of [this.inputMaterial, this.smoothInputMaterial]) {
+      m.opacity = x;
+      // Opaque: write depth so the shape hides what is behind it, as a solid does.
+      m.transparent = x < 1;
+      m.depthWrite = x >= 1;
+      m.needsUpdate = true;
+    }
     this.updateInputVisibility();
   }
 
@@ -255,7 +295,8 @@ export class Viewer {
       const geo = new THREE.BufferGeometry();
       geo.setAttribute('position', new THREE.BufferAttribute(d.positions, 3));
       geo.setIndex(new THREE.BufferAttribute(d.triangles, 1));
-      this.inputMesh = new THREE.Mesh(geo, this.inputMaterial);
+      if (d.normals) geo.setAttribute('normal', new THREE.BufferAttribute(d.normals, 3));
+      this.inputMesh = new THREE.Mesh(geo, d.normals ? this.smoothInputMaterial : this.inputMaterial);
       this.inputMesh.renderOrder = 2;
       this.inputMesh.frustumCulled = false; // no bounding sphere to compute over every vertex
       this.inputGroup.add(this.inputMesh);
@@ -388,7 +429,8 @@ export class Viewer {
       return;
     }
     this.clipKey = clipKey;
-    this.inputMaterial.clippingPlanes = this.wireMaterial.clippingPlanes = s.planesFor(false);
+    this.inputMaterial.clippingPlanes = this.smoothInputMaterial.clippingPlanes = s.planesFor(false);
+    this.wireMaterial.clippingPlanes = s.planesFor(false);
     // What lies inside the kernel (ball, deepest point, kernel point) is cut with it.
     const kernelMaterials = [
       this.kernel.faces.material,
@@ -401,7 +443,7 @@ export class Viewer {
       m.clippingPlanes = s.planesFor(true);
       m.needsUpdate = true;
     }
-    this.inputMaterial.needsUpdate = this.wireMaterial.needsUpdate = true;
+    this.inputMaterial.needsUpdate = this.smoothInputMaterial.needsUpdate = this.wireMaterial.needsUpdate = true;
     s.updateVisibility(this.inputVisible, this.kernelClosed);
     this.dirty = true;
   }
@@ -409,7 +451,7 @@ export class Viewer {
   /** Whether the kernel drawn is a closed solid (its section can be capped). */
   setKernelClosed(closed) {
     this.kernelClosed = closed;
-    this.section.kernelCap.setGeometry(closed ? this.kernel.facesGeo : null);
+    this.section.kernelCap.setGeometry(closed ? this.kernel.surfaceGeometry : null);
     this.section.updateVisibility(this.inputVisible, this.kernelClosed);
     this.dirty = true;
   }

@@ -20,7 +20,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
-import { SAMPLES, sampleById } from '../../web/samples.js';
+import { SAMPLES, sampleById, radialSphere } from '../../web/samples.js';
 import { checkSamples, expectedKernel } from './samples-check.mjs';
 import { serve, writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
@@ -404,6 +404,7 @@ async function shoot(page, name, { fullPage = false } = {}) {
       const { data, width, height } = ctx.getImageData(x0, y0, Math.round(clip.width), Math.round(clip.height));
       let blue = 0,
         amber = 0,
+        tinted = 0,
         lum = 0;
       for (let i = 0; i < data.length; i += 4) {
         const r = data[i],
@@ -411,10 +412,11 @@ async function shoot(page, name, { fullPage = false } = {}) {
           b = data[i + 2];
         if (b >= 90 && b >= 1.8 * r && b >= 1.25 * g) blue++; // kernel blue #1e6fff, lit or shaded
         if (r >= g + 25 && g >= b + 25) amber++; // the input's amber
+        if (r >= b + 20 && r >= g && g >= b) tinted++; // amber at any opacity and shade, pale too
         lum += 0.2126 * r + 0.7152 * g + 0.0722 * b;
       }
       const n = width * height;
-      return { blue, amber, total: n, blueFraction: blue / n, meanLuminance: lum / n };
+      return { blue, amber, tinted, total: n, blueFraction: blue / n, meanLuminance: lum / n };
     },
     { b64: png.toString('base64'), clip },
   );
@@ -1030,19 +1032,22 @@ async function themeAndBigFile(page, tmp, served) {
     const file = path.join(tmp, 'bumpy-1m.stl');
     writeBinarySTL(file, bumpySphere(1000, 501));
     served.set('/__files/bumpy-1m.stl', file);
-    await jumpToEnd(page); // an idle page: no replay frames of the previous mesh
+    // Each drop starts on an idle page: no replay frames of the previous mesh (jumpToEnd).
     // On a machine loaded by other work a task of the page's own can be stretched past 100 ms
-    // (the page before the demo-feature work measured 131 / 72 / 70 ms here under a load
-    // average of 8 on 2 cores): up to three drops until one has no such task; each is printed,
-    // the best one is asserted.
-    let r = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
-    for (let attempt = 2; attempt <= 3 && r.longest >= 100; attempt++) {
-      console.log(
-        `     1M STL: drop ${attempt - 1} had a ${r.longest.toFixed(0)} ms task (${r.longTasks} long tasks); dropping it again`,
-      );
+    // (with software WebGL the page's thread waits for each frame's pixels: a frame rasterized
+    // while both cores are busy): up to three drops until one has no such task; each is printed,
+    // the best one is asserted. E2E_1M_DROPS=N makes exactly N drops (all printed).
+    const wanted = Number(process.env.E2E_1M_DROPS ?? 0);
+    let r = null;
+    for (let attempt = 1; attempt <= (wanted || 3); attempt++) {
+      if (!wanted && r && r.longest < 100) break;
       await jumpToEnd(page);
-      const again = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
-      if (again.longest < r.longest) r = again;
+      const drop = await dropAndMeasure(page, '/__files/bumpy-1m.stl', 'bumpy-1m.stl');
+      console.log(
+        `     1M STL drop ${attempt}: longest main-thread task ${drop.longest.toFixed(0)} ms (${drop.longTasks} long tasks), ` +
+          `drop → kernel shown ${(drop.shownMs / 1000).toFixed(2)} s (load average ${os.loadavg()[0].toFixed(1)})`,
+      );
+      if (!r || drop.longest < r.longest) r = drop;
     }
     assert(r.status === 'POLYHEDRON', `status ${r.status}: ${r.statusText} ${r.message}`);
     assert(r.inputFaces === 1000000, `input faces ${r.inputFaces}`);
@@ -1057,15 +1062,84 @@ async function themeAndBigFile(page, tmp, served) {
     console.log(
       `     1M STL: drop → kernel shown ${(r.shownMs / 1000).toFixed(2)} s (status after ${(r.doneMs / 1000).toFixed(2)} s);` +
         ` worker compute ${r.timeText}; page: ${r.wallText}; kernel V ${r.vertices} E ${r.edges} F ${r.faces}, ${r.steps} steps;` +
-        ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber pixels`,
+        ` long tasks: ${r.longTasks} (sum ${r.longTaskMs.toFixed(0)} ms), longest ${r.longest.toFixed(0)} ms [${top.join(', ')}]; ${px.blue} blue, ${px.amber} amber, ${px.tinted} amber-tinted pixels`,
     );
     assert(r.longest < 100, `longest main-thread task ${r.longest.toFixed(0)} ms`);
     assert(px.blue > 2000, `kernel hardly visible: ${px.blue} kernel-blue pixels`);
-    assert(px.amber > 1000, `input hardly visible: ${px.amber} amber pixels`);
+    // The simplified input is shaded smoothly, mostly a pale amber (translucent, lit) that the
+    // saturated-amber count misses: its tint is counted.
+    assert(px.tinted > 10000, `input hardly visible: ${px.tinted} amber-tinted pixels`);
     assert(!(await page.isChecked('#show-edges')), 'face edges are off by default for a million faces');
     if (r.wallMs >= 1000)
       assert(/^\d+(\.\d)? s \(/.test(r.wallText), `durations over a second in seconds: "${r.wallText}"`);
     fs.rmSync(file, { force: true });
+  });
+}
+
+// 13. A kernel of ~100k triangles (a nearly convex UV sphere's) is drawn from a simplified copy
+// once complete, the real faces for the replay's prefixes; frame times while orbiting printed.
+async function bigKernelTest(page, tmp) {
+  await test('a big kernel (~100k triangles) is drawn from a simplified copy; prefixes draw the real faces', async () => {
+    const file = path.join(tmp, 'sphere-100x160.off');
+    writeOFF(
+      file,
+      radialSphere(100, 160, () => 1),
+    );
+    const s = await loadFile(page, file);
+    assert(s.status === 'POLYHEDRON', `status ${s.status}`);
+    await jumpToEnd(page);
+    const note = await page.textContent('#edges-note');
+    const m = /The whole kernel \(([\d,]+) triangles\) is drawn from a simplified copy \(([\d,]+) triangles\)/.exec(
+      note,
+    );
+    assert(m, `the page says the kernel is drawn simplified: "${note}"`);
+    const [full, drawn] = [m[1], m[2]].map((x) => Number(x.replace(/,/g, '')));
+    assert(full > 50000 && drawn <= 24000 && drawn > 5000, `${full} triangles drawn as ${drawn}`);
+    const whole = await shoot(page, 'big-kernel-simplified.png');
+    assert(whole.blue > 20000, `the simplified kernel is drawn: ${whole.blue} blue pixels`);
+    const flags = await page.evaluate(() => {
+      const k = window.kergenDemo.viewer.kernel;
+      return { simple: k.simple.visible, faces: k.faces.visible };
+    });
+    assert(flags.simple && !flags.faces, `complete: the copy is drawn, not the faces (${JSON.stringify(flags)})`);
+    const half = await scrubTo(page, Math.floor(s.steps * 0.9));
+    const prefix = await shoot(page, 'big-kernel-prefix.png');
+    const flags2 = await page.evaluate(() => {
+      const k = window.kergenDemo.viewer.kernel;
+      return { simple: k.simple.visible, faces: k.faces.visible };
+    });
+    assert(flags2.faces && !flags2.simple, `a prefix draws the real faces (${JSON.stringify(flags2)})`);
+    assert(prefix.blue > 2000 && half.shown.faces > 0, `prefix: ${prefix.blue} blue pixels, ${half.shown.faces} faces`);
+    await jumpToEnd(page);
+    // Frame deltas while the view is dragged (printed: timing is not asserted in a test).
+    const box = await page.locator('#viewport').boundingBox();
+    await page.evaluate(() => {
+      window.__frames = [];
+      let last = performance.now();
+      const tick = (t) => {
+        window.__frames.push(t - last);
+        last = t;
+        if (!window.__stopFrames) requestAnimationFrame(tick);
+      };
+      window.__stopFrames = false;
+      requestAnimationFrame(tick);
+    });
+    const cx = box.x + box.width / 2,
+      cy = box.y + box.height / 3;
+    await page.mouse.move(cx, cy);
+    await page.mouse.down();
+    for (let i = 1; i <= 60; i++) {
+      await page.mouse.move(cx + 150 * Math.sin(i / 8), cy + 40 * Math.cos(i / 11));
+      await page.waitForTimeout(16);
+    }
+    await page.mouse.up();
+    const frames = (await page.evaluate(() => ((window.__stopFrames = true), window.__frames)))
+      .slice(2)
+      .sort((a, b) => a - b);
+    console.log(
+      `     big kernel: ${full} triangles drawn as ${drawn}; orbiting: ${frames.length} frames, median ${frames[frames.length >> 1]?.toFixed(0)} ms, ` +
+        `longest ${frames.at(-1)?.toFixed(0)} ms (load average ${os.loadavg()[0].toFixed(1)})`,
+    );
   });
 }
 
@@ -1241,6 +1315,7 @@ async function main() {
       webDist,
     });
     await themeAndBigFile(page, tmp, served);
+    await bigKernelTest(page, tmp);
     await threeAppTest(context, tmp);
     await examplesTests(context, tmp, { test, assert, artifacts });
 

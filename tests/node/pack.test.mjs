@@ -139,6 +139,7 @@ test('the tarball holds the runtime files only', (t) => {
     'wasm/worker.js',
     'wasm/worker.d.ts',
     'wasm/kergen-worker.js',
+    'wasm/step-batch.js',
     'wasm/errors.js',
     'wasm/three.js',
     'wasm/three.d.ts',

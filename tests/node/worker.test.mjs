@@ -121,24 +121,33 @@ test('input arrays are copied by default (never detached); transfer: true detach
   assert.equal(r4.volume, K.computeKernelSync(view, m.indices).volume);
 });
 
-test('step events arrive in batches of at most 2048', async () => {
+test('step events arrive in batches of at most 4096, as transferred typed arrays', async () => {
   const kw = newWorker();
   const m = starPrism(1500, 0.9);
   let count = 0;
   const r = await kw.compute(m.positions, m.indices, { onStep: () => void count++ });
   const total = r.vertices.length / 3 + r.edges.length / 2 + r.faces.length;
   assert.equal(count, total, 'every event delivered');
-  assert.ok(total > 4 * 2048, `a large kernel (${total} events)`);
+  assert.ok(total > 2 * 4096, `a large kernel (${total} events)`);
   const shim = WebWorkerShim.spawned.find((s) =>
     s.received.some((msg) => msg.type === 'result' && msg.result.vertices.length === r.vertices.length),
   );
   const batches = shim.received.filter((msg) => msg.type === 'steps');
-  assert.ok(batches.length >= Math.ceil(total / 2048), `${batches.length} batches`);
+  assert.ok(batches.length >= Math.ceil(total / 4096), `${batches.length} batches`);
   assert.ok(
     batches.length < total / 64,
     `${batches.length} batches for ${total} events: batched, not one message per event`,
   );
-  assert.ok(batches.every((b) => b.events.length <= 2048));
+  assert.equal(
+    batches.reduce((n, b) => n + b.batch.count, 0),
+    total,
+  );
+  for (const { batch } of batches) {
+    assert.ok(batch.count <= 4096);
+    assert.ok(batch.kinds instanceof Uint8Array && batch.kinds.length === batch.count);
+    assert.ok(batch.ids instanceof Uint32Array && batch.positions instanceof Float64Array);
+    assert.ok(batch.ends instanceof Uint32Array && batch.loopStarts instanceof Uint32Array);
+  }
 });
 
 // computeFile / writeMesh need the package's file layer (readMeshSync, writeMesh).
