@@ -4,6 +4,7 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import { assertBuilt } from './lib/env.mjs';
 import { box, faceLoops } from './lib/geometry.mjs';
+import { freshWrapper } from './lib/fresh-wrapper.mjs';
 
 let K;
 before(async () => {
@@ -224,7 +225,7 @@ test('an exception thrown by onStep stops the trace and reaches the caller uncha
 });
 
 test('sync calls before init → NOT_INITIALIZED; a bad wasm location → WASM_LOAD_FAILED, then a retry works', async () => {
-  const fresh = await import('../../wasm/index.js?instance=errors-test');
+  const fresh = await freshWrapper();
   assert.equal(fresh.isInitialized(), false);
   const m = box();
   await expectCode('NOT_INITIALIZED', () => fresh.computeKernelSync(m.positions, m.indices));

@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import http from 'node:http';
 import { assertBuilt, distWasm } from './lib/env.mjs';
+import { freshWrapper } from './lib/fresh-wrapper.mjs';
 
 let server;
 let base;
@@ -38,7 +39,7 @@ const failsWith = (pattern) => (err) => {
 };
 
 test('Node: a 404 and an HTML page name the URL and the status; then the right URL loads', async () => {
-  const K = await import('../../wasm/index.js?node-path');
+  const K = await freshWrapper();
   await assert.rejects(
     K.init({ wasmUrl: `${base}/missing.wasm` }),
     failsWith(new RegExp(`${base}/missing\\.wasm: HTTP 404 Not Found$`)),
@@ -57,7 +58,7 @@ test('Node: a 404 and an HTML page name the URL and the status; then the right U
 test('browser path (window defined): the same checks before the glue compiles anything', async () => {
   globalThis.window = globalThis; // what index.js and the glue look at to tell a page from Node
   try {
-    const K = await import('../../wasm/index.js?browser-path');
+    const K = await freshWrapper();
     await assert.rejects(K.init({ wasmUrl: `${base}/missing.wasm` }), failsWith(/missing\.wasm: HTTP 404 Not Found$/));
     await assert.rejects(
       K.init({ wasmUrl: `${base}/spa.wasm` }),
