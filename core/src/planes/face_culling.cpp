@@ -15,8 +15,9 @@ namespace kergen {
 namespace {
 
 // The planes of the representative triangles of faces first, ..., first + n - 1 (n <= kFaceBlock),
-// as structure of arrays: the points are gathered first, then approx_plane runs over the block
-// in one vectorized loop (the same operations per lane, so the same bounds as one at a time).
+// or of faces[0], ..., faces[n - 1] when `faces` is given, as structure of arrays: the points are
+// gathered first, then approx_plane runs over the block in one vectorized loop (the same
+// operations per lane, so the same bounds as one at a time).
 constexpr size_t kFaceBlock = 64;
 struct FacePlanes {
   double nx[kFaceBlock], ny[kFaceBlock], nz[kFaceBlock], d[kFaceBlock];
@@ -25,10 +26,10 @@ struct FacePlanes {
 };
 
 KERGEN_MULTIVERSION
-void face_planes(const PreparedMesh& mesh, uint32_t first, size_t n, FacePlanes& out) {
+void face_planes(const PreparedMesh& mesh, const uint32_t* faces, uint32_t first, size_t n, FacePlanes& out) {
   double xyz[9][kFaceBlock];
   for (size_t j = 0; j < n; ++j) {
-    const auto& r = mesh.rep[first + j];
+    const auto& r = mesh.rep[faces ? faces[j] : first + uint32_t(j)];
     for (int t = 0; t < 3; ++t) {
       const double* q = mesh.point(r[t]);
       for (int k = 0; k < 3; ++k) xyz[3 * t + k][j] = q[k];
@@ -59,22 +60,26 @@ void face_planes(const PreparedMesh& mesh, uint32_t first, size_t n, FacePlanes&
   const size_t nf = mesh.num_faces();
   const SupportTest support(sample_kernel, nf, true);
   SupportTest::Scratch scratch;
-  auto reaches = [&](uint32_t f) {
-    const auto& r = mesh.rep[f];
-    uint32_t hint = 0;
-    return support.may_reach(approx_plane(mesh.point(r[0]), mesh.point(r[1]), mesh.point(r[2])), scratch, hint);
-  };
+  FacePlanes block;
+  char reaching[kFaceBlock];
+  // The probes in blocks too (may_reach_all answers as may_reach would, at a sixth of the cost
+  // where the sample kernel has many vertices to climb).
   constexpr size_t kProbes = 256;
+  static_assert(kProbes % kFaceBlock == 0, "whole blocks of probes");
   size_t probes_reaching = 0;
-  for (size_t i = 0; i < kProbes; ++i) probes_reaching += reaches(uint32_t(((2 * i + 1) * nf) / (2 * kProbes)));
+  for (size_t first = 0; first < kProbes; first += kFaceBlock) {
+    uint32_t probe[kFaceBlock];
+    for (size_t j = 0; j < kFaceBlock; ++j) probe[j] = uint32_t(((2 * (first + j) + 1) * nf) / (2 * kProbes));
+    face_planes(mesh, probe, 0, kFaceBlock, block);
+    support.may_reach_all(block.arrays(), kFaceBlock, scratch, reaching);
+    for (size_t j = 0; j < kFaceBlock; ++j) probes_reaching += reaching[j] != 0;
+  }
   if (2 * probes_reaching > kProbes) return false;
   kept.reserve(2 * sample.size());
   size_t next_sample = 0;
-  FacePlanes block;
-  char reaching[kFaceBlock];
   for (size_t first = 0; first < nf; first += kFaceBlock) {
     const size_t n = std::min(kFaceBlock, nf - first);
-    face_planes(mesh, uint32_t(first), n, block);
+    face_planes(mesh, nullptr, uint32_t(first), n, block);
     support.may_reach_all(block.arrays(), n, scratch, reaching);
     // Runs of faces up to the next sample face (kept whatever the test says) or the block's end.
     for (size_t j = 0;; ++j) {
