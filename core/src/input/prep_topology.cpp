@@ -1,0 +1,407 @@
+// The topological phases of prepare_mesh (prep_state.h): faces cleaned of repeated consecutive
+// vertices (clean_faces, which drops those left with fewer than 3 and counts the edge uses), the
+// edge check that pairs the two uses of every edge by a counting sort (pair_edges, EdgePairing),
+// the refusal of non-manifold, inconsistently oriented and open edges (report_edge_faults), the
+// connected pieces (count_components), and distinct vertices at one position, where the surface
+// touches itself (check_shared_positions).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "input/prep_state.h"
+#include "util/compiler_hints.h"
+#include "util/point_table.h"
+#include "util/union_find.h"
+
+namespace kergen::prep {
+
+namespace {
+
+// Whether two used vertices have the same position (coordinates compared with ==, so -0 and +0
+// are one position): a PointTable of the used vertices, expected linear time, looked up a block
+// at a time with the slots prefetched (the table is larger than the caches for big meshes). The
+// same pass takes the bounding box of the used vertices, in id order (complete when the answer is
+// false).
+bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used, double lo3[3],
+                         double hi3[3]) {
+  PointTable table(num_used);
+  const double* P = pts.data();
+  for (int k = 0; k < 3; ++k) {
+    lo3[k] = INFINITY;
+    hi3[k] = -INFINITY;
+  }
+  constexpr size_t kBlock = 64;
+  uint32_t ids[kBlock];
+  uint64_t hashes[kBlock];
+  const char* us = used.data();
+  const size_t nv = used.size();
+  for (size_t v0 = 0; v0 < nv;) {
+    size_t n = 0;
+    for (; v0 < nv && n < kBlock; ++v0) {
+      if (!us[v0]) continue;
+      const double* p = P + 3 * v0;
+      for (int k = 0; k < 3; ++k) {
+        lo3[k] = std::min(lo3[k], p[k]);
+        hi3[k] = std::max(hi3[k], p[k]);
+      }
+      ids[n] = uint32_t(v0);
+      hashes[n] = PointTable::hash(p);
+      table.prefetch_slot(hashes[n]);
+      ++n;
+    }
+    for (size_t j = 0; j < n; ++j)
+      if (table.find_or_insert(P, P + 3 * size_t(ids[j]), hashes[j], ids[j]) != ids[j]) return true;
+  }
+  return false;
+}
+
+// The pair reported when used vertices share a position: the two lowest ids at the
+// lexicographically smallest shared position (a sort, run only once a pair is known to exist).
+std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, const std::vector<char>& used) {
+  std::vector<uint32_t> order;
+  for (uint32_t v = 0; v < used.size(); ++v)
+    if (used[v]) order.push_back(v);
+  auto at = [&](uint32_t v) { return &pts[3 * size_t(v)]; };
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    const double *p = at(a), *q = at(b);
+    return p[0] != q[0] ? p[0] < q[0] : (p[1] != q[1] ? p[1] < q[1] : (p[2] != q[2] ? p[2] < q[2] : a < b));
+  });
+  for (size_t i = 1; i < order.size(); ++i) {
+    const double *p = at(order[i - 1]), *q = at(order[i]);
+    if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return {order[i - 1], order[i]};
+  }
+  return {0, 0};  // not reached: called only when a shared position exists
+}
+
+// The edge check's pass over the edge uses, bucketed (Prep::bucket) by lower vertex: the uses of
+// the edges of one lower vertex are tallied per upper vertex, then each edge is judged once. On a
+// closed, consistently oriented 2-manifold every edge has one use each way, and its two faces
+// are a pair. Pairs are listed by lower vertex id, then in the order of the faces using the edge
+// upwards; each pair lists its lower face first. At most one pair per two uses; written through
+// a pointer (push_back went through a stack copy, a store-forwarding stall).
+class EdgePairing {
+ public:
+  EdgePairing(Prep& s, const uint32_t* upper, const uint32_t* use_face, size_t nv)
+      : s_(s),
+        upper_(upper),
+        use_face_(use_face),
+        tally_store_(nv),
+        tally_(tally_store_.data()),
+        parent_(s.components.parent.data()),
+        pair_out_(s.face_pairs.data()) {}
+  void pair_all(size_t nv) {
+    const uint32_t* start = s_.bucket.data() + 1;
+    for (size_t lo = 0; lo < nv; ++lo) pair_lower_vertex(lo, start[2 * lo], start[2 * lo + 1], start[2 * lo + 2]);
+    s_.face_pairs.resize(size_t(pair_out_ - s_.face_pairs.data()));
+  }
+
+ private:
+  struct Tally {
+    uint32_t up = 0, down = 0, up_face = 0, down_face = 0;
+  };
+  // (Nine finds in ten end within one step, about half of them at once: both cases are taken
+  // without a branch on which, which mispredicted often.)
+  KERGEN_INLINE uint32_t find(uint32_t x) const {
+    const uint32_t up = parent_[x], up2 = parent_[up];
+    if (up2 == up) return up;
+    x = up;
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  // (the smaller root wins, as in UnionFind::unite)
+  KERGEN_INLINE void unite(uint32_t f0, uint32_t f1) {
+    const uint32_t r0 = find(f0), r1 = find(f1);
+    if (r0 != r1) {
+      parent_[std::max(r0, r1)] = std::min(r0, r1);
+      ++s_.unions;
+    }
+  }
+  // The uses of lo's edges: [down_begin, up_begin) run down to lo, [up_begin, end) up from it.
+  KERGEN_INLINE void pair_lower_vertex(size_t lo, size_t down_begin, size_t up_begin, size_t end) {
+    for (size_t j = down_begin; j != up_begin; ++j) {
+      Tally& t = tally_[upper_[j]];
+      ++t.down;
+      t.down_face = use_face_[j];
+    }
+    // The upward uses are paired as they are tallied, tentatively (a later use of the same edge
+    // may spoil a pair). When each upward use made a pair and each downward use is in one,
+    // every edge of lo has one use each way, and the pairs are the ones judge() would make, in
+    // the same order: they stand, and only the tallies are cleared. (A pair never overwrites a
+    // use not read yet: lo's pairs number at most its downward uses and its upward uses read.)
+    const size_t downs = up_begin - down_begin, ups = end - up_begin;
+    std::array<uint32_t, 2>* const pairs_before = pair_out_;
+    for (size_t j = up_begin; j != end; ++j) {
+      Tally& t = tally_[upper_[j]];
+      ++t.up;
+      t.up_face = use_face_[j];
+      if (t.up == 1 && t.down == 1) {
+        (*pair_out_)[0] = std::min(t.up_face, t.down_face);
+        (*pair_out_)[1] = std::max(t.up_face, t.down_face);
+        ++pair_out_;
+      }
+    }
+    if (ups == downs && pair_out_ == pairs_before + ups) {
+      for (size_t j = up_begin; j != end; ++j) {
+        tally_[upper_[j]] = Tally{};
+        const auto& pair = pairs_before[j - up_begin];
+        unite(pair[0], pair[1]);
+      }
+      return;
+    }
+    pair_out_ = pairs_before;
+    for (size_t j = up_begin; j != end; ++j) judge(lo, upper_[j]);
+    // (as many pairs as downward uses: each pair took one, all are judged and cleared)
+    if (size_t(pair_out_ - pairs_before) == downs) return;
+    for (size_t j = down_begin; j != up_begin; ++j) judge(lo, upper_[j]);
+  }
+  // Edge (lo, hi), judged at its first upward use, or first downward use if it has none; then
+  // its tally is cleared.
+  void judge(size_t lo, uint32_t hi) {
+    Tally& t = tally_[hi];
+    if (t.up == 1 && t.down == 1) {
+      const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
+      (*pair_out_)[0] = f0;
+      (*pair_out_)[1] = f1;
+      ++pair_out_;
+      unite(f0, f1);
+    } else if (t.up + t.down > 0) {  // else judged already
+      const uint64_t key = uint64_t(lo) << 32 | hi;
+      const size_t n = size_t(t.up) + t.down;
+      if (n == 1)
+        note(s_.open, s_.open_ex, key);
+      else if (n > 2)
+        note(s_.nonmanifold, s_.nonmanifold_ex, key);
+      else
+        note(s_.inconsistent, s_.inconsistent_ex, key);  // two uses the same way
+    }
+    t = Tally{};
+  }
+  static void note(size_t& count, uint64_t& example, uint64_t key) {
+    ++count;
+    example = std::min(example, key);
+  }
+  Prep& s_;
+  const uint32_t* upper_;
+  const uint32_t* use_face_;
+  std::vector<Tally> tally_store_;  // per upper vertex id; all zero between lower vertices
+  Tally* tally_;
+  uint32_t* parent_;
+  std::array<uint32_t, 2>* pair_out_;
+};
+
+std::string edge_name(uint64_t k) {
+  return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";
+}
+
+}  // namespace
+
+// Faces without repeated consecutive vertices; faces left with < 3 distinct vertices carry no
+// area and no edges of their own (a -> b -> a pairs cancel), so they are dropped here. The same
+// pass marks the used vertices and counts the edge uses per bucket (Prep::bucket). (Raw pointers
+// in the loops: the stores through char would otherwise make the compiler reload every vector's
+// pointers after each one.)
+bool clean_faces(Prep& s) {
+  const MeshView& mesh = s.mesh;
+  const size_t nf = s.nf;
+  s.clean.resize(mesh.num_indices);  // (written in full below)
+  s.clean_offsets.resize(nf + 1);
+  s.used.assign(s.nv, 0);
+  s.bucket.assign(2 * s.nv + 2, 0);
+  const uint32_t* in = mesh.indices;
+  uint32_t* cl = s.clean.data();
+  uint32_t* off = s.clean_offsets.data();
+  off[0] = 0;
+  char* us = s.used.data();
+  uint32_t* count = s.bucket.data() + 1;
+  // (bucket 2 lo + 1 < 2 hi, bucket 2 lo < 2 hi + 1: the smaller is the use's bucket)
+  auto count_use = [count](uint32_t u, uint32_t v) { count[std::min(2 * size_t(u) + 1, 2 * size_t(v))]++; };
+  size_t n = 0, dropped = 0, cf = 0;  // clean entries so far, faces dropped, clean faces
+  size_t f = 0;
+  if (!mesh.face_sizes) {
+    // The usual leading run of a triangle mesh: face f is at 3 f (the offsets are written after).
+    for (; f < nf; ++f, in += 3) {
+      const uint32_t a = in[0], b = in[1], c = in[2];
+      if (a == b || b == c || c == a) break;
+      cl[3 * f] = a;
+      cl[3 * f + 1] = b;
+      cl[3 * f + 2] = c;
+      us[a] = us[b] = us[c] = 1;
+      count_use(a, b);
+      count_use(b, c);
+      count_use(c, a);
+    }
+    for (size_t g = 1; g <= f; ++g) off[g] = uint32_t(3 * g);
+    n = 3 * f;
+    cf = f;
+  }
+  for (; f < nf; ++f) {
+    const size_t begin = n, k = mesh.face_sizes ? mesh.face_sizes[f] : 3;
+    if (k == 3 && in[0] != in[1] && in[1] != in[2] && in[2] != in[0]) {  // the usual case
+      const uint32_t a = in[0], b = in[1], c = in[2];
+      cl[n] = a;
+      cl[n + 1] = b;
+      cl[n + 2] = c;
+      n += 3;
+      in += 3;
+      off[++cf] = uint32_t(n);
+      if (s.clean_renumbered) s.clean_source.push_back(uint32_t(f));
+      us[a] = us[b] = us[c] = 1;
+      count_use(a, b);
+      count_use(b, c);
+      count_use(c, a);
+      continue;
+    }
+    for (size_t i = 0; i < k; ++i)
+      if (n == begin || cl[n - 1] != in[i]) cl[n++] = in[i];
+    while (n - begin > 1 && cl[n - 1] == cl[begin]) --n;
+    in += k;
+    if (n - begin < 3) {
+      n = begin;
+      ++dropped;
+      if (!s.clean_renumbered) {
+        s.clean_renumbered = true;
+        s.clean_source.resize(cf);
+        std::iota(s.clean_source.begin(), s.clean_source.end(), 0u);
+      }
+      continue;
+    }
+    off[++cf] = uint32_t(n);
+    if (s.clean_renumbered) s.clean_source.push_back(uint32_t(f));
+    for (size_t i = begin; i < n; ++i) {
+      const uint32_t u = cl[i], v = cl[i + 1 < n ? i + 1 : begin];
+      us[u] = 1;
+      count_use(u, v);
+    }
+  }
+  s.clean.resize(n);
+  s.clean_offsets.resize(cf + 1);
+  s.m.dropped_faces += dropped;
+  s.cf = cf;
+  if (cf == 0) return s.fail(Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
+  return true;
+}
+
+// The edge check: a counting sort of the edge uses into their buckets (no hashing and no
+// comparison sort), then EdgePairing. A use is stored as its upper vertex id and its face, in two
+// arrays indexed alike. No fresh memory is taken for them (first touches of fresh pages are
+// costly): the faces go into the pairs' storage, which holds one face per use, and the upper ids
+// into the representatives' storage (written after the check) when it holds one id per use,
+// which is when every face is a triangle. The pairs written while a lower vertex's uses are
+// judged end before the uses not read yet (at most one pair per two uses, and each lower
+// vertex's faces are all read, by the tally, before its first pair is written).
+void pair_edges(Prep& s) {
+  const size_t nv = s.nv, cf = s.cf;
+  std::vector<uint32_t>& bucket = s.bucket;
+  uint32_t total_uses = 0;  // (the running sum stays in a register)
+  for (size_t b = 1; b <= 2 * nv; ++b) bucket[b] = total_uses += bucket[b];
+  bucket[2 * nv + 1] = total_uses;
+  s.components = UnionFind(cf);
+  s.face_pairs.resize((size_t(total_uses) + 1) / 2);
+  static_assert(sizeof(std::array<uint32_t, 3>) == 3 * sizeof(uint32_t), "packed representatives");
+  static_assert(sizeof(std::array<uint32_t, 2>) == 2 * sizeof(uint32_t), "packed pairs");
+  RawVector<uint32_t> upper_store;
+  uint32_t* upper;
+  if (total_uses == 3 * cf) {
+    s.m.rep.resize(cf);
+    upper = reinterpret_cast<uint32_t*>(s.m.rep.data());
+  } else {
+    upper_store.resize(total_uses);
+    upper = upper_store.data();
+  }
+  uint32_t* use_face = reinterpret_cast<uint32_t*>(s.face_pairs.data());
+  // Filled backwards, each use at its bucket's end moved down by one: the buckets keep the uses
+  // in face order, and bucket[b + 1] ends at the start of bucket b (no separate cursor array).
+  // Then bucket b is [bucket[b + 1], bucket[b + 2]).
+  const uint32_t* cl = s.clean.data();
+  const uint32_t* off = s.clean_offsets.data();
+  uint32_t* cursor = bucket.data() + 1;
+  auto put = [&](uint32_t u, uint32_t v, uint32_t f) {
+    const uint32_t slot = --cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))];
+    upper[slot] = std::max(u, v);
+    use_face[slot] = f;
+  };
+  if (total_uses == 3 * cf) {
+    for (size_t f = cf; f-- > 0;) {
+      const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2];
+      put(c, a, uint32_t(f));
+      put(b, c, uint32_t(f));
+      put(a, b, uint32_t(f));
+    }
+  } else {
+    for (size_t f = cf; f-- > 0;) {
+      const size_t b = off[f], e = off[f + 1];
+      for (size_t i = e; i-- > b;) put(cl[i], cl[i + 1 < e ? i + 1 : b], uint32_t(f));
+    }
+  }
+  EdgePairing(s, upper, use_face, nv).pair_all(nv);
+}
+
+// Refuses non-manifold, inconsistently oriented and (unless allowed) open edges, in that order.
+bool report_edge_faults(Prep& s) {
+  if (s.nonmanifold) {
+    return s.fail(Error::NonManifoldEdge,
+                  std::to_string(s.nonmanifold) + " edge(s) are shared by more than two faces, e.g. edge " +
+                      edge_name(s.nonmanifold_ex) + " (repeated faces? Options::repair removes them)");
+  }
+  if (s.inconsistent) {
+    return s.fail(Error::InconsistentOrientation,
+                  std::to_string(s.inconsistent) +
+                      " edge(s) are traversed in the same direction by both of their faces (inconsistent "
+                      "orientation), e.g. edge " +
+                      edge_name(s.inconsistent_ex));
+  }
+  if (s.open && !s.options.allow_open) {
+    return s.fail(Error::OpenMesh,
+                  "the mesh is open: " + std::to_string(s.open) + " edge(s) belong to one face only, e.g. edge " +
+                      edge_name(s.open_ex) +
+                      " (Options::weld merges nearly coincident vertices, Options::repair also splits T-junctions; "
+                      "Options::allow_open accepts open meshes)");
+  }
+  s.m.boundary_edges = s.open;
+  return true;
+}
+
+// Connected pieces. Faces joined by boundary edges only are joined through vertices. Several
+// closed pieces are the caller's to judge (shells.h) when it says so; an open one is refused.
+bool count_components(Prep& s) {
+  if (s.open) {
+    std::vector<uint32_t> first_face(s.nv, 0xffffffffu);
+    for (size_t f = 0; f < s.cf; ++f)
+      for (size_t i = s.clean_offsets[f]; i < s.clean_offsets[f + 1]; ++i) {
+        uint32_t v = s.clean[i];
+        if (first_face[v] == 0xffffffffu)
+          first_face[v] = uint32_t(f);
+        else
+          s.unions += s.components.unite(first_face[v], uint32_t(f));
+      }
+  }
+  const size_t pieces = s.cf - s.unions;
+  s.m.shells = pieces;
+  if (pieces > 1 && (s.open || !s.allow_shells)) {
+    return s.fail(Error::MultipleComponents,
+                  "the mesh has " + std::to_string(pieces) +
+                      " separate pieces; the kernel is defined for one closed surface (a triangle soup? "
+                      "Options::weld merges its corners)");
+  }
+  return true;
+}
+
+// Unused vertices are a warning. Two distinct vertices of a closed surface at one position: the
+// surface touches itself there (it is not embedded), and the intersection of its face
+// half-spaces is then not its kernel — refused rather than answered wrongly. The same pass takes
+// the bounding box of the used vertices (Prep::lo3, hi3).
+bool check_shared_positions(Prep& s) {
+  const size_t unused = s.nv - size_t(std::count(s.used.begin(), s.used.end(), 1));
+  if (unused) s.m.warnings.push_back(unused_vertices_warning(unused));
+  if (!has_shared_position(s.m.points, s.used, s.nv - unused, s.lo3, s.hi3)) return true;
+  const auto pair = first_shared_position(s.m.points, s.used);
+  return s.fail(Error::NonManifoldEdge,
+                "vertices " + std::to_string(pair[0]) + " and " + std::to_string(pair[1]) +
+                    " have the same position: the surface touches itself there (weld them, or separate the pieces)");
+}
+
+}  // namespace kergen::prep

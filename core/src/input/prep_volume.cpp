@@ -1,0 +1,210 @@
+// The geometric phases of prepare_mesh (prep_state.h): the bounding box, the enclosed volume
+// summed as fans about the box centre (with the leading run of triangles kept whole in the same
+// pass), the orientation it decides (a negative volume flips the loops), the volume checked again
+// once non-planar polygons are split (check_split_volume, which also issues the warnings for
+// dropped and split faces), and the double-double certification of a nearly flat shape's volume.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "exact/predicates.h"
+#include "input/prep_state.h"
+#include "util/compiler_hints.h"
+
+namespace kergen::prep {
+
+namespace {
+
+// Six times the volume enclosed by the prepared faces (their loops, CCW from outside), summed in
+// double-double over fans about c, with a rigorous error bound (ApproxDD::sign decides it).
+exact::ApproxDD accurate_volume6(const PreparedMesh& m, const double c[3]) {
+  using exact::ApproxDD;
+  auto rel = [&](uint32_t v, int k) {
+    double x, y;
+    exact::eft::two_sum(m.points[3 * size_t(v) + k], -c[k], x, y);
+    return ApproxDD(x, y, 0);
+  };
+  ApproxDD vol6(0);
+  for (size_t f = 0; f + 1 < m.loop_offsets.size(); ++f) {
+    const uint32_t* loop = m.loops.data() + m.loop_offsets[f];
+    const size_t k = m.loop_offsets[f + 1] - m.loop_offsets[f];
+    for (size_t i = 1; i + 1 < k; ++i) {
+      ApproxDD a[3], b[3], d[3];
+      for (int j = 0; j < 3; ++j) {
+        a[j] = rel(loop[0], j);
+        b[j] = rel(loop[i], j);
+        d[j] = rel(loop[i + 1], j);
+      }
+      vol6 = vol6 + (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                     a[2] * (b[0] * d[1] - b[1] * d[0]));
+    }
+  }
+  return vol6;
+}
+
+Warning flipped_warning(size_t faces) {
+  return {Warning::Kind::OrientationFlipped, faces,
+          "faces were oriented clockwise seen from outside (negative volume); the mesh was flipped"};
+}
+
+}  // namespace
+
+// Bounding box of the used vertices. It is defined as if taken over every use in loop order: ties
+// keep the held bound, so a zero bound has the sign of the first zero met. Over the used vertices
+// in id order the values are the same; only a zero bound may differ (in sign). All values on that
+// side are then >= 0 (<= 0 for a maximum), so the bound in loop order is the first zero
+// coordinate met in loop order: it is looked up there.
+void take_bounding_box(Prep& s) {
+  const double* pts = s.m.points.data();
+  double* lo3 = s.lo3;
+  double* hi3 = s.hi3;
+  bool zero[3];
+  int zeros = 0;
+  for (int k = 0; k < 3; ++k) zeros += zero[k] = lo3[k] == 0 || hi3[k] == 0;
+  for (size_t i = 0; i < s.clean.size() && zeros > 0; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double x = pts[3 * size_t(s.clean[i]) + k];
+      if (zero[k] && x == 0) {
+        if (lo3[k] == 0) lo3[k] = x;
+        if (hi3[k] == 0) hi3[k] = x;
+        zero[k] = false;
+        --zeros;
+      }
+    }
+  for (int k = 0; k < 3; ++k) {
+    s.m.bbox_min[k] = lo3[k];
+    s.m.bbox_max[k] = hi3[k];
+  }
+}
+
+// Enclosed volume (double; relative to the box centre for accuracy), as fans of the clean faces.
+// The usual leading run of the plane faces is taken in the same pass (the points are read once):
+// triangles that a float filter certifies as non-degenerate are kept whole with themselves as
+// representatives, written in place (turned over by orient_by_volume on a flip; the filter only
+// shortcuts the exact test, so the order of the corners it sees does not matter).
+void sum_fan_volume(Prep& s) {
+  PreparedMesh& m = s.m;
+  for (int k = 0; k < 3; ++k) {
+    s.c[k] = 0.5 * (m.bbox_min[k] + m.bbox_max[k]);
+    s.ext = std::max(s.ext, m.bbox_max[k] - m.bbox_min[k]);
+  }
+  const size_t cf = s.cf;
+  double vol6 = 0, vol6_abs = 0;
+  m.rep.resize(cf);
+  std::array<uint32_t, 3>* rep_out = m.rep.data();
+  const uint32_t* cl = s.clean.data();
+  const uint32_t* off = s.clean_offsets.data();
+  const double* pts = m.points.data();
+  // The volume term of a triangle, and whether it extends the leading run.
+  auto take_triangle = [&](size_t f, uint32_t i0, uint32_t i1, uint32_t i2) KERGEN_INLINE {
+    const double d = s.vol6_about_centre(i0, i1, i2);
+    vol6 += d;
+    vol6_abs += std::fabs(d);
+    if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) return false;
+    rep_out[f] = {i0, i1, i2};
+    return true;
+  };
+  size_t f = 0;
+  if (s.clean.size() == 3 * cf) {  // every clean face is a triangle: loop f starts at 3 f
+    for (; f < cf; ++f)
+      if (!take_triangle(f, cl[3 * f], cl[3 * f + 1], cl[3 * f + 2])) break;
+  } else {
+    for (; f < cf; ++f) {
+      const size_t b = off[f];
+      if (off[f + 1] - b != 3 || !take_triangle(f, cl[b], cl[b + 1], cl[b + 2])) break;
+    }
+  }
+  s.first_general = f;
+  if (f < cf && off[f + 1] - off[f] == 3) ++f;  // (its volume is counted)
+  for (; f < cf; ++f) {
+    const size_t b = off[f], e = off[f + 1];
+    for (size_t i = b + 1; i + 1 < e; ++i) {
+      const double d = s.vol6_about_centre(cl[b], cl[i], cl[i + 1]);
+      vol6 += d;
+      vol6_abs += std::fabs(d);
+    }
+  }
+  m.rep.resize(s.first_general);
+  s.vol6 = vol6;
+  s.vol6_abs = vol6_abs;
+}
+
+// A closed surface enclosing nothing sums to zero up to rounding; anything at the rounding level
+// of the terms' magnitudes is treated as zero. The fans of non-planar polygons may enclose
+// nothing where their splits do (two quads over a tetrahedron's corners whose fans take the same
+// diagonal): then the split surface decides, in check_split_volume. A negative volume turns the
+// loops over.
+bool orient_by_volume(Prep& s) {
+  PreparedMesh& m = s.m;
+  const bool open = s.open != 0;
+  if (!open && s.ext == 0)
+    return s.fail(Error::DegenerateInput, "the mesh encloses no volume (flat or folded onto itself)");
+  s.fans_enclose_nothing = !open && !(std::fabs(s.vol6) > 1e-12 * s.vol6_abs);
+  s.flip = s.vol6 < 0 && !open && !s.fans_enclose_nothing;
+  m.volume = s.flip ? -s.vol6 / 6 : s.vol6 / 6;
+  if (s.flip) {
+    m.warnings.push_back(flipped_warning(s.cf));
+    for (size_t f = 0; f < s.cf; ++f)
+      std::reverse(s.clean.begin() + s.clean_offsets[f], s.clean.begin() + s.clean_offsets[f + 1]);
+    for (auto& t : m.rep) std::swap(t[0], t[2]);
+  }
+  return true;
+}
+
+// The fans' volume chose the orientation and the splits then fold outward for it; polygons far
+// from planar can fold into a surface that encloses a negative volume (two quads closing a
+// tetrahedron, each folded outward after a flip). The split surface is what the planes come from:
+// it is turned over once more, as a whole, when its own volume says so. Then the warnings.
+bool check_split_volume(Prep& s) {
+  PreparedMesh& m = s.m;
+  const bool open = s.open != 0;
+  if (!open && s.nonplanar > 0 && m.volume < 0) {
+    for (size_t f = 0; f + 1 < m.loop_offsets.size(); ++f)
+      std::reverse(m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
+    for (auto& t : m.rep) std::swap(t[0], t[2]);
+    m.volume = -m.volume;
+    auto flipped = std::find_if(m.warnings.begin(), m.warnings.end(),
+                                [](const Warning& w) { return w.kind == Warning::Kind::OrientationFlipped; });
+    if (flipped != m.warnings.end())
+      m.warnings.erase(flipped);
+    else
+      m.warnings.push_back(flipped_warning(s.cf));
+  }
+  if (!open && (s.nonplanar > 0 || s.fans_enclose_nothing) && !(m.volume > 1e-12 * (s.vol6_abs + s.split_abs) / 6))
+    return s.fail(Error::DegenerateInput, s.nonplanar > 0
+                                              ? "the mesh encloses no volume once its non-planar polygons are split"
+                                              : "the mesh encloses no volume (flat or folded onto itself)");
+  m.dropped_faces += s.degenerate;
+  if (m.dropped_faces)
+    m.warnings.push_back({Warning::Kind::DegenerateFacesDropped, m.dropped_faces,
+                          std::to_string(m.dropped_faces) + " zero-area faces were ignored"});
+  if (s.nonplanar)
+    m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, s.nonplanar,
+                          std::to_string(s.nonplanar) + " non-planar polygons were split into triangles"});
+  if (m.rep.empty()) return s.fail(Error::DegenerateInput, "every face has zero area");
+  return true;
+}
+
+// A nearly flat shape's volume is far below the rounding of its terms (the points' offsets from
+// the centre, rounded, span its thickness): summed again in double-double once the loops are
+// final, for shapes thinner than 1e-6 of their bounding cube (rare). The orientation was chosen
+// by the double sum. check_split_volume scales its rounding by the terms' magnitudes, but a
+// term's own rounding scales with the products inside it, far larger when its cross product
+// cancels (or the term is pure noise: a face folded back onto itself). So the accurate sum, with
+// its error bound, must certify that the surface as oriented encloses a positive volume; when it
+// cannot, the volume was lost in the double sum's rounding and no orientation can be trusted
+// (fuzzed: folded shapes with scaled coordinates from 1e-18 to 1, a single face a b b a c).
+bool certify_thin_volume(Prep& s) {
+  PreparedMesh& m = s.m;
+  if (s.open || !(m.volume < 1e-6 * s.ext * s.ext * s.ext)) return true;
+  const exact::ApproxDD vol6_dd = accurate_volume6(m, s.c);
+  m.volume = (vol6_dd.hi + vol6_dd.lo) / 6;
+  if (vol6_dd.sign() == 1) return true;
+  return s.fail(Error::DegenerateInput,
+                "the mesh encloses almost no volume and its orientation cannot be decided reliably (flat or folded "
+                "onto itself)");
+}
+
+}  // namespace kergen::prep
