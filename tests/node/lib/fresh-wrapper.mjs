@@ -19,6 +19,8 @@ export async function freshWrapper() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'kergen-fresh-'));
   made.push(dir);
   fs.mkdirSync(path.join(dir, 'wasm'));
+  // ES modules as in the package (Node 18 does not detect module syntax in .js files).
+  fs.writeFileSync(path.join(dir, 'package.json'), '{ "type": "module" }\n');
   for (const f of fs.readdirSync(path.join(repo, 'wasm'))) {
     if (f.endsWith('.js') && f !== 'errors.js') fs.copyFileSync(path.join(repo, 'wasm', f), path.join(dir, 'wasm', f));
   }
