@@ -6,7 +6,8 @@ import { SAMPLES, sampleById } from '../../web/samples.js';
 import { expectedKernel } from './samples-check.mjs';
 import { writeBinarySTL } from './page-tools.mjs';
 import { test, skip, assert, assertClose } from './harness.mjs';
-import { writeOFF, writeOBJ, writePLY, writeAsciiSTL, lPrismFiles, packageReadsFile } from './mesh-files.mjs';
+import { writeOFF, writeOBJ, writePLY, writeAsciiSTL, packageReadsFile } from './mesh-files.mjs';
+import { lPrismFiles } from '../node/lib/example-meshes.mjs';
 import { readState, waitFinished, loadSample, loadFile, scrubTo, jumpToEnd, shoot } from './page-state.mjs';
 
 // The front door, every gallery sample, and the animation.
@@ -140,13 +141,13 @@ export async function fileTests(page, tmp) {
   // Polygon faces are computed as polygons: an L prism whose caps are single non-convex
   // hexagons has the unit cube for kernel (a fan of its caps would give a flat one).
   const lPrism = lPrismFiles();
-  for (const [label, fname] of [
-    ['OFF', 'l-prism.off'],
-    ['OBJ', 'l-prism.obj'],
+  for (const [label, fname, text] of [
+    ['OFF', 'l-prism.off', lPrism.off],
+    ['OBJ', 'l-prism.obj', lPrism.obj],
   ]) {
     await test(`file picker: ${label} with non-convex polygon faces ${fname}`, async () => {
       const file = path.join(tmp, fname);
-      fs.writeFileSync(file, lPrism[fname]);
+      fs.writeFileSync(file, text);
       const s = await loadFile(page, file);
       assert(s.status === 'POLYHEDRON', `status ${s.status}: ${JSON.stringify(s.message)}`);
       assertClose(Number(s.stats.volume), 1, 1e-12, 'kernel volume');

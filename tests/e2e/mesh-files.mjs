@@ -55,40 +55,6 @@ export function writeAsciiSTL(file, { positions, indices }) {
   fs.writeFileSync(file, lines.join('\n') + '\n');
 }
 
-// An L prism (base (0,0) (2,0) (2,1) (1,1) (1,2) (0,2), height 1) with single hexagon caps, as
-// OFF and OBJ text; its kernel is [0,1]^2 x [0,1].
-export function lPrismFiles() {
-  const base = [
-    [0, 0],
-    [2, 0],
-    [2, 1],
-    [1, 1],
-    [1, 2],
-    [0, 2],
-  ];
-  const points = base.flatMap(([x, y]) => [
-    [x, y, 0],
-    [x, y, 1],
-  ]);
-  const faces = [
-    [10, 8, 6, 4, 2, 0],
-    [1, 3, 5, 7, 9, 11],
-  ];
-  for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
-  const off = [
-    'OFF',
-    `${points.length} ${faces.length} 0`,
-    ...points.map((p) => p.join(' ')),
-    ...faces.map((f) => `${f.length} ${f.join(' ')}`),
-  ];
-  const obj = [
-    '# L prism',
-    ...points.map((p) => `v ${p.join(' ')}`),
-    ...faces.map((f) => `f ${f.map((v) => v + 1).join(' ')}`),
-  ];
-  return { 'l-prism.off': off.join('\n') + '\n', 'l-prism.obj': obj.join('\n') + '\n' };
-}
-
 export const CUBE_V = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1];
 export const CUBE_Q = [
   [0, 3, 2, 1],
