@@ -137,7 +137,8 @@ async function main() {
     await realMeshesAndMessages(page, tmp);
     await exportAndDrop(page, tmp);
     await cancelTest(page, tmp);
-    await demoFeatureTests(page, context, base, tmp, {
+    // The helpers the demo suites take as one object (they are not imported by those files).
+    const helpers = {
       test,
       skip,
       skipTest,
@@ -151,23 +152,9 @@ async function main() {
       artifacts,
       sharedMeshes,
       served,
-    });
-    await demoRefusalTests(page, context, base, tmp, {
-      test,
-      skip,
-      skipTest,
-      assert,
-      assertClose,
-      loadSample,
-      loadFile,
-      waitFinished,
-      markPending,
-      jumpToEnd,
-      artifacts,
-      sharedMeshes,
-      served,
-      webDist,
-    });
+    };
+    await demoFeatureTests(page, context, base, tmp, helpers);
+    await demoRefusalTests(page, context, base, tmp, { ...helpers, webDist });
     await themeAndBigFile(page, tmp, served);
     await bigKernelTest(page, tmp);
     await threeAppTest(context, tmp);
