@@ -2,6 +2,7 @@
 // options, and a caller's mistake is a KergenError naming the argument.
 import { KergenError } from './errors.js';
 import { W } from './load.js';
+import { BOOLEAN_OPTIONS, COUNT_OPTIONS } from './option-names.js';
 
 export function invalid(fn, what) {
   return new KergenError('INVALID_ARGUMENT', `${fn}: ${what}`);
@@ -119,7 +120,7 @@ export function checkOptions(fn, options) {
       throw invalid(fn, 'options.maxSteps must be a non-negative integer');
     out.maxSteps = m;
   }
-  for (const key of ['maxFaces', 'maxVertices', 'seed']) {
+  for (const key of COUNT_OPTIONS) {
     if (options[key] != null) {
       const m = options[key];
       if (typeof m !== 'number' || !Number.isSafeInteger(m) || m < 0)
@@ -127,7 +128,7 @@ export function checkOptions(fn, options) {
       out[key] = m;
     }
   }
-  for (const key of ['allowOpen', 'deepestPoint', 'cullFaces', 'repair']) {
+  for (const key of BOOLEAN_OPTIONS) {
     if (options[key] != null) {
       if (typeof options[key] !== 'boolean') throw invalid(fn, `options.${key} must be a boolean`);
       out[key] = options[key];

@@ -15,6 +15,7 @@
 // in order through onStep on the main thread, as event objects.
 import { KergenError } from './errors.js';
 import { forEachStep } from './step-batch.js';
+import { OPTION_NAMES } from './option-names.js';
 
 // The marks of result.faceSources (as the package's main entry exports them), for pages that use
 // only the worker.
@@ -300,20 +301,7 @@ export class KernelWorker {
     if (onProgress != null && typeof onProgress !== 'function')
       return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.onProgress must be a function`));
     const plain = {};
-    for (const key of [
-      'from',
-      'maxSteps',
-      'allowOpen',
-      'open',
-      'deepestPoint',
-      'maxFaces',
-      'maxVertices',
-      'cullFaces',
-      'seed',
-      'weld',
-      'repair',
-    ])
-      if (rest[key] !== undefined) plain[key] = rest[key];
+    for (const key of OPTION_NAMES) if (rest[key] !== undefined) plain[key] = rest[key];
     if (plain.from && ArrayBuffer.isView(plain.from)) plain.from = Array.from(plain.from);
 
     const transfer = [];

@@ -143,6 +143,7 @@ test('the tarball holds the runtime files only', (t) => {
     'wasm/errors.js',
     'wasm/load.js',
     'wasm/checks.js',
+    'wasm/option-names.js',
     'wasm/wire.js',
     'wasm/files.js',
     'wasm/three.js',
@@ -151,6 +152,15 @@ test('the tarball holds the runtime files only', (t) => {
     'CHANGELOG.md',
   ]) {
     assert.ok(files.includes(needed), `${needed} is packed`);
+  }
+  // Every relative import of a packed module is packed too (a new wasm/*.js file needs its line in
+  // package.json's "files").
+  for (const f of files.filter((name) => name.endsWith('.js'))) {
+    const source = fs.readFileSync(path.join(repoRoot, f), 'utf8');
+    for (const [, spec] of source.matchAll(/(?:from|import)\s*\(?\s*'(\.{1,2}\/[^']+)'/g)) {
+      const target = path.posix.normalize(path.posix.join(path.posix.dirname(f), spec));
+      assert.ok(files.includes(target), `${f} imports ${spec}, which is not packed`);
+    }
   }
   for (const f of files) {
     assert.ok(!/^(tests|core|cli|bench|web|scripts|build|node_modules)\//.test(f), `${f} should not be packed`);
