@@ -6,28 +6,18 @@
 // its source face's plane, the kernel behind it, and no earlier face lies on that plane facing the
 // same way; a wall witness's half-spaces (the walls rebuilt from their edges) do not meet, and
 // without any one of them they do. The two marks come from the core's wire format.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { usePackageWithWorker } from './lib/package-with-worker.mjs';
 import fs from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { pathToFileURL } from 'node:url';
-import { assertBuilt, distGlue, distWasm, repoRoot } from './lib/env.mjs';
-import { installWorkerShim } from './lib/web-worker-shim.mjs';
+import { distGlue, distWasm, repoRoot } from './lib/env.mjs';
 import { box, cross, dot, faceLoops, lPrism, sub, vtx } from './lib/geometry.mjs';
 
 let K;
 let W;
-const workers = [];
-before(async () => {
-  assertBuilt();
-  installWorkerShim();
-  K = await import('../../wasm/index.js');
-  W = await import('../../wasm/worker.js');
-  await K.init();
-});
-after(() => {
-  for (const w of workers) w.dispose();
-});
+const { newWorker } = usePackageWithWorker((pkg) => ({ K, W } = pkg));
 
 // Input face `loop`'s outward normal (Newell's, exact for small integer coordinates).
 function normalOf(positions, loop) {
@@ -192,8 +182,7 @@ test('L prism: each face on its source face, the same from sync, async and the w
   assert.deepEqual(checkSources(m, r, 'L prism'), { input: 6, box: 0, wall: 0 });
   const expected = Array.from(r.faceSources);
   assert.deepEqual(Array.from((await K.computeKernel(m.positions, m.indices)).faceSources), expected);
-  const kw = new W.KernelWorker();
-  workers.push(kw);
+  const kw = newWorker();
   const w = await kw.compute(m.positions, m.indices);
   assert.ok(w.faceSources instanceof Int32Array);
   assert.deepEqual(Array.from(w.faceSources), expected, 'worker');
@@ -212,8 +201,7 @@ test('the open box: a box face where it is clipped, a wall face where it is wall
   assert.deepEqual(checkSources(m, clipped, 'open box, clipped'), { input: 5, box: 1, wall: 0 });
   const top = clipped.faces[clipped.faceSources.indexOf(K.FACE_SOURCE_BOX)];
   for (const v of top) assert.ok(clipped.vertices[3 * v + 2] > 1, 'the box face is above the hole');
-  const kw = new W.KernelWorker();
-  workers.push(kw);
+  const kw = newWorker();
   for (const r of [
     K.computeKernelSync(m.positions, m.indices, { open: 'perpendicular' }),
     await K.computeKernel(m.positions, m.indices, { open: 'perpendicular' }),
@@ -236,8 +224,7 @@ test('walls in the witness: the open frustum, from sync, async, findKernelPoint 
   assert.ok(r.witnessBoundaryEdges.length >= 4, 'two walls at least');
   checkWallWitness(m, r.witnessFaces, r.witnessBoundaryEdges, 'open frustum');
   const expected = [Array.from(r.witnessFaces), Array.from(r.witnessBoundaryEdges)];
-  const kw = new W.KernelWorker();
-  workers.push(kw);
+  const kw = newWorker();
   const options = { open: 'perpendicular' };
   for (const [what, other] of [
     ['computeKernel', await K.computeKernel(m.positions, m.indices, options)],

@@ -2,32 +2,14 @@
 // after the trip through the worker must be the events computeKernelSync gives, event for event,
 // in order — on whole kernels, on a partial kernel (maxSteps), and when the stream is stopped
 // midway (onStep returning false, cancel()).
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertBuilt } from './lib/env.mjs';
-import { installWorkerShim } from './lib/web-worker-shim.mjs';
+import { usePackageWithWorker } from './lib/package-with-worker.mjs';
 import { box, extrude, lPrism, plusPrism } from './lib/geometry.mjs';
 import { StepBatchWriter, batchBuffers, forEachStep } from '../../wasm/step-batch.js';
 
 let K;
-let W;
-const workers = [];
-before(async () => {
-  assertBuilt();
-  installWorkerShim();
-  K = await import('../../wasm/index.js');
-  W = await import('../../wasm/worker.js');
-  await K.init();
-});
-after(() => {
-  for (const w of workers) w.dispose();
-});
-
-function newWorker() {
-  const w = new W.KernelWorker();
-  workers.push(w);
-  return w;
-}
+const { newWorker } = usePackageWithWorker((pkg) => (K = pkg.K));
 
 function starPrism(n, inner) {
   const poly = [];

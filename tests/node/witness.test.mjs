@@ -5,28 +5,17 @@
 // planes is enumerated, and a non-empty bounded polytope has one), and without any one face the
 // others' half-spaces do meet in the box. The same faces come from every path: sync, async,
 // findKernelPoint, the worker (compute and computeFile).
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { usePackageWithWorker } from './lib/package-with-worker.mjs';
 import fs from 'node:fs';
 import path from 'node:path';
-import { assertBuilt, offFiles, sharedMeshesMissing, sharedMeshes } from './lib/env.mjs';
-import { installWorkerShim } from './lib/web-worker-shim.mjs';
+import { offFiles, sharedMeshesMissing, sharedMeshes } from './lib/env.mjs';
 import { box, faceLoops, signedVolume, uPrism } from './lib/geometry.mjs';
 import { readOff } from './lib/off.mjs';
 
 let K;
-let W;
-const workers = [];
-before(async () => {
-  assertBuilt();
-  installWorkerShim();
-  K = await import('../../wasm/index.js');
-  W = await import('../../wasm/worker.js');
-  await K.init();
-});
-after(() => {
-  for (const w of workers) w.dispose();
-});
+const { newWorker } = usePackageWithWorker((pkg) => (K = pkg.K));
 
 const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -126,8 +115,7 @@ test(
     const missing = sharedMeshesMissing();
     if (missing) return t.skip(missing);
     const files = [...offFiles('princeton'), ...offFiles('fixtures')];
-    const kw = new W.KernelWorker();
-    workers.push(kw);
+    const kw = newWorker();
     let checked = 0;
     let nonPlanar = 0;
     for (const file of files) {

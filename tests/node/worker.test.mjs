@@ -1,30 +1,14 @@
 // kergen-wasm/worker: the KernelWorker helper and its module worker script, run in Node through a
 // small Web Worker shim over worker_threads (the browser path is covered by the e2e tests).
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { assertBuilt } from './lib/env.mjs';
-import { installWorkerShim, WebWorkerShim } from './lib/web-worker-shim.mjs';
+import { usePackageWithWorker } from './lib/package-with-worker.mjs';
+import { WebWorkerShim } from './lib/web-worker-shim.mjs';
 import { box, extrude, plusPrism } from './lib/geometry.mjs';
 
 let K;
 let W;
-const workers = [];
-before(async () => {
-  assertBuilt();
-  installWorkerShim();
-  K = await import('../../wasm/index.js');
-  W = await import('../../wasm/worker.js');
-  await K.init();
-});
-after(() => {
-  for (const w of workers) w.dispose();
-});
-
-function newWorker(options) {
-  const w = new W.KernelWorker(options);
-  workers.push(w);
-  return w;
-}
+const { newWorker } = usePackageWithWorker((pkg) => ({ K, W } = pkg));
 
 function starPrism(n, inner) {
   const poly = [];
