@@ -15,7 +15,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serve, launch } from '../tests/e2e/page-tools.mjs';
+import { serve, launch, dragFrameDeltas } from '../tests/e2e/page-tools.mjs';
 import { radialSphere } from '../web/samples.js';
 
 const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
@@ -66,33 +66,8 @@ try {
     ['vertices', 'edges', 'faces'].map((k) => document.getElementById(`stat-${k}`).dataset.value),
   );
   console.log(`UV sphere ${nlat} x ${nlon}: kernel V/E/F ${size.join('/')}`);
-  const box = await page.locator('#viewport').boundingBox();
   for (let d = 0; d < drags; d++) {
-    await page.evaluate(() => {
-      window.__frames = [];
-      let last = performance.now();
-      const tick = (t) => {
-        window.__frames.push(t - last);
-        last = t;
-        if (!window.__stopFrames) requestAnimationFrame(tick);
-      };
-      window.__stopFrames = false;
-      requestAnimationFrame(tick);
-    });
-    const cx = box.x + box.width / 2,
-      cy = box.y + box.height / 3;
-    await page.mouse.move(cx, cy);
-    await page.mouse.down();
-    const t0 = Date.now();
-    for (let i = 1; Date.now() - t0 < 3000; i++) {
-      await page.mouse.move(cx + 150 * Math.sin(i / 8), cy + 40 * Math.cos(i / 11));
-      await page.waitForTimeout(16);
-    }
-    await page.mouse.up();
-    const frames = await page.evaluate(() => {
-      window.__stopFrames = true;
-      return window.__frames.slice(2); // the first deltas straddle the start
-    });
+    const frames = await dragFrameDeltas(page, { ms: 3000 });
     console.log(
       `drag ${d + 1}: ${frames.length} frames in ~3 s; frame delta median ${pct(frames, 0.5).toFixed(0)} ms, ` +
         `p90 ${pct(frames, 0.9).toFixed(0)} ms, longest ${Math.max(...frames).toFixed(0)} ms ` +

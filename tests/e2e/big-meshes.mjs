@@ -4,7 +4,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { radialSphere } from '../../web/samples.js';
-import { writeBinarySTL, dropAndMeasure } from './page-tools.mjs';
+import { writeBinarySTL, dropAndMeasure, dragFrameDeltas } from './page-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 import { test, assert } from './harness.mjs';
 import { writeOFF } from './mesh-files.mjs';
@@ -113,30 +113,7 @@ export async function bigKernelTest(page, tmp) {
     assert(prefix.blue > 2000 && half.shown.faces > 0, `prefix: ${prefix.blue} blue pixels, ${half.shown.faces} faces`);
     await jumpToEnd(page);
     // Frame deltas while the view is dragged (printed: timing is not asserted in a test).
-    const box = await page.locator('#viewport').boundingBox();
-    await page.evaluate(() => {
-      window.__frames = [];
-      let last = performance.now();
-      const tick = (t) => {
-        window.__frames.push(t - last);
-        last = t;
-        if (!window.__stopFrames) requestAnimationFrame(tick);
-      };
-      window.__stopFrames = false;
-      requestAnimationFrame(tick);
-    });
-    const cx = box.x + box.width / 2,
-      cy = box.y + box.height / 3;
-    await page.mouse.move(cx, cy);
-    await page.mouse.down();
-    for (let i = 1; i <= 60; i++) {
-      await page.mouse.move(cx + 150 * Math.sin(i / 8), cy + 40 * Math.cos(i / 11));
-      await page.waitForTimeout(16);
-    }
-    await page.mouse.up();
-    const frames = (await page.evaluate(() => ((window.__stopFrames = true), window.__frames)))
-      .slice(2)
-      .sort((a, b) => a - b);
+    const frames = (await dragFrameDeltas(page, { ms: 1000 })).sort((a, b) => a - b);
     console.log(
       `     big kernel: ${full} triangles drawn as ${drawn}; orbiting: ${frames.length} frames, median ${frames[frames.length >> 1]?.toFixed(0)} ms, ` +
         `longest ${frames.at(-1)?.toFixed(0)} ms (load average ${os.loadavg()[0].toFixed(1)})`,

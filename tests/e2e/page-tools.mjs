@@ -181,3 +181,31 @@ export async function dropAndMeasure(page, url, name, { timeout = 300000 } = {})
     };
   });
 }
+
+// Drags the view in a slow figure for `ms` milliseconds and returns the requestAnimationFrame
+// deltas seen meanwhile (ms, in order; the first two, which straddle the start, dropped).
+export async function dragFrameDeltas(page, { ms = 1000 } = {}) {
+  const box = await page.locator('#viewport').boundingBox();
+  await page.evaluate(() => {
+    window.__frames = [];
+    let last = performance.now();
+    const tick = (t) => {
+      window.__frames.push(t - last);
+      last = t;
+      if (!window.__stopFrames) requestAnimationFrame(tick);
+    };
+    window.__stopFrames = false;
+    requestAnimationFrame(tick);
+  });
+  const cx = box.x + box.width / 2,
+    cy = box.y + box.height / 3;
+  await page.mouse.move(cx, cy);
+  await page.mouse.down();
+  const t0 = Date.now();
+  for (let i = 1; Date.now() - t0 < ms; i++) {
+    await page.mouse.move(cx + 150 * Math.sin(i / 8), cy + 40 * Math.cos(i / 11));
+    await page.waitForTimeout(16);
+  }
+  await page.mouse.up();
+  return (await page.evaluate(() => ((window.__stopFrames = true), window.__frames))).slice(2);
+}
