@@ -11,6 +11,7 @@ import { clipBoxHalfSize } from '../../web/unbounded.js';
 import { serve } from './page-tools.mjs';
 import { writeGlb, writeGltf } from './gltf-files.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
+import { lPrismFiles } from '../node/lib/example-meshes.mjs';
 
 const require = createRequire(import.meta.url);
 
@@ -507,24 +508,7 @@ export async function demoFeatureTests(page, context, base, tmp, h) {
   // ----------------------------------------------------------------------- links and sharing
   await test('?url= opens a mesh by link; a link to this view reopens sample, options and section', async () => {
     const off = path.join(tmp, 'linked-l-prism.off');
-    fs.writeFileSync(
-      off,
-      [
-        'OFF',
-        '12 8 0',
-        ...[
-          [0, 0],
-          [2, 0],
-          [2, 1],
-          [1, 1],
-          [1, 2],
-          [0, 2],
-        ].flatMap(([x, y]) => [`${x} ${y} 0`, `${x} ${y} 1`]),
-        '6 10 8 6 4 2 0',
-        '6 1 3 5 7 9 11',
-        ...[0, 1, 2, 3, 4, 5].map((i) => `4 ${2 * i} ${2 * ((i + 1) % 6)} ${2 * ((i + 1) % 6) + 1} ${2 * i + 1}`),
-      ].join('\n') + '\n',
-    );
+    fs.writeFileSync(off, lPrismFiles().off);
     served.set('/__files/linked-l-prism.off', off);
     const second = await context.newPage();
     try {

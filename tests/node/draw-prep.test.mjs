@@ -12,29 +12,10 @@ import {
   simplifySurface,
 } from '../../web/draw-prep.js';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
+import { lPrismMesh } from './lib/example-meshes.mjs';
 
 // An L prism (non-convex hexagon caps, quad sides): 12 vertices, 8 faces, 18 edges.
-function lPrism() {
-  const base = [
-    [0, 0],
-    [2, 0],
-    [2, 1],
-    [1, 1],
-    [1, 2],
-    [0, 2],
-  ];
-  const positions = new Float64Array(base.flatMap(([x, y]) => [x, y, 0, x, y, 1]));
-  const faces = [
-    [10, 8, 6, 4, 2, 0],
-    [1, 3, 5, 7, 9, 11],
-  ];
-  for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
-  return {
-    positions,
-    indices: Uint32Array.from(faces.flat()),
-    faceSizes: Uint32Array.from(faces.map((f) => f.length)),
-  };
-}
+const lPrism = lPrismMesh;
 
 const area = (P, a, b, c) => {
   const u = [0, 1, 2].map((k) => P[3 * b + k] - P[3 * a + k]),

@@ -3,6 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { usePackageWithWorker } from './lib/package-with-worker.mjs';
+import { lPrismFiles } from './lib/example-meshes.mjs';
 import { WebWorkerShim } from './lib/web-worker-shim.mjs';
 import { box, extrude, plusPrism } from './lib/geometry.mjs';
 
@@ -137,33 +138,8 @@ test('step events arrive in batches of at most 4096, as transferred typed arrays
 // computeFile / writeMesh need the package's file layer (readMeshSync, writeMesh).
 const fileLayer = () => typeof K.readMeshSync === 'function' && typeof K.writeMesh === 'function';
 
-// An L prism with non-convex hexagon caps as OFF text: its kernel is the unit cube.
-function lPrismOff() {
-  const base = [
-    [0, 0],
-    [2, 0],
-    [2, 1],
-    [1, 1],
-    [1, 2],
-    [0, 2],
-  ];
-  const points = base.flatMap(([x, y]) => [
-    [x, y, 0],
-    [x, y, 1],
-  ]);
-  const faces = [
-    [10, 8, 6, 4, 2, 0],
-    [1, 3, 5, 7, 9, 11],
-  ];
-  for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
-  const lines = [
-    'OFF',
-    `${points.length} ${faces.length} 0`,
-    ...points.map((p) => p.join(' ')),
-    ...faces.map((f) => `${f.length} ${f.join(' ')}`),
-  ];
-  return new TextEncoder().encode(lines.join('\n') + '\n');
-}
+// An L prism with non-convex hexagon caps as OFF bytes: its kernel is the unit cube.
+const lPrismOff = () => new TextEncoder().encode(lPrismFiles().off);
 
 test('computeFile parses in the worker: mesh and kernel, bytes kept (transferred only with transfer: true), onMesh before the result, progress by phase', async (t) => {
   if (!fileLayer()) return t.skip('this package build has no readMeshSync / writeMesh');

@@ -8,7 +8,8 @@
 import * as THREE from 'three';
 import { GLTFExporter } from 'three/examples/jsm/exporters/GLTFExporter.js';
 
-export function lPrismFiles() {
+/** The L prism's 12 corners ([x, y, z]) and 8 faces (corner ids, outward order). */
+export function lPrismPolygons() {
   const base = [
     [0, 0],
     [2, 0],
@@ -28,6 +29,21 @@ export function lPrismFiles() {
     [1, 3, 5, 7, 9, 11],
   ];
   for (let i = 0; i < 6; i++) faces.push([2 * i, 2 * ((i + 1) % 6), 2 * ((i + 1) % 6) + 1, 2 * i + 1]);
+  return { points, faces };
+}
+
+/** The L prism as flat arrays (polygon faces with faceSizes). */
+export function lPrismMesh() {
+  const { points, faces } = lPrismPolygons();
+  return {
+    positions: Float64Array.from(points.flat()),
+    indices: Uint32Array.from(faces.flat()),
+    faceSizes: Uint32Array.from(faces.map((f) => f.length)),
+  };
+}
+
+export function lPrismFiles() {
+  const { points, faces } = lPrismPolygons();
   const off = [
     'OFF',
     `${points.length} ${faces.length} 0`,
