@@ -9,7 +9,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
-import { viewPixels, setRange, controls } from './demo-features.mjs';
+import { viewPixels, setRange, controls } from './demo-view-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
 
 const require = createRequire(import.meta.url);

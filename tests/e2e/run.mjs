@@ -8,14 +8,14 @@
 // partial counts, jump to end); files through the picker (OFF, binary and ascii STL, OBJ) and drag
 // & drop; princeton/350.off against the native CLI; error messages (out-of-range index, open,
 // non-manifold, unparseable); cancel on a large input with a responsive page; export; light/dark;
-// and the page's states and views (demo-features.mjs: states, inscribed ball, section plane,
-// open meshes and allowOpen, repair, witness faces, fitting, ?url= and links, GLB/glTF, keyboard,
-// axe-core). Screenshots go to tests/artifacts/. Prints `e2e: N passed, M failed`; exits 1 on failure.
-// This file is the harness (build, server, Chromium, the order of the suites, the summary); the
-// tests live beside it: harness.mjs (test/skip/assert, E2E_ONLY, shared paths), page-state.mjs
-// and mesh-files.mjs (helpers), gallery-and-files.mjs, progress-and-messages.mjs,
-// export-and-cancel.mjs, demo-features.mjs, demo-refusals.mjs, big-meshes.mjs, three-app-test.mjs,
-// examples.mjs.
+// the page's states (demo-states.mjs: states, witness faces, open meshes and allowOpen, repair)
+// and views (demo-features.mjs: inscribed ball, section plane, fitting, ?url= and links, GLB/glTF,
+// keyboard, axe-core). Screenshots go to tests/artifacts/. Prints `e2e: N passed, M failed`;
+// exits 1 on failure. This file is the harness (build, server, Chromium, the order of the suites,
+// the summary); the tests live beside it: harness.mjs (test/skip/assert, E2E_ONLY, shared paths),
+// page-state.mjs, mesh-files.mjs and demo-view-tools.mjs (helpers), gallery-and-files.mjs,
+// progress-and-messages.mjs, export-and-cancel.mjs, demo-states.mjs, demo-features.mjs,
+// demo-refusals.mjs, big-meshes.mjs, three-app-test.mjs, examples.mjs.
 // Environment: CHROMIUM (default /usr/bin/chromium), KERGEN_CLI (default build/kergen),
 // E2E_HEADFUL=1, E2E_ONLY=<substring of test names>.
 
@@ -27,6 +27,7 @@ import { chromium } from 'playwright-core';
 import { checkSamples } from './samples-check.mjs';
 import { serve } from './page-tools.mjs';
 import { examplesTests } from './examples.mjs';
+import { demoStateTests } from './demo-states.mjs';
 import { demoFeatureTests } from './demo-features.mjs';
 import { demoRefusalTests } from './demo-refusals.mjs';
 import {
@@ -153,6 +154,7 @@ async function main() {
       sharedMeshes,
       served,
     };
+    await demoStateTests(page, context, base, tmp, helpers);
     await demoFeatureTests(page, context, base, tmp, helpers);
     await demoRefusalTests(page, context, base, tmp, { ...helpers, webDist });
     await themeAndBigFile(page, tmp, served);
