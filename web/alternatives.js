@@ -45,6 +45,15 @@ export function packageOptions(run) {
 }
 
 /**
+ * The options of the page's kernel runs for run options `run`: the package's, and the inscribed
+ * ball (it costs little next to the kernel: always on). A refusal's trials use them too, so that
+ * a tried alternative's result is the one its run would compute (sources.js shows it as is).
+ */
+export function kernelOptions(run) {
+  return { deepestPoint: true, ...packageOptions(run) };
+}
+
+/**
  * The alternatives worth trying for a refusal `code`, given the options the refused run used:
  * each names what the package's message proposes for that code. `weldRepair` is tried only when
  * `repair` alone is refused (runs.js).

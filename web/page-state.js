@@ -106,8 +106,9 @@ export const state = {
   // The input as computed (its mesh and the options its kind needs, e.g. weld for STL), kept to
   // try a refusal's alternatives (trials.js); null for meshes too big to try.
   input: null,
-  // { source, trials: { [alternative]: outcome }, ranked }: what was tried after a refusal of
-  // `source`; kept while the same source is computed again (retry buttons).
+  // { source, trials: { [alternative]: outcome }, ranked, results: { [alternative]: result } }:
+  // what was tried after a refusal of `source`; kept while the same source is computed again
+  // (retry buttons). A retry button shows its alternative's result (once) instead of computing it again.
   trials: null,
   trying: false,
 };

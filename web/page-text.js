@@ -166,7 +166,7 @@ export function showStats(result, wall, V, E, F) {
   const tm = state.timing;
   const parts = [
     tm.read != null && `read ${fmtMs(tm.read)}`,
-    `worker round trip ${fmtMs(tm.worker)}`,
+    tm.tried ? 'computed while trying the ways offered' : `worker round trip ${fmtMs(tm.worker)}`,
     tm.view != null && `view ${fmtMs(tm.view)}`,
   ].filter(Boolean);
   setStat('stat-wall', `${fmtMs(wall)} (${parts.join(', ')})`, wall);

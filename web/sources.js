@@ -8,10 +8,9 @@ import { INLINE_FACES, state, ui, viewer } from './page-state.js';
 import { fmtBytes, setBusy, setStatus, showCancelled, showError } from './page-text.js';
 import { beginRun, endRun, runKernel, showMesh, stopPlayback, worker } from './runs.js';
 import { SAMPLES, sampleById } from './samples.js';
-import { ALTERNATIVES, packageOptions } from './alternatives.js';
+import { ALTERNATIVES, kernelOptions as optionsFor } from './alternatives.js';
 
-// The inscribed ball costs little next to the kernel (docs/demo.md has the numbers): always on.
-const kernelOptions = () => ({ deepestPoint: true, ...packageOptions(state.runOptions) });
+const kernelOptions = () => optionsFor(state.runOptions);
 
 // Meshes up to this many faces are kept on this thread after a refusal's run, so that what the
 // refusal proposes can be tried in the worker before it is offered (trials.js).
@@ -33,8 +32,7 @@ export async function openSource(
   state.source = source;
   state.runOptions = options;
   selectSample(source.kind === 'sample' ? source.id : null);
-  const name = source.kind === 'sample' ? sampleById(source.id).name : source.file.name;
-  const token = beginRun(name);
+  const token = beginRun(sourceName(source));
   state.t0 = t0;
   updateShareUrl();
   state.inputPromise = null;
@@ -163,11 +161,34 @@ async function isWebPage(response, blob) {
   );
 }
 
-// The same input again with other options (the retry buttons).
-function reopen(options) {
+const sourceName = (source) => (source.kind === 'sample' ? sampleById(source.id).name : source.file.name);
+
+// The same input again with the options of alternative `alt` (the retry buttons). When the trials
+// computed it, its result is shown as it came (its steps replayed from it), not computed again.
+function reopen(alt) {
   const source = state.source;
   if (!source) return;
-  openSource(source, { ...state.runOptions, ...options });
+  const options = { ...state.runOptions, ...ALTERNATIVES[alt].options };
+  const result = state.trials?.source === source && state.input ? state.trials.results?.[alt] : null;
+  if (!result) return openSource(source, options);
+  delete state.trials.results[alt]; // its arrays go to the view (and the drawing worker) once
+  showTried(source, options, result);
+}
+
+async function showTried(source, options, result) {
+  state.runOptions = options;
+  const token = beginRun(sourceName(source));
+  state.t0 = performance.now();
+  state.timing.tried = true;
+  updateShareUrl();
+  // The kept input is drawn again; a big one's arrays move to the drawing worker: it gets copies.
+  const { mesh } = state.input;
+  const copy = (a) => (faceCount(mesh) > INLINE_FACES ? a?.slice() : a);
+  state.inputPromise = showMesh(
+    { positions: copy(mesh.positions), indices: copy(mesh.indices), faceSizes: copy(mesh.faceSizes) },
+    token,
+  );
+  await runKernel(token, () => Promise.resolve(result));
 }
 // Each button runs the alternative it was offered for (trials.js sets data-alt).
 for (const [id, fallback] of [
@@ -176,7 +197,7 @@ for (const [id, fallback] of [
   ['retryRepair', 'repair'],
   ['retryWeld', 'weld'],
 ])
-  ui[id].addEventListener('click', () => reopen(ALTERNATIVES[ui[id].dataset.alt || fallback].options));
+  ui[id].addEventListener('click', () => reopen(ui[id].dataset.alt || fallback));
 
 function selectSample(id) {
   for (const b of ui.samples.querySelectorAll('button')) {

@@ -9,7 +9,7 @@ import {
   rankTrials,
   trialInWords,
   failureInWords,
-  packageOptions,
+  kernelOptions,
 } from './alternatives.js';
 import { state, ui } from './page-state.js';
 import { addParagraph, setBusy } from './page-text.js';
@@ -28,6 +28,7 @@ export function hideAlternatives() {
 async function runTrials(ids, token) {
   const { mesh, options } = state.input;
   const trials = {};
+  const results = {};
   state.trying = true;
   ui.cancel.disabled = false; // trials can take a while on a big mesh
   try {
@@ -40,9 +41,10 @@ async function runTrials(ids, token) {
         const r = await worker().compute(mesh.positions, mesh.indices, {
           faceSizes: mesh.faceSizes,
           ...options,
-          ...packageOptions(run),
+          ...kernelOptions(run),
         });
         trials[id] = { status: r.status, volume: r.volume, warnings: r.warnings };
+        results[id] = r;
       } catch (err) {
         if (token !== state.token) return null;
         if (err?.code === 'CANCELLED') return 'cancelled'; // the Cancel button: offer them untried
@@ -55,7 +57,7 @@ async function runTrials(ids, token) {
     ui.cancel.disabled = true;
     setBusy('');
   }
-  return trials;
+  return { trials, results };
 }
 
 /**
@@ -71,16 +73,17 @@ export async function offerAlternatives(code, token) {
     ui.actions.dataset.state = 'none';
     return;
   }
-  let ranked, trials;
+  let ranked, trials, tried;
   ui.actions.dataset.state = 'trying';
   if (state.input) {
-    trials = await runTrials(ids, token);
-    if (!trials) return;
+    tried = await runTrials(ids, token);
+    if (!tried) return;
   }
-  const cancelled = trials === 'cancelled';
-  if (trials && !cancelled) {
+  const cancelled = tried === 'cancelled';
+  if (tried && !cancelled) {
+    trials = tried.trials;
     ranked = rankTrials(trials);
-    state.trials = { source: state.source, trials, ranked };
+    state.trials = { source: state.source, trials, ranked, results: tried.results };
   } else {
     ranked = ids.filter((id) => id !== 'weldRepair');
     trials = null;

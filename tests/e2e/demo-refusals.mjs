@@ -227,6 +227,9 @@ export async function demoRefusalTests(page, context, base, tmp, h) {
     const r = await click(o[0].id);
     assert(r.status === 'POLYHEDRON', JSON.stringify(r));
     assertClose(Number(r.stats.volume), 1000, 1e-12, 'repaired T-junction box kernel volume (the box)');
+    // The tried result is shown as it was computed, not computed a second time.
+    const wall = await page.textContent('#stat-wall');
+    assert(/computed while trying the ways offered/.test(wall) && !/worker round trip/.test(wall), wall);
     const note = await page.textContent('#message');
     assert(/T-junctions/.test(note) && !OPTION_NAMES.test(note), `repair note "${note}"`);
     await page.screenshot({ path: path.join(artifacts, 'flow-tjunction-repaired-1280.png') });
