@@ -118,29 +118,28 @@ uint64_t cell_hash(const int64_t c[4]) {
 template <class Visit>
 void for_each_cell(const Key& key, Visit visit) {
   int64_t base[4];
-  int near[4];
-  bool any_near = false;
+  // The components near a border (increasing) and the step to their neighbour cell.
+  int near_index[4], num_near = 0;
+  int64_t step[4];
   for (int i = 0; i < 4; ++i) {
     const double x = key.k[i] / kCell;  // exact: a power-of-two scaling
     base[i] = floor_int(x);
     const double frac = x - double(base[i]);  // exact
-    near[i] = frac <= kBorder / kCell ? -1 : (frac >= 1 - kBorder / kCell ? 1 : 0);
-    any_near |= near[i] != 0;
+    const int near = frac <= kBorder / kCell ? -1 : (frac >= 1 - kBorder / kCell ? 1 : 0);
+    if (near != 0) {
+      near_index[num_near] = i;
+      step[num_near++] = near;
+    }
   }
   visit(cell_hash(base));
-  if (!any_near) return;
-  for (int mask = 1; mask < 16; ++mask) {
-    int64_t cell[4];
-    bool skip = false;
-    for (int i = 0; i < 4; ++i) {
-      const bool bit = (mask >> i) & 1;
-      if (bit && near[i] == 0) {
-        skip = true;
-        break;
-      }
-      cell[i] = base[i] + (bit ? near[i] : 0);
-    }
-    if (!skip) visit(cell_hash(cell));
+  // Every non-empty subset of the near components stepped across (axis-aligned planes, with
+  // their components of 0 and 1, have three): subsets in increasing order of their bit masks
+  // over the components, as a loop over all 15 masks would visit them.
+  for (int sub = 1; sub < (1 << num_near); ++sub) {
+    int64_t cell[4] = {base[0], base[1], base[2], base[3]};
+    for (int j = 0; j < num_near; ++j)
+      if ((sub >> j) & 1) cell[near_index[j]] += step[j];
+    visit(cell_hash(cell));
   }
 }
 

@@ -38,42 +38,34 @@ typedef double Vec4Unaligned __attribute__((vector_size(32), aligned(8), may_ali
 #define KERGEN_LOAD4(ptr) (*reinterpret_cast<const Vec4Unaligned*>(ptr))
 
 // Index of the smallest positive hit t_i = -f_i(p) / (n_i . u) over planes approaching along u
-// (n_i . u > 0), or n when none approaches. Blocks keep their hits in a buffer so the index is
-// found without recomputing (the block minimum improves only O(log n) times).
+// (n_i . u > 0), or n when none approaches; the lowest such index on ties. Each lane keeps its
+// smallest hit and where it was first met (strict <, so the lowest index of the lane); the lanes
+// are merged at the end. (Indices are exact as doubles: n is far below 2^53.)
 KERGEN_MULTIVERSION
 size_t nearest_hit(const double* ax, const double* ay, const double* az, const double* ad, size_t n, const double p[3],
                    const double u[3]) {
-  constexpr size_t kBlock = 64;
   const double inf = std::numeric_limits<double>::infinity();
-  const Vec4 inf4 = {inf, inf, inf, inf}, zero4 = {0, 0, 0, 0};
+  const Vec4 inf4 = {inf, inf, inf, inf}, zero4 = {0, 0, 0, 0}, four = {4, 4, 4, 4};
   const Vec4 x = {p[0], p[0], p[0], p[0]}, y = {p[1], p[1], p[1], p[1]}, z = {p[2], p[2], p[2], p[2]};
   const Vec4 u0 = {u[0], u[0], u[0], u[0]}, u1 = {u[1], u[1], u[1], u[1]}, u2 = {u[2], u[2], u[2], u[2]};
-  alignas(32) double hits[kBlock];
-  double best = inf;
-  size_t best_i = n;
-  for (size_t s = 0; s < n; s += kBlock) {
-    const size_t m = std::min(kBlock, n - s);
-    Vec4 lo = inf4;
-    for (size_t i = 0; i < m; i += kLanes) {
-      const Vec4 X = KERGEN_LOAD4(ax + s + i), Y = KERGEN_LOAD4(ay + s + i), Z = KERGEN_LOAD4(az + s + i),
-                 D = KERGEN_LOAD4(ad + s + i);
-      const Vec4 a = X * u0 + Y * u1 + Z * u2;
-      const Vec4 f = X * x + Y * y + Z * z + D;
-      const Vec4 t = a > zero4 ? -f / a : inf4;
-      std::memcpy(hits + i, &t, sizeof t);
-      lo = t < lo ? t : lo;
-    }
-    const double block_min = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
-    if (block_min < best) {
-      best = block_min;
-      for (size_t i = 0; i < m; ++i)
-        if (hits[i] == block_min) {
-          best_i = s + i;
-          break;
-        }
-    }
+  Vec4 lo = inf4, lo_index = inf4, index = {0, 1, 2, 3};
+  for (size_t i = 0; i < n; i += kLanes) {
+    const Vec4 X = KERGEN_LOAD4(ax + i), Y = KERGEN_LOAD4(ay + i), Z = KERGEN_LOAD4(az + i), D = KERGEN_LOAD4(ad + i);
+    const Vec4 a = X * u0 + Y * u1 + Z * u2;
+    const Vec4 f = X * x + Y * y + Z * z + D;
+    const Vec4 t = a > zero4 ? -f / a : inf4;
+    const Mask4 better = t < lo;
+    lo = better ? t : lo;
+    lo_index = better ? index : lo_index;
+    index += four;
   }
-  return best_i;
+  double best = inf, best_index = inf;
+  for (size_t k = 0; k < kLanes; ++k)
+    if (lo[k] < best || (lo[k] == best && lo_index[k] < best_index)) {
+      best = lo[k];
+      best_index = lo_index[k];
+    }
+  return best < inf ? size_t(best_index) : n;
 }
 
 // Indices of the planes whose value at p is not certainly negative: f_i(p) >= -b_i with the
