@@ -697,13 +697,28 @@ TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>&
 std::vector<uint32_t> facet_planes(const TraceResult& trace) {
   // (Sized first: growing the arrays step by step was a tenth of a small kernel's allocations.)
   size_t total = 0;
-  for (const TracedEdge& e : trace.edges) total += e.planes.size();
+  uint32_t max_plane = 0;
+  for (const TracedEdge& e : trace.edges) {
+    total += e.planes.size();
+    for (uint32_t h : e.planes) max_plane = std::max(max_plane, h);
+  }
+  std::vector<uint32_t> facets;
+  facets.reserve(total / 3 + 1);  // (a facet holds three edges or more)
+  if (total == 0) return facets;
+  if (max_plane <= 8 * total) {
+    // Plane ids within a few times the edges' plane count (a small mesh, or a large kernel): a
+    // count per id, no sort.
+    std::vector<uint8_t> count(size_t(max_plane) + 1, 0);
+    for (const TracedEdge& e : trace.edges)
+      for (uint32_t h : e.planes) count[h] = uint8_t(std::min(int(count[h]) + 1, 3));
+    for (uint32_t h = 0; h <= max_plane; ++h)
+      if (count[h] >= 3) facets.push_back(h);
+    return facets;
+  }
   std::vector<uint32_t> planes;
   planes.reserve(total);
   for (const TracedEdge& e : trace.edges) planes.insert(planes.end(), e.planes.begin(), e.planes.end());
   std::sort(planes.begin(), planes.end());
-  std::vector<uint32_t> facets;
-  facets.reserve(total / 3 + 1);  // (a facet holds three edges or more)
   for (size_t i = 0, j; i < planes.size(); i = j) {
     for (j = i; j < planes.size() && planes[j] == planes[i]; ++j) {}
     if (j - i >= 3) facets.push_back(planes[i]);
