@@ -510,7 +510,7 @@ class Tracer {
   // double-double one, and from the exact one only when that cancels too. (The direction only
   // steers the double scan; the exact certification decides.)
   void direction(const Ray& ray, double u[3]) const {
-    const std::array<Approx, 3> c = cross_normals(ps_.approx(ray.p), ps_.approx(ray.q));
+    const Approx* c = ray_line_->u;  // cross_normals of p and q, filtered
     double len = std::fabs(c[0].v) + std::fabs(c[1].v) + std::fabs(c[2].v);
     double err = c[0].e + c[1].e + c[2].e;
     if (err <= 1e-8 * len) {
@@ -562,9 +562,11 @@ class Tracer {
     return exact_scan(ray);
   }
 
+  // (The sign of det3(n_l, n_p, n_q), filtered against the ray's line direction first: a dot
+  // product with its cross product, kept in ray_line_, instead of a determinant per plane.)
   bool approaching(const Ray& ray, uint32_t l) const {
     const auto& G = res_.vertices[ray.from].tight;
-    return !std::binary_search(G.begin(), G.end(), l) && ray.sigma * sign_det3_normals(ps_, l, ray.p, ray.q) > 0;
+    return !std::binary_search(G.begin(), G.end(), l) && ray.sigma * ray_line_->rate_sign(ps_, l) > 0;
   }
 
   // The nearest plane by exact comparisons only (a tournament over the approaching planes):
@@ -591,6 +593,7 @@ class Tracer {
 
   bool trace(const Ray& ray) {
     ++res_.traced_lines;
+    ray_line_.emplace(ps_, ray.p, ray.q);
     uint32_t r = scan(ray);
     if (r == kNoPlane) {
       res_.internal_error = true;
@@ -672,6 +675,7 @@ class Tracer {
   std::vector<OnEntry> on_entry_;  // (pairs, not parallel arrays: half the allocations)
   std::vector<uint32_t> slot_;
   std::vector<std::array<double, 4>> saved_;
+  std::optional<LineDirection> ray_line_;  // the line of the ray being traced (trace)
   TraceResult res_;
   VertexIndex vertex_ids_;
   U64Set traced_{48};  // line keys of traced edges (room for a small kernel's, as reserved above)
