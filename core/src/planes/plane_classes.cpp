@@ -100,14 +100,20 @@ int64_t floor_int(double x) {
   return c - (double(c) > x);
 }
 
+// A cell's hash is the xor of one mixed value per coordinate, so the neighbour cells of a key near
+// a border cost an xor per stepped coordinate (a key near three borders, as every axis-aligned
+// plane is, visits eight cells).
+uint64_t cell_coord_hash(int i, int64_t c) {
+  static constexpr uint64_t kOdd[4] = {0x9E3779B97F4A7C15ull, 0xbf58476d1ce4e5b9ull, 0x94d049bb133111ebull,
+                                       0xff51afd7ed558ccdull};
+  const uint64_t h = uint64_t(c) * kOdd[i];
+  return h ^ (h >> 29);
+}
+
 uint64_t cell_hash(const int64_t c[4]) {
   const int64_t flip = c[0] < 0 ? -1 : 0;  // x ^ -1 == ~x
-  uint64_t h = 1469598103934665603ull;
-  for (int i = 0; i < 4; ++i) {
-    h ^= uint64_t(c[i] ^ flip);
-    h *= 1099511628211ull;
-    h ^= h >> 29;
-  }
+  uint64_t h = 0;
+  for (int i = 0; i < 4; ++i) h ^= cell_coord_hash(i, c[i] ^ flip);
   return h;
 }
 
@@ -132,14 +138,27 @@ void for_each_cell(const Key& key, Visit visit) {
     }
   }
   visit(cell_hash(base));
-  // Every non-empty subset of the near components stepped across (axis-aligned planes, with
-  // their components of 0 and 1, have three): subsets in increasing order of their bit masks
-  // over the components, as a loop over all 15 masks would visit them.
+  if (num_near == 0) return;
+  // Every non-empty subset of the near components stepped across, in increasing order of their
+  // bit masks over the components. A cell's hash is the base cell's with the stepped
+  // coordinates' terms exchanged, under the mirror flip of its own first coordinate.
+  const int64_t first_stepped = near_index[0] == 0 ? base[0] + step[0] : base[0];
+  uint64_t whole[2] = {0, 0}, change[2][4];  // by flip (0: none, 1: complement)
+  for (int f = 0; f < 2; ++f) {
+    const int64_t flip = f ? -1 : 0;
+    for (int i = 0; i < 4; ++i) whole[f] ^= cell_coord_hash(i, base[i] ^ flip);
+    for (int j = 0; j < num_near; ++j) {
+      const int i = near_index[j];
+      change[f][j] = cell_coord_hash(i, base[i] ^ flip) ^ cell_coord_hash(i, (base[i] + step[j]) ^ flip);
+    }
+  }
   for (int sub = 1; sub < (1 << num_near); ++sub) {
-    int64_t cell[4] = {base[0], base[1], base[2], base[3]};
+    const int64_t c0 = near_index[0] == 0 && (sub & 1) ? first_stepped : base[0];
+    const int f = c0 < 0;
+    uint64_t h = whole[f];
     for (int j = 0; j < num_near; ++j)
-      if ((sub >> j) & 1) cell[near_index[j]] += step[j];
-    visit(cell_hash(cell));
+      if ((sub >> j) & 1) h ^= change[f][j];
+    visit(h);
   }
 }
 
