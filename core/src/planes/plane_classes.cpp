@@ -89,9 +89,12 @@ int key_match(const Key& a, const Key& b) {
 }
 
 // Cells of 2^-32 (~2e-10) keep nearly-but-not-exactly coplanar planes (common in refined meshes
-// with rounded coordinates) out of each other's chains. The cell of the negated key is the
-// mirror cell -1 - c = ~c: a cell and its mirror share one hash (the representative has a
-// non-negative first coordinate), so one probe finds both orientations of a plane.
+// with rounded coordinates) out of each other's chains. Cells are centred on multiples of 2^-32:
+// the coordinates of axis-aligned planes (0, +-1, short dyadic offsets) lie in the middle of a
+// cell, not on its border, so they probe one cell, not sixteen. The cell of the negated key is
+// the mirror cell -c: a cell and its mirror share one hash (the sign that makes the first
+// non-zero coordinate positive is taken out; a unit normal has a coordinate of at least
+// 1/sqrt(3), so some coordinate is not 0), so one probe finds both orientations of a plane.
 constexpr double kCell = 1.0 / (int64_t(1) << 32);
 
 // floor(x) for |x| < 2^62 (cell coordinates are below 2^34): the cast truncates towards zero.
@@ -100,9 +103,25 @@ int64_t floor_int(double x) {
   return c - (double(c) > x);
 }
 
-// A cell's hash is the xor of one mixed value per coordinate, so the neighbour cells of a key near
-// a border cost an xor per stepped coordinate (a key near three borders, as every axis-aligned
-// plane is, visits eight cells).
+// Key coordinate x's cell (the multiple of 2^-32 nearest to x, in cells) and the step to the
+// neighbour cell when x lies within kBorder of the border between them (0 otherwise). Exact:
+// x / kCell is a power-of-two scaling and frac is exact; a coordinate and its negation get
+// mirror cells except exactly on a border, where both probe both cells.
+struct CellCoord {
+  int64_t cell;
+  int step;
+};
+CellCoord cell_coord(double x) {
+  const double v = x / kCell;
+  const int64_t base = floor_int(v);
+  const double frac = v - double(base);  // in [0, 1), exact
+  const bool upper = frac >= 0.5;
+  const bool near = std::fabs(frac - 0.5) <= kBorder / kCell;  // (exact for frac >= 0.25)
+  return {base + upper, near ? (upper ? -1 : 1) : 0};
+}
+
+// A cell's hash is the xor of one mixed value per coordinate (so the neighbour cells of a key near
+// a border cost an xor per stepped coordinate), with the mirror sign taken out.
 uint64_t cell_coord_hash(int i, int64_t c) {
   static constexpr uint64_t kOdd[4] = {0x9E3779B97F4A7C15ull, 0xbf58476d1ce4e5b9ull, 0x94d049bb133111ebull,
                                        0xff51afd7ed558ccdull};
@@ -110,10 +129,17 @@ uint64_t cell_coord_hash(int i, int64_t c) {
   return h ^ (h >> 29);
 }
 
+// +1 or -1: the sign making the cell's first non-zero coordinate positive.
+int64_t mirror_sign(const int64_t c[4]) {
+  for (int i = 0; i < 4; ++i)
+    if (c[i] != 0) return c[i] < 0 ? -1 : 1;
+  return 1;  // (unreachable: see above)
+}
+
 uint64_t cell_hash(const int64_t c[4]) {
-  const int64_t flip = c[0] < 0 ? -1 : 0;  // x ^ -1 == ~x
+  const int64_t sign = mirror_sign(c);
   uint64_t h = 0;
-  for (int i = 0; i < 4; ++i) h ^= cell_coord_hash(i, c[i] ^ flip);
+  for (int i = 0; i < 4; ++i) h ^= cell_coord_hash(i, sign * c[i]);
   return h;
 }
 
@@ -128,37 +154,21 @@ void for_each_cell(const Key& key, Visit visit) {
   int near_index[4], num_near = 0;
   int64_t step[4];
   for (int i = 0; i < 4; ++i) {
-    const double x = key.k[i] / kCell;  // exact: a power-of-two scaling
-    base[i] = floor_int(x);
-    const double frac = x - double(base[i]);  // exact
-    const int near = frac <= kBorder / kCell ? -1 : (frac >= 1 - kBorder / kCell ? 1 : 0);
-    if (near != 0) {
+    const CellCoord c = cell_coord(key.k[i]);
+    base[i] = c.cell;
+    if (c.step != 0) {
       near_index[num_near] = i;
-      step[num_near++] = near;
+      step[num_near++] = c.step;
     }
   }
   visit(cell_hash(base));
-  if (num_near == 0) return;
   // Every non-empty subset of the near components stepped across, in increasing order of their
-  // bit masks over the components. A cell's hash is the base cell's with the stepped
-  // coordinates' terms exchanged, under the mirror flip of its own first coordinate.
-  const int64_t first_stepped = near_index[0] == 0 ? base[0] + step[0] : base[0];
-  uint64_t whole[2] = {0, 0}, change[2][4];  // by flip (0: none, 1: complement)
-  for (int f = 0; f < 2; ++f) {
-    const int64_t flip = f ? -1 : 0;
-    for (int i = 0; i < 4; ++i) whole[f] ^= cell_coord_hash(i, base[i] ^ flip);
-    for (int j = 0; j < num_near; ++j) {
-      const int i = near_index[j];
-      change[f][j] = cell_coord_hash(i, base[i] ^ flip) ^ cell_coord_hash(i, (base[i] + step[j]) ^ flip);
-    }
-  }
+  // bit masks over the components.
   for (int sub = 1; sub < (1 << num_near); ++sub) {
-    const int64_t c0 = near_index[0] == 0 && (sub & 1) ? first_stepped : base[0];
-    const int f = c0 < 0;
-    uint64_t h = whole[f];
+    int64_t cell[4] = {base[0], base[1], base[2], base[3]};
     for (int j = 0; j < num_near; ++j)
-      if ((sub >> j) & 1) h ^= change[f][j];
-    visit(h);
+      if ((sub >> j) & 1) cell[near_index[j]] += step[j];
+    visit(cell_hash(cell));
   }
 }
 
@@ -172,10 +182,9 @@ OwnCell own_cell(const Key& key) {
   int64_t c[4];
   bool near = false;
   for (int i = 0; i < 4; ++i) {
-    const double x = key.k[i] / kCell;  // as in for_each_cell
-    c[i] = floor_int(x);
-    const double frac = x - double(c[i]);
-    near |= frac <= kBorder / kCell || frac >= 1 - kBorder / kCell;
+    const CellCoord x = cell_coord(key.k[i]);  // as in for_each_cell
+    c[i] = x.cell;
+    near |= x.step != 0;
   }
   return {cell_hash(c), near};
 }
