@@ -36,6 +36,16 @@ typedef int64_t Mask4 __attribute__((vector_size(32)));
 // compiled for another target).
 typedef double Vec4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
 #define KERGEN_LOAD4(ptr) (*reinterpret_cast<const Vec4Unaligned*>(ptr))
+// Whether any lane of a Mask4 is set. On x86 the two halves' sign bits (movmskpd, SSE2, so in
+// every clone); element by element elsewhere (GCC moves each lane to an integer register).
+#if defined(__SSE2__)
+typedef double Vec2Mask __attribute__((vector_size(16)));
+#define KERGEN_ANY4(m)                                                                          \
+  (__builtin_ia32_movmskpd(reinterpret_cast<Vec2Mask>(__builtin_shufflevector((m), (m), 0, 1) | \
+                                                      __builtin_shufflevector((m), (m), 2, 3))) != 0)
+#else
+#define KERGEN_ANY4(m) (((m)[0] | (m)[1] | (m)[2] | (m)[3]) != 0)
+#endif
 
 // Index of the smallest positive hit t_i = -f_i(p) / (n_i . u) over planes approaching along u
 // (n_i . u > 0), or n when none approaches; the lowest such index on ties. Each lane keeps its
@@ -83,7 +93,7 @@ void near_planes(const double* ax, const double* ay, const double* az, const dou
         KERGEN_LOAD4(ax + i) * x + KERGEN_LOAD4(ay + i) * y + KERGEN_LOAD4(az + i) * z + KERGEN_LOAD4(ad + i);
     const Vec4 b = KERGEN_LOAD4(ben + i) * C1 + KERGEN_LOAD4(bn1 + i) * C2 + KERGEN_LOAD4(be0 + i);
     const Mask4 near = f >= b * scale;
-    if ((near[0] | near[1] | near[2] | near[3]) == 0) continue;
+    if (!KERGEN_ANY4(near)) continue;
     for (size_t k = 0; k < kLanes; ++k)
       if (near[k]) out.push_back(uint32_t(i + k));
   }
