@@ -89,9 +89,12 @@ int key_match(const Key& a, const Key& b) {
 }
 
 // Cells of 2^-32 (~2e-10) keep nearly-but-not-exactly coplanar planes (common in refined meshes
-// with rounded coordinates) out of each other's chains. The cell of the negated key is the
-// mirror cell -1 - c = ~c: a cell and its mirror share one hash (the representative has a
-// non-negative first coordinate), so one probe finds both orientations of a plane.
+// with rounded coordinates) out of each other's chains. Cells are centred on multiples of 2^-32:
+// the coordinates of axis-aligned planes (0, +-1, short dyadic offsets) lie in the middle of a
+// cell, not on its border, so they probe one cell, not sixteen. The cell of the negated key is
+// the mirror cell -c: a cell and its mirror share one hash (the sign that makes the first
+// non-zero coordinate positive is taken out; a unit normal has a coordinate of at least
+// 1/sqrt(3), so some coordinate is not 0), so one probe finds both orientations of a plane.
 constexpr double kCell = 1.0 / (int64_t(1) << 32);
 
 // floor(x) for |x| < 2^62 (cell coordinates are below 2^34): the cast truncates towards zero.
@@ -100,14 +103,43 @@ int64_t floor_int(double x) {
   return c - (double(c) > x);
 }
 
+// Key coordinate x's cell (the multiple of 2^-32 nearest to x, in cells) and the step to the
+// neighbour cell when x lies within kBorder of the border between them (0 otherwise). Exact:
+// x / kCell is a power-of-two scaling and frac is exact; a coordinate and its negation get
+// mirror cells except exactly on a border, where both probe both cells.
+struct CellCoord {
+  int64_t cell;
+  int step;
+};
+CellCoord cell_coord(double x) {
+  const double v = x / kCell;
+  const int64_t base = floor_int(v);
+  const double frac = v - double(base);  // in [0, 1), exact
+  const bool upper = frac >= 0.5;
+  const bool near = std::fabs(frac - 0.5) <= kBorder / kCell;  // (exact for frac >= 0.25)
+  return {base + upper, near ? (upper ? -1 : 1) : 0};
+}
+
+// A cell's hash is the xor of one mixed value per coordinate (so the neighbour cells of a key near
+// a border cost an xor per stepped coordinate), with the mirror sign taken out.
+uint64_t cell_coord_hash(int i, int64_t c) {
+  static constexpr uint64_t kOdd[4] = {0x9E3779B97F4A7C15ull, 0xbf58476d1ce4e5b9ull, 0x94d049bb133111ebull,
+                                       0xff51afd7ed558ccdull};
+  const uint64_t h = uint64_t(c) * kOdd[i];
+  return h ^ (h >> 29);
+}
+
+// +1 or -1: the sign making the cell's first non-zero coordinate positive.
+int64_t mirror_sign(const int64_t c[4]) {
+  for (int i = 0; i < 4; ++i)
+    if (c[i] != 0) return c[i] < 0 ? -1 : 1;
+  return 1;  // (unreachable: see above)
+}
+
 uint64_t cell_hash(const int64_t c[4]) {
-  const int64_t flip = c[0] < 0 ? -1 : 0;  // x ^ -1 == ~x
-  uint64_t h = 1469598103934665603ull;
-  for (int i = 0; i < 4; ++i) {
-    h ^= uint64_t(c[i] ^ flip);
-    h *= 1099511628211ull;
-    h ^= h >> 29;
-  }
+  const int64_t sign = mirror_sign(c);
+  uint64_t h = 0;
+  for (int i = 0; i < 4; ++i) h ^= cell_coord_hash(i, sign * c[i]);
   return h;
 }
 
@@ -118,29 +150,25 @@ uint64_t cell_hash(const int64_t c[4]) {
 template <class Visit>
 void for_each_cell(const Key& key, Visit visit) {
   int64_t base[4];
-  int near[4];
-  bool any_near = false;
+  // The components near a border (increasing) and the step to their neighbour cell.
+  int near_index[4], num_near = 0;
+  int64_t step[4];
   for (int i = 0; i < 4; ++i) {
-    const double x = key.k[i] / kCell;  // exact: a power-of-two scaling
-    base[i] = floor_int(x);
-    const double frac = x - double(base[i]);  // exact
-    near[i] = frac <= kBorder / kCell ? -1 : (frac >= 1 - kBorder / kCell ? 1 : 0);
-    any_near |= near[i] != 0;
+    const CellCoord c = cell_coord(key.k[i]);
+    base[i] = c.cell;
+    if (c.step != 0) {
+      near_index[num_near] = i;
+      step[num_near++] = c.step;
+    }
   }
   visit(cell_hash(base));
-  if (!any_near) return;
-  for (int mask = 1; mask < 16; ++mask) {
-    int64_t cell[4];
-    bool skip = false;
-    for (int i = 0; i < 4; ++i) {
-      const bool bit = (mask >> i) & 1;
-      if (bit && near[i] == 0) {
-        skip = true;
-        break;
-      }
-      cell[i] = base[i] + (bit ? near[i] : 0);
-    }
-    if (!skip) visit(cell_hash(cell));
+  // Every non-empty subset of the near components stepped across, in increasing order of their
+  // bit masks over the components.
+  for (int sub = 1; sub < (1 << num_near); ++sub) {
+    int64_t cell[4] = {base[0], base[1], base[2], base[3]};
+    for (int j = 0; j < num_near; ++j)
+      if ((sub >> j) & 1) cell[near_index[j]] += step[j];
+    visit(cell_hash(cell));
   }
 }
 
@@ -154,10 +182,9 @@ OwnCell own_cell(const Key& key) {
   int64_t c[4];
   bool near = false;
   for (int i = 0; i < 4; ++i) {
-    const double x = key.k[i] / kCell;  // as in for_each_cell
-    c[i] = floor_int(x);
-    const double frac = x - double(c[i]);
-    near |= frac <= kBorder / kCell || frac >= 1 - kBorder / kCell;
+    const CellCoord x = cell_coord(key.k[i]);  // as in for_each_cell
+    c[i] = x.cell;
+    near |= x.step != 0;
   }
   return {cell_hash(c), near};
 }

@@ -42,9 +42,7 @@ class SeidelLp {
           c2[i] = s[i] * cand[a][i];
           c3[i] = s[i] * cand[b][i];
         }
-        Expansion det = det3(Expansion(dir[0]), Expansion(dir[1]), Expansion(dir[2]), Expansion(c2[0]),
-                             Expansion(c2[1]), Expansion(c2[2]), Expansion(c3[0]), Expansion(c3[1]), Expansion(c3[2]));
-        if (det.sign() != 0) {
+        if (independent(dir, c2, c3)) {
           for (int i = 0; i < 3; ++i) {
             obj_[1][i] = c2[i];
             obj_[2][i] = c3[i];
@@ -53,6 +51,21 @@ class SeidelLp {
         }
       }
     assert(found == 2);
+  }
+
+  // Whether det3(dir, c2, c3) != 0 for small integers c2, c3: their cross product w is exact in
+  // doubles, so det = dir . w is within 4 eps sum |dir_i w_i| (three roundings, plus a floor for
+  // subnormal products) of the exact value; only a value within that bound of 0 is decided
+  // exactly. (One LP per call of a small mesh: the expansions were most of this constructor.)
+  static bool independent(const double dir[3], const double c2[3], const double c3[3]) {
+    const double w[3] = {c2[1] * c3[2] - c2[2] * c3[1], c2[2] * c3[0] - c2[0] * c3[2], c2[0] * c3[1] - c2[1] * c3[0]};
+    const double p0 = dir[0] * w[0], p1 = dir[1] * w[1], p2 = dir[2] * w[2];
+    const double det = p0 + p1 + p2;
+    const double bound = 4 * exact::kEps * (std::fabs(p0) + std::fabs(p1) + std::fabs(p2)) + 1e-300;
+    if (std::fabs(det) > bound) return true;
+    return det3(Expansion(dir[0]), Expansion(dir[1]), Expansion(dir[2]), Expansion(c2[0]), Expansion(c2[1]),
+                Expansion(c2[2]), Expansion(c3[0]), Expansion(c3[1]), Expansion(c3[2]))
+               .sign() != 0;
   }
 
   // Infeasible: *failed_at is the first i for which cons[0..i] has no common point (cons[0..i)

@@ -36,44 +36,46 @@ typedef int64_t Mask4 __attribute__((vector_size(32)));
 // compiled for another target).
 typedef double Vec4Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
 #define KERGEN_LOAD4(ptr) (*reinterpret_cast<const Vec4Unaligned*>(ptr))
+// Whether any lane of a Mask4 is set. On x86 the two halves' sign bits (movmskpd, SSE2, so in
+// every clone); element by element elsewhere (GCC moves each lane to an integer register).
+#if defined(__SSE2__)
+typedef double Vec2Mask __attribute__((vector_size(16)));
+#define KERGEN_ANY4(m)                                                                          \
+  (__builtin_ia32_movmskpd(reinterpret_cast<Vec2Mask>(__builtin_shufflevector((m), (m), 0, 1) | \
+                                                      __builtin_shufflevector((m), (m), 2, 3))) != 0)
+#else
+#define KERGEN_ANY4(m) (((m)[0] | (m)[1] | (m)[2] | (m)[3]) != 0)
+#endif
 
 // Index of the smallest positive hit t_i = -f_i(p) / (n_i . u) over planes approaching along u
-// (n_i . u > 0), or n when none approaches. Blocks keep their hits in a buffer so the index is
-// found without recomputing (the block minimum improves only O(log n) times).
+// (n_i . u > 0), or n when none approaches; the lowest such index on ties. Each lane keeps its
+// smallest hit and where it was first met (strict <, so the lowest index of the lane); the lanes
+// are merged at the end. (Indices are exact as doubles: n is far below 2^53.)
 KERGEN_MULTIVERSION
 size_t nearest_hit(const double* ax, const double* ay, const double* az, const double* ad, size_t n, const double p[3],
                    const double u[3]) {
-  constexpr size_t kBlock = 64;
   const double inf = std::numeric_limits<double>::infinity();
-  const Vec4 inf4 = {inf, inf, inf, inf}, zero4 = {0, 0, 0, 0};
+  const Vec4 inf4 = {inf, inf, inf, inf}, zero4 = {0, 0, 0, 0}, four = {4, 4, 4, 4};
   const Vec4 x = {p[0], p[0], p[0], p[0]}, y = {p[1], p[1], p[1], p[1]}, z = {p[2], p[2], p[2], p[2]};
   const Vec4 u0 = {u[0], u[0], u[0], u[0]}, u1 = {u[1], u[1], u[1], u[1]}, u2 = {u[2], u[2], u[2], u[2]};
-  alignas(32) double hits[kBlock];
-  double best = inf;
-  size_t best_i = n;
-  for (size_t s = 0; s < n; s += kBlock) {
-    const size_t m = std::min(kBlock, n - s);
-    Vec4 lo = inf4;
-    for (size_t i = 0; i < m; i += kLanes) {
-      const Vec4 X = KERGEN_LOAD4(ax + s + i), Y = KERGEN_LOAD4(ay + s + i), Z = KERGEN_LOAD4(az + s + i),
-                 D = KERGEN_LOAD4(ad + s + i);
-      const Vec4 a = X * u0 + Y * u1 + Z * u2;
-      const Vec4 f = X * x + Y * y + Z * z + D;
-      const Vec4 t = a > zero4 ? -f / a : inf4;
-      std::memcpy(hits + i, &t, sizeof t);
-      lo = t < lo ? t : lo;
-    }
-    const double block_min = std::min(std::min(lo[0], lo[1]), std::min(lo[2], lo[3]));
-    if (block_min < best) {
-      best = block_min;
-      for (size_t i = 0; i < m; ++i)
-        if (hits[i] == block_min) {
-          best_i = s + i;
-          break;
-        }
-    }
+  Vec4 lo = inf4, lo_index = inf4, index = {0, 1, 2, 3};
+  for (size_t i = 0; i < n; i += kLanes) {
+    const Vec4 X = KERGEN_LOAD4(ax + i), Y = KERGEN_LOAD4(ay + i), Z = KERGEN_LOAD4(az + i), D = KERGEN_LOAD4(ad + i);
+    const Vec4 a = X * u0 + Y * u1 + Z * u2;
+    const Vec4 f = X * x + Y * y + Z * z + D;
+    const Vec4 t = a > zero4 ? -f / a : inf4;
+    const Mask4 better = t < lo;
+    lo = better ? t : lo;
+    lo_index = better ? index : lo_index;
+    index += four;
   }
-  return best_i;
+  double best = inf, best_index = inf;
+  for (size_t k = 0; k < kLanes; ++k)
+    if (lo[k] < best || (lo[k] == best && lo_index[k] < best_index)) {
+      best = lo[k];
+      best_index = lo_index[k];
+    }
+  return best < inf ? size_t(best_index) : n;
 }
 
 // Indices of the planes whose value at p is not certainly negative: f_i(p) >= -b_i with the
@@ -91,7 +93,7 @@ void near_planes(const double* ax, const double* ay, const double* az, const dou
         KERGEN_LOAD4(ax + i) * x + KERGEN_LOAD4(ay + i) * y + KERGEN_LOAD4(az + i) * z + KERGEN_LOAD4(ad + i);
     const Vec4 b = KERGEN_LOAD4(ben + i) * C1 + KERGEN_LOAD4(bn1 + i) * C2 + KERGEN_LOAD4(be0 + i);
     const Mask4 near = f >= b * scale;
-    if ((near[0] | near[1] | near[2] | near[3]) == 0) continue;
+    if (!KERGEN_ANY4(near)) continue;
     for (size_t k = 0; k < kLanes; ++k)
       if (near[k]) out.push_back(uint32_t(i + k));
   }
@@ -518,7 +520,7 @@ class Tracer {
   // double-double one, and from the exact one only when that cancels too. (The direction only
   // steers the double scan; the exact certification decides.)
   void direction(const Ray& ray, double u[3]) const {
-    const std::array<Approx, 3> c = cross_normals(ps_.approx(ray.p), ps_.approx(ray.q));
+    const Approx* c = ray_line_->u;  // cross_normals of p and q, filtered
     double len = std::fabs(c[0].v) + std::fabs(c[1].v) + std::fabs(c[2].v);
     double err = c[0].e + c[1].e + c[2].e;
     if (err <= 1e-8 * len) {
@@ -570,9 +572,11 @@ class Tracer {
     return exact_scan(ray);
   }
 
+  // (The sign of det3(n_l, n_p, n_q), filtered against the ray's line direction first: a dot
+  // product with its cross product, kept in ray_line_, instead of a determinant per plane.)
   bool approaching(const Ray& ray, uint32_t l) const {
     const auto& G = res_.vertices[ray.from].tight;
-    return !std::binary_search(G.begin(), G.end(), l) && ray.sigma * sign_det3_normals(ps_, l, ray.p, ray.q) > 0;
+    return !std::binary_search(G.begin(), G.end(), l) && ray.sigma * ray_line_->rate_sign(ps_, l) > 0;
   }
 
   // The nearest plane by exact comparisons only (a tournament over the approaching planes):
@@ -599,6 +603,7 @@ class Tracer {
 
   bool trace(const Ray& ray) {
     ++res_.traced_lines;
+    ray_line_.emplace(ps_, ray.p, ray.q);
     uint32_t r = scan(ray);
     if (r == kNoPlane) {
       res_.internal_error = true;
@@ -680,6 +685,7 @@ class Tracer {
   std::vector<OnEntry> on_entry_;  // (pairs, not parallel arrays: half the allocations)
   std::vector<uint32_t> slot_;
   std::vector<std::array<double, 4>> saved_;
+  std::optional<LineDirection> ray_line_;  // the line of the ray being traced (trace)
   TraceResult res_;
   VertexIndex vertex_ids_;
   U64Set traced_{48};  // line keys of traced edges (room for a small kernel's, as reserved above)
@@ -705,13 +711,28 @@ TraceResult update_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>&
 std::vector<uint32_t> facet_planes(const TraceResult& trace) {
   // (Sized first: growing the arrays step by step was a tenth of a small kernel's allocations.)
   size_t total = 0;
-  for (const TracedEdge& e : trace.edges) total += e.planes.size();
+  uint32_t max_plane = 0;
+  for (const TracedEdge& e : trace.edges) {
+    total += e.planes.size();
+    for (uint32_t h : e.planes) max_plane = std::max(max_plane, h);
+  }
+  std::vector<uint32_t> facets;
+  facets.reserve(total / 3 + 1);  // (a facet holds three edges or more)
+  if (total == 0) return facets;
+  if (max_plane <= 8 * total) {
+    // Plane ids within a few times the edges' plane count (a small mesh, or a large kernel): a
+    // count per id, no sort.
+    std::vector<uint8_t> count(size_t(max_plane) + 1, 0);
+    for (const TracedEdge& e : trace.edges)
+      for (uint32_t h : e.planes) count[h] = uint8_t(std::min(int(count[h]) + 1, 3));
+    for (uint32_t h = 0; h <= max_plane; ++h)
+      if (count[h] >= 3) facets.push_back(h);
+    return facets;
+  }
   std::vector<uint32_t> planes;
   planes.reserve(total);
   for (const TracedEdge& e : trace.edges) planes.insert(planes.end(), e.planes.begin(), e.planes.end());
   std::sort(planes.begin(), planes.end());
-  std::vector<uint32_t> facets;
-  facets.reserve(total / 3 + 1);  // (a facet holds three edges or more)
   for (size_t i = 0, j; i < planes.size(); i = j) {
     for (j = i; j < planes.size() && planes[j] == planes[i]; ++j) {}
     if (j - i >= 3) facets.push_back(planes[i]);

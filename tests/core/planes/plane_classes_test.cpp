@@ -120,4 +120,28 @@ TEST(PlaneClasses, RotatedTessellationsMatchBruteForce) {
   expect_classes_match_brute_force(rotated(kergen_test::plus_prism(0.3), 0.2, 0.4, 0.6), "rotated plus prism");
 }
 
+// Key cells are centred on multiples of 2^-32: an axis-aligned plane whose offset lies half a
+// cell from one (or within the border margin of that) has a key on a cell border, and its faces
+// and its opposite faces must still find each other. The cube is shifted along x so that its
+// x = 0 and x = 1 sides lie at such offsets (scaled units), exactly on the border and 2^-13 cell
+// to either side; the shift rounds the other points' x, so the y and z sides break into
+// nearly coplanar classes as well.
+TEST(PlaneClasses, KeysOnCellBordersMatchBruteForce) {
+  const Mesh cube = kergen_test::tessellated_cube(12);
+  const PreparedMesh plain = prepare_mesh(cube.view(), Options{});
+  ASSERT_EQ(plain.error, Error::Ok);
+  for (const double off : {0.0, std::ldexp(1.0, -45), -std::ldexp(1.0, -45)}) {
+    Mesh m = cube;
+    const double shift = std::ldexp(std::ldexp(1.0, -33) + off, -plain.scale_exp);
+    for (size_t i = 0; i < m.positions.size(); i += 3) m.positions[i] += shift;
+    const PreparedMesh pm = prepare_mesh(m.view(), Options{});
+    ASSERT_EQ(pm.error, Error::Ok);
+    ASSERT_EQ(pm.scale_exp, plain.scale_exp);
+    expect_classes_match_brute_force(pm, {}, "shifted cube");
+    std::vector<uint32_t> thirds;
+    for (uint32_t f = 0; f < pm.num_faces(); f += 3) thirds.push_back(f);
+    expect_classes_match_brute_force(pm, thirds, "shifted cube, every third face");
+  }
+}
+
 }  // namespace
