@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "exact/predicates.h"
+#include "util/raw_vector.h"
 
 namespace kergen {
 
@@ -55,7 +56,7 @@ bool interior_point(const PlaneSet& ps, const TraceResult& kernel, double p[3]) 
 // how a planar polygon is split). False when the segment meets an edge or a vertex exactly.
 // Most faces are far from the ray: the vertices are projected (in double) on a plane across it,
 // and only triangles whose projections' box holds the ray's point, with a margin far above the
-// projection's rounding, get the exact tests.
+// projection's rounding, get the exact tests (a bit test of the corners' outcodes).
 bool count_crossings(const PreparedMesh& mesh, const double p[3], const double q[3], long& degree) {
   const int shift = mesh.exact_shift;
   // An orthonormal-ish frame across u = q - p (exactness does not depend on it: it only filters).
@@ -67,28 +68,39 @@ bool count_crossings(const PreparedMesh& mesh, const double p[3], const double q
   const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], ue = u[m] / uu;
   for (int k = 0; k < 3; ++k) e1[k] -= ue * u[k];
   const double e2[3] = {u[1] * e1[2] - u[2] * e1[1], u[2] * e1[0] - u[0] * e1[2], u[0] * e1[1] - u[1] * e1[0]};
-  const size_t nv = mesh.points.size() / 3;
-  std::vector<double> s(nv), t(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    const double* x = mesh.point(uint32_t(v));
-    const double d[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]};
-    s[v] = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
-    t[v] = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
-  }
+  // Each vertex's outcode: the sides of the ray's point, in (s, t), it lies on by more than the
+  // margin (bit 0: s > margin, 1: s < -margin, 2: t > margin, 3: t < -margin). A triangle's projections' box misses
+  // the margin around the ray's point exactly when its corners share a bit; a face whose corners
+  // all share one has no fan triangle to test.
   // Scaled coordinates are below 1 and |e1|, |e2| below 2 (|u| = 4): a projection is off by less
   // than 1e-14; the margin is far above it.
   constexpr double kMargin = 1e-9;
+  const size_t nv = mesh.points.size() / 3;
+  RawVector<uint8_t> code(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const double* x = mesh.point(uint32_t(v));
+    const double d[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]};
+    const double s = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
+    const double t = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
+    code[v] = uint8_t(int(s > kMargin) | int(s < -kMargin) << 1 | int(t > kMargin) << 2 | int(t < -kMargin) << 3);
+  }
   degree = 0;
-  for (size_t f = 0; f + 1 < mesh.loop_offsets.size(); ++f) {
-    const uint32_t* loop = mesh.loops.data() + mesh.loop_offsets[f];
-    const size_t size = mesh.loop_offsets[f + 1] - mesh.loop_offsets[f];
+  // A mesh of triangles only (the common case; every loop has at least three corners, so three
+  // per face means triangles only) is scanned without its loop offsets.
+  const size_t nf = mesh.loop_offsets.size() - 1;
+  const bool triangles = mesh.loops.size() == 3 * nf;
+  for (size_t f = 0; f < nf; ++f) {
+    const uint32_t* loop = mesh.loops.data() + (triangles ? 3 * f : mesh.loop_offsets[f]);
+    if (triangles && (code[loop[0]] & code[loop[1]] & code[loop[2]]) != 0) continue;
+    const size_t size = triangles ? 3 : mesh.loop_offsets[f + 1] - mesh.loop_offsets[f];
+    unsigned shared = 15;
+    for (size_t i = 0; i < size; ++i) shared &= code[loop[i]];
+    if (shared != 0) continue;
     const uint32_t ia = loop[0];
     const double* a = mesh.point(ia);
     for (size_t i = 1; i + 1 < size; ++i) {
       const uint32_t ib = loop[i], ic = loop[i + 1];
-      if (std::min(std::min(s[ia], s[ib]), s[ic]) > kMargin || std::max(std::max(s[ia], s[ib]), s[ic]) < -kMargin ||
-          std::min(std::min(t[ia], t[ib]), t[ic]) > kMargin || std::max(std::max(t[ia], t[ib]), t[ic]) < -kMargin)
-        continue;
+      if ((code[ia] & code[ib] & code[ic]) != 0) continue;
       const double* b = mesh.point(ib);
       const double* c = mesh.point(ic);
       const int sp = orient3d(a, b, c, p, shift), sq = orient3d(a, b, c, q, shift);

@@ -495,12 +495,36 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
   if (plane_face_out) *plane_face_out = std::move(plane_face);
 }
 
+// Moves the distinct points of row[0..n) to its front, in order of first appearance, and returns
+// their number. A long row is a flat region's triangles, where each point appears about six
+// times: dropping the repeats in one hashed pass leaves a sixth of the row to sort. `seen` is
+// scratch (an open-addressing set of point ids).
+size_t distinct_points(uint32_t* row, size_t n, RawVector<uint32_t>& seen) {
+  constexpr uint32_t kEmpty = ~uint32_t(0);  // (never a point id)
+  int bits = 4;
+  while ((size_t(1) << bits) < 2 * n) ++bits;
+  const size_t mask = (size_t(1) << bits) - 1;
+  seen.assign(mask + 1, kEmpty);
+  size_t distinct = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t v = row[i];
+    size_t s = size_t((uint64_t(v) * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+    while (seen[s] != kEmpty && seen[s] != v) s = (s + 1) & mask;
+    if (seen[s] == kEmpty) {
+      seen[s] = v;
+      row[distinct++] = v;
+    }
+  }
+  return distinct;
+}
+
 void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane) {
   // Each plane's points as compressed rows (sorted, unique), in time linear in the faces' loops,
   // not in the mesh's vertices (a culled subset's faces touch few of them):
   //  a. the loops' points with repeats (one per face loop through a point), bucketed by plane;
   //  b. each row sorted (a plane of a few faces holds a handful of points; a merged flat region
-  //     may hold thousands) and deduplicated, compacted in place.
+  //     may hold thousands: its repeats are dropped before sorting) and deduplicated, compacted
+  //     in place.
   // Buckets are filled through their offsets: row r's count goes to off[r + 2], the prefix sum
   // makes off[r + 1] row r's start, filling advances it to row r's end = row r + 1's start, so
   // off[0..n] are then the rows' offsets.
@@ -517,19 +541,22 @@ void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_
   }
   off.pop_back();
   // b. (Compacting writes never overtake the reads: out <= the row's read position.)
+  RawVector<uint32_t> seen;
   uint32_t out = 0;
   for (size_t p = 0, begin = 0; p < np; ++p) {
     const size_t end = off[p + 1];
     uint32_t* row = pts.data() + begin;
     const size_t n = end - begin;
+    size_t distinct = n;
     if (n <= 16) {
       for (size_t i = 1; i < n; ++i)
         for (size_t k = i; k > 0 && row[k] < row[k - 1]; --k) std::swap(row[k], row[k - 1]);
     } else {
-      std::sort(row, row + n);
+      distinct = distinct_points(row, n, seen);
+      std::sort(row, row + distinct);
     }
     off[p] = out;
-    for (size_t i = 0; i < n; ++i)
+    for (size_t i = 0; i < distinct; ++i)
       if (i == 0 || row[i] != row[i - 1]) pts[out++] = row[i];
     begin = end;
   }
@@ -555,36 +582,45 @@ void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, Pla
   // few faces face culling keeps). The pairs only spare exact tests: the classes are the same
   // with any of them.
   const size_t nf = m.num_faces(), n = faces.size();
-  std::vector<std::array<uint32_t, 3>> rep(n);
-  std::vector<uint32_t> loop_offsets(n + 1, 0), loops;
+  RawVector<std::array<uint32_t, 3>> rep(n);
+  std::vector<uint32_t> loop_offsets(n + 1);
+  loop_offsets[0] = 0;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t f = faces[k];
     assert(f < nf && (k == 0 || faces[k - 1] < f) && "faces must be increasing face ids");
     (void)nf;
     rep[k] = m.rep[f];
-    loops.insert(loops.end(), m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
-    loop_offsets[k + 1] = uint32_t(loops.size());
+    loop_offsets[k + 1] = loop_offsets[k] + (m.loop_offsets[f + 1] - m.loop_offsets[f]);
   }
+  RawVector<uint32_t> loops(loop_offsets[n]);
+  for (size_t k = 0; k < n; ++k)
+    std::copy(m.loops.begin() + m.loop_offsets[faces[k]], m.loops.begin() + m.loop_offsets[faces[k] + 1],
+              loops.begin() + loop_offsets[k]);
   std::vector<std::array<uint32_t, 2>> adjacent;
   {
+    // Each edge's key and first face in one slot (one cache miss per probe). A closed mesh's
+    // loops hold each edge twice: the table is at most half full, and never full.
     constexpr uint64_t kNoEdge = ~uint64_t(0);
+    struct EdgeSlot {
+      uint64_t edge;
+      uint32_t first_face;
+    };
     size_t cap = 16;
-    while (cap < 2 * loops.size()) cap <<= 1;
+    while (cap < loops.size() + 1) cap <<= 1;
     const size_t mask = cap - 1;
-    std::vector<uint64_t> edge(cap, kNoEdge);
-    RawVector<uint32_t> first_face(cap);
+    std::vector<EdgeSlot> table(cap, EdgeSlot{kNoEdge, 0});
+    adjacent.reserve(loops.size() / 2);
     for (uint32_t k = 0; k < n; ++k) {
       const uint32_t b = loop_offsets[k], e = loop_offsets[k + 1];
       for (uint32_t i = b; i < e; ++i) {
         const uint32_t u = loops[i], v = loops[i + 1 < e ? i + 1 : b];
         const uint64_t x = uint64_t(std::min(u, v)) << 32 | std::max(u, v);
         size_t s = size_t((x * 0x9E3779B97F4A7C15ull) >> 32) & mask;
-        while (edge[s] != kNoEdge && edge[s] != x) s = (s + 1) & mask;
-        if (edge[s] == x) {
-          adjacent.push_back({first_face[s], k});  // (the lower face first)
+        while (table[s].edge != kNoEdge && table[s].edge != x) s = (s + 1) & mask;
+        if (table[s].edge == x) {
+          adjacent.push_back({table[s].first_face, k});  // (the lower face first)
         } else {
-          edge[s] = x;
-          first_face[s] = k;
+          table[s] = {x, k};
         }
       }
     }
