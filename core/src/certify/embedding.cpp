@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "exact/predicates.h"
+#include "util/compiler_hints.h"
 #include "util/raw_vector.h"
 
 namespace kergen {
@@ -51,6 +52,24 @@ bool interior_point(const PlaneSet& ps, const TraceResult& kernel, double p[3]) 
   return false;
 }
 
+// The points' outcodes around p in the frame (e1, e2) across the ray: the sides of p, in the
+// projections (s, t), a point lies on by more than the margin (bit 0: s > margin, 1: s < -margin,
+// 2: t > margin, 3: t < -margin). Scaled coordinates are below 1 and |e1|, |e2| below 2 (|u| =
+// 4): a projection is off by less than 1e-14; the margin is far above it. It only filters (a
+// triangle skipped is far from the ray), so the vectorized clone's rounding changes no result.
+constexpr double kMargin = 1e-9;
+KERGEN_MULTIVERSION
+void outcodes(const double* points, size_t n, const double p[3], const double e1[3], const double e2[3],
+              uint8_t* code) {
+  for (size_t v = 0; v < n; ++v) {
+    const double* x = points + 3 * v;
+    const double d0 = x[0] - p[0], d1 = x[1] - p[1], d2 = x[2] - p[2];
+    const double s = d0 * e1[0] + d1 * e1[1] + d2 * e1[2];
+    const double t = d0 * e2[0] + d1 * e2[1] + d2 * e2[2];
+    code[v] = uint8_t((s > kMargin) | (s < -kMargin) << 1 | (t > kMargin) << 2 | (t < -kMargin) << 3);
+  }
+}
+
 // Signed crossings of the segment p -> q (q outside the mesh's bounding box, so it stands for the
 // ray) with the faces, each polygon fanned from its first corner (signed counts do not depend on
 // how a planar polygon is split). False when the segment meets an edge or a vertex exactly.
@@ -68,22 +87,11 @@ bool count_crossings(const PreparedMesh& mesh, const double p[3], const double q
   const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], ue = u[m] / uu;
   for (int k = 0; k < 3; ++k) e1[k] -= ue * u[k];
   const double e2[3] = {u[1] * e1[2] - u[2] * e1[1], u[2] * e1[0] - u[0] * e1[2], u[0] * e1[1] - u[1] * e1[0]};
-  // Each vertex's outcode: the sides of the ray's point, in (s, t), it lies on by more than the
-  // margin (bit 0: s > margin, 1: s < -margin, 2: t > margin, 3: t < -margin). A triangle's projections' box misses
-  // the margin around the ray's point exactly when its corners share a bit; a face whose corners
-  // all share one has no fan triangle to test.
-  // Scaled coordinates are below 1 and |e1|, |e2| below 2 (|u| = 4): a projection is off by less
-  // than 1e-14; the margin is far above it.
-  constexpr double kMargin = 1e-9;
+  // A triangle's projections' box misses the margin around p exactly when its corners' outcodes
+  // share a bit; a face whose corners all share one has no fan triangle to test.
   const size_t nv = mesh.points.size() / 3;
   RawVector<uint8_t> code(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    const double* x = mesh.point(uint32_t(v));
-    const double d[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]};
-    const double s = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
-    const double t = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
-    code[v] = uint8_t(int(s > kMargin) | int(s < -kMargin) << 1 | int(t > kMargin) << 2 | int(t < -kMargin) << 3);
-  }
+  outcodes(mesh.points.data(), nv, p, e1, e2, code.data());
   degree = 0;
   // A mesh of triangles only (the common case; every loop has at least three corners, so three
   // per face means triangles only) is scanned without its loop offsets.
