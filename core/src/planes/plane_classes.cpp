@@ -577,10 +577,11 @@ void build_planes(const PreparedMesh& m, PlaneSet& ps, std::vector<uint32_t>& fa
 void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, PlaneSet& ps,
                   std::vector<uint32_t>& face_plane, std::vector<uint32_t>* plane_face) {
   // The faces renumbered 0..n-1 in the order given: their triangles, loops, and the pairs among
-  // them that share an edge, found by matching their loops' edges in a hash table: time in the
-  // chosen faces, not in the mesh (a scan of the mesh's pairs cost more than the classes of the
-  // few faces face culling keeps). The pairs only spare exact tests: the classes are the same
-  // with any of them.
+  // them that share an edge: for a few faces, found by matching their loops' edges in a hash
+  // table, in time in the chosen faces, not in the mesh (a scan of the mesh's pairs cost more than
+  // the classes of the few faces face culling keeps); for many, the mesh's pairs among them. The
+  // pairs only spare exact tests: the classes are the same with any of them (and the pairs come
+  // lower face first either way).
   const size_t nf = m.num_faces(), n = faces.size();
   RawVector<std::array<uint32_t, 3>> rep(n);
   std::vector<uint32_t> loop_offsets(n + 1);
@@ -588,7 +589,6 @@ void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, Pla
   for (size_t k = 0; k < n; ++k) {
     const uint32_t f = faces[k];
     assert(f < nf && (k == 0 || faces[k - 1] < f) && "faces must be increasing face ids");
-    (void)nf;
     rep[k] = m.rep[f];
     loop_offsets[k + 1] = loop_offsets[k] + (m.loop_offsets[f + 1] - m.loop_offsets[f]);
   }
@@ -597,7 +597,19 @@ void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, Pla
     std::copy(m.loops.begin() + m.loop_offsets[faces[k]], m.loops.begin() + m.loop_offsets[faces[k] + 1],
               loops.begin() + loop_offsets[k]);
   std::vector<std::array<uint32_t, 2>> adjacent;
-  {
+  if (m.adjacent.size() <= 8 * loops.size()) {
+    // Many of the mesh's faces (as face culling keeps on a mesh whose kernel touches much of the
+    // surface): its pairs filtered through a renumbering of all faces, a sequential scan, cost
+    // less than hashing the chosen faces' edges (a cache miss per edge).
+    constexpr uint32_t kNotChosen = ~uint32_t(0);
+    RawVector<uint32_t> local(nf);
+    std::fill(local.begin(), local.end(), kNotChosen);
+    for (uint32_t k = 0; k < n; ++k) local[faces[k]] = k;
+    for (const auto& pr : m.adjacent) {
+      const uint32_t a = local[pr[0]], b = local[pr[1]];
+      if (a != kNotChosen && b != kNotChosen) adjacent.push_back({std::min(a, b), std::max(a, b)});
+    }
+  } else {
     // Each edge's key and first face in one slot (one cache miss per probe). A closed mesh's
     // loops hold each edge twice: the table is at most half full, and never full.
     constexpr uint64_t kNoEdge = ~uint64_t(0);
@@ -605,9 +617,9 @@ void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, Pla
       uint64_t edge;
       uint32_t first_face;
     };
-    size_t cap = 16;
-    while (cap < loops.size() + 1) cap <<= 1;
-    const size_t mask = cap - 1;
+    int bits = 4;
+    while ((size_t(1) << bits) < loops.size() + 1) ++bits;
+    const size_t cap = size_t(1) << bits, mask = cap - 1;
     std::vector<EdgeSlot> table(cap, EdgeSlot{kNoEdge, 0});
     adjacent.reserve(loops.size() / 2);
     for (uint32_t k = 0; k < n; ++k) {
@@ -615,7 +627,7 @@ void build_planes(const PreparedMesh& m, const std::vector<uint32_t>& faces, Pla
       for (uint32_t i = b; i < e; ++i) {
         const uint32_t u = loops[i], v = loops[i + 1 < e ? i + 1 : b];
         const uint64_t x = uint64_t(std::min(u, v)) << 32 | std::max(u, v);
-        size_t s = size_t((x * 0x9E3779B97F4A7C15ull) >> 32) & mask;
+        size_t s = size_t((x * 0x9E3779B97F4A7C15ull) >> (64 - bits));  // (the product's top bits mix best)
         while (table[s].edge != kNoEdge && table[s].edge != x) s = (s + 1) & mask;
         if (table[s].edge == x) {
           adjacent.push_back({table[s].first_face, k});  // (the lower face first)
