@@ -76,7 +76,7 @@ bool dd_point(const PlaneSet& ps, const VertexGeom& v, exact::ApproxDD out[3]) {
 
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
-    auto h = std::make_shared<ExactHomogeneous>();
+    ExactHomogeneous* h = &ps.new_exact_homogeneous();
     const VertexAnchor l = vertex_anchor(ps, v);
     if (l.kind == 2) {
       Scaled x(ps.point(l.x), ps.exact_shift()), y(ps.point(l.y), ps.exact_shift());
@@ -89,7 +89,7 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
     }
     for (auto& c : h->num) c.compress();
     h->den.compress();
-    v.exact = std::move(h);
+    v.exact = h;
   }
   return *v.exact;
 }
@@ -98,7 +98,7 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
 // copies of the vertex.
 const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.dd) {
-    auto h = std::make_shared<DDHomogeneous>();
+    DDHomogeneous* h = &ps.new_dd_homogeneous();
     const VertexAnchor l = vertex_anchor(ps, v);
     if (l.kind == 2) {
       on_line(ps.dd(l.c), ps.point(l.x), ps.point(l.y), h->num, h->den);
@@ -112,7 +112,7 @@ const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
       cramer(ps.dd(v.basis[0]), ps.dd(v.basis[1]), ps.dd(v.basis[2]), h->num, h->den);
       h->den_sign = v.det_sign;
     }
-    v.dd = std::move(h);
+    v.dd = h;
   }
   return *v.dd;
 }
