@@ -136,8 +136,9 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   if (point == kNoPoint) {
     // A vertex built without the search (an LP candidate) that the filter cannot place is
     // usually an input point where four or more planes meet: worth a search before the exact
-    // Cramer solve.
-    if (v.late_point == kPointNotSearched) v.late_point = input_point_on(ps, v.basis[0], v.basis[1], v.basis[2]);
+    // Cramer solve. The coordinates' bounds (rigorous, as the filter above relies on) skip the
+    // candidates that cannot be the point before their incidence lookups and orient3d.
+    if (v.late_point == kPointNotSearched) v.late_point = input_point_on(ps, v.basis[0], v.basis[1], v.basis[2], v.x);
     point = v.late_point;
   }
   if (point != kNoPoint) return sign_at_point(ps, l, uint32_t(point));  // exact input coordinates

@@ -18,7 +18,9 @@ class StableArena {
   T& emplace() {
     if (used_ == block_size_) {
       block_size_ = blocks_.empty() ? 16 : std::min<size_t>(2 * block_size_, kMaxBlock);
-      blocks_.push_back(std::make_unique<T[]>(block_size_));
+      // Default-initialised (not value-initialised: no zeroing of what each object's
+      // constructor leaves to be written, such as an expansion's component buffer).
+      blocks_.push_back(std::unique_ptr<T[]>(new T[block_size_]));
       used_ = 0;
     }
     return blocks_.back()[used_++];
