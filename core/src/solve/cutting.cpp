@@ -121,7 +121,12 @@ class Cutter {
     }
     near = cur;
     if (val <= -margin) return true;  // strictly inside at every vertex: no change
-    const int top = side(ps_, h, vertices_[cur].geom);
+    // The exact sign where the double value is far from 0 (each value is within delta of exact),
+    // else side(): a vertex certainly outside is removed without reading its record.
+    auto sign_at = [&](uint32_t v, double fv) {
+      return fv <= -margin ? -1 : fv > tie ? 1 : side(ps_, h, vertices_[v].geom);
+    };
+    const int top = sign_at(cur, val);
     if (top < 0) return true;
 
     // The vertices with f_h >= 0 induce a connected subgraph holding the maximum: a search
@@ -141,7 +146,7 @@ class Cutter {
       for (const Link& link : adj_[v]) {
         const uint32_t w = link.to;
         if (state_[w] != kUnseen) continue;
-        classify(w, f(w) <= -margin ? -1 : side(ps_, h, vertices_[w].geom));
+        classify(w, sign_at(w, f(w)));
         region_.push_back(w);
       }
     }
