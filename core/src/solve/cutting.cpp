@@ -237,10 +237,12 @@ class Cutter {
     const uint32_t opposite = ps_.opposite(h);
     cut_points_ = on_;
     for (uint32_t v : out_) {
-      // A copy: add_vertex below grows adj_, which moves v's list once a cut adds more vertices
-      // than the room reserved (a plane cutting a vertex of many edges, such as a fan's apex).
-      const SmallVector<Link, 4> edges_of_v = adj_[v];
-      for (const Link& link : edges_of_v) {
+      // By index, re-reading adj_[v] (which the loop does not change) each time: add_vertex
+      // below grows adj_, which moves v's list once a cut adds more vertices than the room
+      // reserved (a plane cutting a vertex of many edges, such as a fan's apex). (A copy of the
+      // list cost an allocation per removed vertex of more than four edges.)
+      for (size_t i = 0; i < adj_[v].size(); ++i) {
+        const Link link = adj_[v].data()[i];
         const uint32_t e = link.edge, w = link.to;
         if (!alive_e_[e]) continue;
         if (state_[w] == kOutside) {
