@@ -319,6 +319,16 @@ class Cutter {
     return id;
   }
 
+  // sign det3(n_r, n_g, n_h) when it is the determinant of v's basis up to the order of r and g
+  // (a cut point made on the edge of planes r and g, or g and r, by h): its exact sign is known
+  // from make_vertex. 2 otherwise.
+  static int basis_det_sign(const VertexGeom& v, uint32_t r, uint32_t g, uint32_t h) {
+    if (v.basis[2] != h || v.det_sign == 0) return 2;
+    if (v.basis[0] == r && v.basis[1] == g) return v.det_sign;
+    if (v.basis[0] == g && v.basis[1] == r) return -v.det_sign;
+    return 2;
+  }
+
   // Edge between cut points u and w on the line of planes g and h (unless it exists).
   bool connect(uint32_t g, uint32_t h, uint32_t u, uint32_t w) {
     for (const Link& l : adj_[u])
@@ -329,7 +339,8 @@ class Cutter {
     int sigma = 0;
     for (uint32_t r : tu) {
       if (std::binary_search(tw.begin(), tw.end(), r)) continue;
-      const int s = sign_det3_normals(ps_, r, g, h);
+      const int known = basis_det_sign(vertices_[u].geom, r, g, h);
+      const int s = known != 2 ? known : sign_det3_normals(ps_, r, g, h);
       if (s != 0) {
         sigma = -s;
         break;
