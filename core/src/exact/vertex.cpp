@@ -158,7 +158,8 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, c
   return kNoPoint;
 }
 
-VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point) {
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point,
+                       int known_det_sign) {
   VertexGeom v;
   v.basis[0] = a;
   v.basis[1] = b;
@@ -167,7 +168,7 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
   // exact sign too (sign_det3_normals would evaluate it again first).
   const PlaneCoef<Approx> pa = ps.approx(a), pb = ps.approx(b), pc = ps.approx(c);
   const Approx den = det3_normals(pa, pb, pc);
-  v.det_sign = den.certain() ? den.sign() : sign_det3_normals(ps, a, b, c);
+  v.det_sign = den.certain() ? den.sign() : known_det_sign != 0 ? known_det_sign : sign_det3_normals(ps, a, b, c);
   assert(v.det_sign != 0 && "make_vertex: planes with dependent normals");
 
   Approx num[3];

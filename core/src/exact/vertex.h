@@ -55,6 +55,10 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, c
 // With find_input_point it also recognises an input point on the three planes (exact
 // coordinates, cheap exact side tests later): worth it for vertices that are kept, not for the
 // LP's transient candidates.
-VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point = true);
+// `known_det_sign`, when not 0, is the exact sign of det3(n_a, n_b, n_c) as the caller knows it
+// (the cuts do, from the edge's orientation): it replaces the exact evaluation where the filter
+// is uncertain.
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point = true,
+                       int known_det_sign = 0);
 
 }  // namespace kergen

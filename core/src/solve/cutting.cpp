@@ -256,8 +256,11 @@ class Cutter {
           TracedEdge& te = edges_[e];
           TracedVertex nv;
           // Most cut vertices are later cut away again: the input-point search is left to the
-          // first side test the filter cannot decide.
-          nv.geom = make_vertex(ps_, te.p, te.q, h, false);
+          // first side test the filter cannot decide. The sign of det3(n_p, n_q, n_h) is known:
+          // f_h falls strictly from v (outside) to w (inside), and its rate from te.a along the
+          // edge is sigma det3(n_p, n_q, n_h), negative when v is te.a, positive when v is te.b.
+          const int det_sign = te.a == v ? -te.sigma : te.sigma;
+          nv.geom = make_vertex(ps_, te.p, te.q, h, false, det_sign);
           nv.tight = te.planes;
           insert_sorted(nv.tight, h);
           const uint32_t n = add_vertex(std::move(nv));
