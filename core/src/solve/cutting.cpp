@@ -311,7 +311,7 @@ class Cutter {
 
   uint32_t add_vertex(TracedVertex&& v) {
     const uint32_t id = uint32_t(vertices_.size());
-    xyz_.resize(xyz_.size() + 3);
+    for (int k = 0; k < 3; ++k) xyz_.push_back(0);  // (set below; within the reserved room)
     vertices_.push_back(std::move(v));
     note_coordinates(id);
     alive_v_.push_back(1);
