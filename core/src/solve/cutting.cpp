@@ -25,6 +25,17 @@ void insert_sorted(PlaneIds& v, uint32_t x) {
   if (it == v.end() || *it != x) v.insert(it, x);
 }
 
+// `out` = the sorted set `v` with x added, in one pass (a cut point's tight set: its edge's
+// planes and the cutting plane).
+void copy_with(const PlaneIds& v, uint32_t x, PlaneIds& out) {
+  out.clear();
+  out.reserve(v.size() + 1);
+  const uint32_t* it = v.begin();
+  for (; it != v.end() && *it < x; ++it) out.push_back(*it);
+  if (it == v.end() || *it != x) out.push_back(x);
+  for (; it != v.end(); ++it) out.push_back(*it);
+}
+
 class Cutter {
  public:
   // `cuts` is the number of planes to come: a cut adds a few vertices and edges, so the arrays
@@ -261,8 +272,7 @@ class Cutter {
           // edge is sigma det3(n_p, n_q, n_h), negative when v is te.a, positive when v is te.b.
           const int det_sign = te.a == v ? -te.sigma : te.sigma;
           nv.geom = make_vertex(ps_, te.p, te.q, h, false, det_sign);
-          nv.tight = te.planes;
-          insert_sorted(nv.tight, h);
+          copy_with(te.planes, h, nv.tight);
           const uint32_t n = add_vertex(std::move(nv));
           (te.a == v ? te.a : te.b) = n;
           adj_[n].push_back({e, w});
