@@ -289,19 +289,21 @@ class Cutter {
     if (any_cut_point == kNoVertex) return false;
     for (uint32_t v : out_) replaced_by_[v] = any_cut_point;
 
-    // The new face: cut points grouped by their other planes.
+    // The new face: cut points grouped by their other planes (one 64-bit key per pair sorts as
+    // the pairs would).
     by_plane_.clear();
     for (uint32_t cpt : cut_points_)
       for (uint32_t g : vertices_[cpt].tight) {
         if (g == opposite) return false;  // flat
-        if (g != h) by_plane_.push_back({g, cpt});
+        if (g != h) by_plane_.push_back(uint64_t(g) << 32 | cpt);
       }
     std::sort(by_plane_.begin(), by_plane_.end());
     for (size_t i = 0; i < by_plane_.size();) {
       size_t j = i;
-      while (j < by_plane_.size() && by_plane_[j].first == by_plane_[i].first) ++j;
+      const uint32_t g = uint32_t(by_plane_[i] >> 32);
+      while (j < by_plane_.size() && uint32_t(by_plane_[j] >> 32) == g) ++j;
       if (j - i > 2) return false;
-      if (j - i == 2 && !connect(by_plane_[i].first, h, by_plane_[i].second, by_plane_[i + 1].second)) return false;
+      if (j - i == 2 && !connect(g, h, uint32_t(by_plane_[i]), uint32_t(by_plane_[i + 1]))) return false;
       i = j;
     }
     for (uint32_t cpt : cut_points_)
@@ -391,7 +393,7 @@ class Cutter {
   size_t alive_count_ = 0, traced_lines_ = 0;
   double max_abs_ = 0, coord_error_ = 0;  // over every vertex so far (upper bounds for the live ones)
   std::vector<uint32_t> region_, out_, on_, cut_points_;
-  std::vector<std::pair<uint32_t, uint32_t>> by_plane_;
+  std::vector<uint64_t> by_plane_;  // (plane << 32 | cut point): sorted, the pairs' order
 };
 
 }  // namespace
