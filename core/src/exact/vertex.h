@@ -14,16 +14,17 @@ struct VertexGeom {
   uint32_t basis[3] = {kNoPlane, kNoPlane, kNoPlane};
   int32_t mesh_point = kNoPoint;  // when the three planes meet at an input vertex
   int det_sign = 0;               // sign of det3 of the basis normals
-  Approx x[3];                    // coordinates with error bounds (exact when mesh_point)
+  // For a vertex built without the input-point search: the search's answer, found on the first
+  // side test the filter cannot decide (kPointNotSearched until then). (Here, not last: the
+  // record packs into 88 bytes.)
+  mutable int32_t late_point = kNoPoint;
+  Approx x[3];  // coordinates with error bounds (exact when mesh_point)
   // Computed on the first undecided side test and shared by copies: every further exact test
   // at this vertex is one 4-term dot product instead of a 4x4 determinant. They live in the
   // PlaneSet's arenas (PlaneSet::new_dd_homogeneous): a vertex is only used with the plane set
   // it was made from, and never outlives it.
   mutable const DDHomogeneous* dd = nullptr;
   mutable const ExactHomogeneous* exact = nullptr;
-  // For a vertex built without the input-point search: the search's answer, found on the first
-  // side test the filter cannot decide (kPointNotSearched until then).
-  mutable int32_t late_point = kNoPoint;
 };
 
 // Coordinates of a vertex as unevaluated double-double sums hi + lo, accurate to ~1e-30
