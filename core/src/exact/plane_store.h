@@ -151,7 +151,7 @@ class PlaneSet {
   RawVector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
   RawVector<uint32_t> opposite_;
   RawVector<uint32_t> plane_offsets_, plane_points_;
-  // Only a few planes ever need them: a map, not a pointer per plane.
+  // Computed on demand for the planes that need them (util/sparse_cache.h).
   mutable SparseCache<PlaneCoef<Expansion>> exact_;
   mutable SparseCache<PlaneCoef<exact::ApproxDD>> dd_;
   mutable StableArena<DDHomogeneous> dd_vertices_;
