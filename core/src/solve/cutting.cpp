@@ -382,11 +382,13 @@ class Cutter {
   std::vector<TracedEdge> edges_;
   std::vector<char> alive_v_, alive_e_;
   // Per vertex, its edges and the vertex at their other end (three at a simple vertex): the
-  // climbs and the region search step to neighbours without reading the edges.
+  // climbs and the region search step to neighbours without reading the edges. Room for six
+  // inside the list: the input points of a triangulated surface (a geodesic sphere's kernel
+  // vertices) have five or six, and a list on the heap costs the climbs a second random read.
   struct Link {
     uint32_t edge, to;
   };
-  std::vector<SmallVector<Link, 4>> adj_;
+  std::vector<SmallVector<Link, 6>> adj_;
   std::vector<double> xyz_;
   std::vector<uint32_t> replaced_by_;  // a cut point of the cut that removed the vertex
   std::vector<int8_t> state_;
