@@ -7,6 +7,7 @@
 #include <cassert>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 #include "exact/wide_product.h"
 
@@ -400,6 +401,25 @@ Expansion operator*(const Expansion& a, const Expansion& b) {
   if (small.n_ <= 1) {  // a double times an expansion: one scaling
     Expansion r;
     if (small.n_ == 1) r.n_ = scale_expansion(large.p_, large.n_, small.p_[0], r.reserve(2 * large.n_));
+    if (r.n_ > kCompressAbove) r.compress();
+    return r;
+  }
+  // The partial sums alternate between two stack buffers when they fit (the usual case): the
+  // same scalings and sums as below, so the same components, without swapping and resizing
+  // Expansion objects on every step.
+  constexpr size_t kStack = 192;
+  if (2 * large.n_ * small.n_ <= kStack) {  // (the accumulated length is at most this)
+    double bufs[2][kStack], term[kStack];
+    double *acc = bufs[0], *next = bufs[1];
+    size_t n = 0;
+    for (size_t i = 0; i < small.n_; ++i) {
+      const size_t tn = scale_expansion(large.p_, large.n_, small.p_[i], term);
+      const size_t m = expansion_sum(acc, n, term, tn, next);
+      std::swap(acc, next);
+      n = m;
+    }
+    Expansion r;
+    r.assign(acc, n);
     if (r.n_ > kCompressAbove) r.compress();
     return r;
   }

@@ -85,7 +85,25 @@ inline int shared_input_points(const PlaneSet& ps, uint32_t p, uint32_t q, uint3
   if (ps.points_on(p).size() > ps.points_on(q).size()) std::swap(p, q);
   if (ps.points_on(p).size() > 256) return 0;
   int found = 0;
-  for (uint32_t pt : ps.points_on(p)) {
+  const PlaneSet::Span rp = ps.points_on(p), rq = ps.points_on(q);
+  if (rq.size() <= 16) {
+    // Short rows (a triangle's plane holds 3 points): one merge of the sorted rows finds the
+    // same points in the same order as the lookups below (called for most vertices).
+    for (const uint32_t *i = rp.b, *j = rq.b; i != rp.e && j != rq.e;) {
+      if (*i < *j) {
+        ++i;
+      } else if (*j < *i) {
+        ++j;
+      } else {
+        (found == 0 ? x : y) = *i;
+        if (++found == 2) break;
+        ++i;
+        ++j;
+      }
+    }
+    return found;
+  }
+  for (uint32_t pt : rp) {
     if (!ps.point_on_plane(pt, q)) continue;
     (found == 0 ? x : y) = pt;
     if (++found == 2) break;

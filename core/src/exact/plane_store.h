@@ -15,8 +15,10 @@
 #include <vector>
 
 #include "exact/expansion.h"
+#include "exact/homogeneous.h"
 #include "util/raw_vector.h"
 #include "util/sparse_cache.h"
+#include "util/stable_arena.h"
 
 namespace kergen {
 
@@ -120,6 +122,11 @@ class PlaneSet {
 
   mutable size_t exact_fallbacks = 0;
 
+  // Fresh per-vertex caches (dd_homogeneous, exact_homogeneous in exact/vertex.h), freed with
+  // the plane set: the vertices of a computation point to them.
+  DDHomogeneous& new_dd_homogeneous() const { return dd_vertices_.emplace(); }
+  ExactHomogeneous& new_exact_homogeneous() const { return exact_vertices_.emplace(); }
+
   // Capacity for n planes in all (a mesh's planes are then added without regrowth).
   void reserve(size_t n);
 
@@ -144,9 +151,11 @@ class PlaneSet {
   RawVector<double> nx_, ny_, nz_, d_, enx_, eny_, enz_, ed_;
   RawVector<uint32_t> opposite_;
   RawVector<uint32_t> plane_offsets_, plane_points_;
-  // Only a few planes ever need them: a map, not a pointer per plane.
+  // Computed on demand for the planes that need them (util/sparse_cache.h).
   mutable SparseCache<PlaneCoef<Expansion>> exact_;
   mutable SparseCache<PlaneCoef<exact::ApproxDD>> dd_;
+  mutable StableArena<DDHomogeneous> dd_vertices_;
+  mutable StableArena<ExactHomogeneous> exact_vertices_;
 };
 
 template <>

@@ -101,6 +101,25 @@ int side_through_anchor(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   return -sign_at_point(ps, an.c, an.y) * lx * den;
 }
 
+namespace {
+// Exact sign of f_l at a vertex whose anchor is a line through one input point x (vertex_anchor
+// kind 1), 2 for other vertices: f_l(v) det3(n_a, n_b, n_c) = f_l(x) det3(n_a, n_b, n_c) -
+// f_c(x) det3(n_a, n_b, n_l) (see side_through_anchor), in expansions: the two determinants
+// share the cross product n_a x n_b, and the plane values are at an input point.
+int side_exact_on_point_line(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
+  const VertexAnchor an = vertex_anchor(ps, v);
+  if (an.kind != 1) return 2;
+  const Scaled x(ps.point(an.x), ps.exact_shift());  // the exact planes' units (positive multiples)
+  const PlaneCoef<Expansion>&pa = ps.exact(an.a), &pb = ps.exact(an.b), &pc = ps.exact(an.c), &pl = ps.exact(l);
+  const std::array<Expansion, 3> u = cross_normals(pa, pb);
+  const Expansion det_c = pc.n[0] * u[0] + pc.n[1] * u[1] + pc.n[2] * u[2];
+  const Expansion det_l = pl.n[0] * u[0] + pl.n[1] * u[1] + pl.n[2] * u[2];
+  const Expansion value = plane_value(pl, x.v) * det_c - plane_value(pc, x.v) * det_l;
+  // det3(n_a, n_b, n_c) is a cyclic shift of the basis order: its sign is det_sign.
+  return value.sign() * v.det_sign;
+}
+}  // namespace
+
 int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   // The defining planes hold the vertex by construction (their filtered value is a rounding
   // residue the filter cannot decide, and deciding it exactly costs a full Cramer solve).
@@ -117,8 +136,9 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   if (point == kNoPoint) {
     // A vertex built without the search (an LP candidate) that the filter cannot place is
     // usually an input point where four or more planes meet: worth a search before the exact
-    // Cramer solve.
-    if (v.late_point == kPointNotSearched) v.late_point = input_point_on(ps, v.basis[0], v.basis[1], v.basis[2]);
+    // Cramer solve. The coordinates' bounds (rigorous, as the filter above relies on) skip the
+    // candidates that cannot be the point before their incidence lookups and orient3d.
+    if (v.late_point == kPointNotSearched) v.late_point = input_point_on(ps, v.basis[0], v.basis[1], v.basis[2], v.x);
     point = v.late_point;
   }
   if (point != kNoPoint) return sign_at_point(ps, l, uint32_t(point));  // exact input coordinates
@@ -134,6 +154,13 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   {
     const int sa = side_through_anchor(ps, l, v);
     if (sa != 2) return sa;
+  }
+  if (!v.exact) {
+    // A vertex whose exact homogeneous coordinates are not known yet (the usual case: most
+    // vertices reach this stage once, if at all): a direct exact formula is cheaper than
+    // computing them.
+    const int se = side_exact_on_point_line(ps, l, v);
+    if (se != 2) return se;
   }
   if (const exact::ApproxDD* x = exact_dd_point(ps, v)) {
     // The plane at the vertex's double-double coordinates (see ExactHomogeneous::point): decides

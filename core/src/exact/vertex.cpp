@@ -76,7 +76,7 @@ bool dd_point(const PlaneSet& ps, const VertexGeom& v, exact::ApproxDD out[3]) {
 
 const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.exact) {
-    auto h = std::make_shared<ExactHomogeneous>();
+    ExactHomogeneous* h = &ps.new_exact_homogeneous();
     const VertexAnchor l = vertex_anchor(ps, v);
     if (l.kind == 2) {
       Scaled x(ps.point(l.x), ps.exact_shift()), y(ps.point(l.y), ps.exact_shift());
@@ -89,7 +89,7 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
     }
     for (auto& c : h->num) c.compress();
     h->den.compress();
-    v.exact = std::move(h);
+    v.exact = h;
   }
   return *v.exact;
 }
@@ -98,7 +98,7 @@ const ExactHomogeneous& exact_homogeneous(const PlaneSet& ps, const VertexGeom& 
 // copies of the vertex.
 const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
   if (!v.dd) {
-    auto h = std::make_shared<DDHomogeneous>();
+    DDHomogeneous* h = &ps.new_dd_homogeneous();
     const VertexAnchor l = vertex_anchor(ps, v);
     if (l.kind == 2) {
       on_line(ps.dd(l.c), ps.point(l.x), ps.point(l.y), h->num, h->den);
@@ -112,7 +112,7 @@ const DDHomogeneous& dd_homogeneous(const PlaneSet& ps, const VertexGeom& v) {
       cramer(ps.dd(v.basis[0]), ps.dd(v.basis[1]), ps.dd(v.basis[2]), h->num, h->den);
       h->den_sign = v.det_sign;
     }
-    v.dd = std::move(h);
+    v.dd = h;
   }
   return *v.dd;
 }
@@ -158,7 +158,8 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, c
   return kNoPoint;
 }
 
-VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point) {
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point,
+                       int known_det_sign) {
   VertexGeom v;
   v.basis[0] = a;
   v.basis[1] = b;
@@ -167,7 +168,7 @@ VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, b
   // exact sign too (sign_det3_normals would evaluate it again first).
   const PlaneCoef<Approx> pa = ps.approx(a), pb = ps.approx(b), pc = ps.approx(c);
   const Approx den = det3_normals(pa, pb, pc);
-  v.det_sign = den.certain() ? den.sign() : sign_det3_normals(ps, a, b, c);
+  v.det_sign = den.certain() ? den.sign() : known_det_sign != 0 ? known_det_sign : sign_det3_normals(ps, a, b, c);
   assert(v.det_sign != 0 && "make_vertex: planes with dependent normals");
 
   Approx num[3];

@@ -3,48 +3,28 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 
 #include "exact/determinants.h"
 #include "exact/plane_store.h"
 
 namespace kergen {
 
-// Homogeneous coordinates of a plane-triple vertex, x_k = num[k] / den, in double-double with
-// error bounds and exactly: Cramer's rule in general; when two of the planes share two input
-// points x and y (the vertex is on the line xy), num = a y - b x and den = a - b with a, b the
-// third plane's values at x and y (lower degree, and well conditioned where the two planes are
-// nearly coplanar, as the triangles of a finely tessellated or a rounding-split flat face are);
-// when they share one input point x, from x and the line's direction (fewer products).
-struct DDHomogeneous {
-  exact::ApproxDD num[3], den;
-  int den_sign = 0;  // exact sign of den
-};
-struct ExactHomogeneous {
-  Expansion num[3], den;
-  // The coordinates num[k] / den as double-doubles with rigorous error bounds, in input units
-  // (dd_coordinates, on first need through exact_dd_point; point_state 1 = valid, -1 = not
-  // available, 0 = not computed yet): side() evaluates a plane there before the exact dot
-  // product, the cuts' edge rates and the output coordinates use them too. Where den is
-  // tiny (the vertex of nearly coplanar planes), the double-double homogeneous values leave no
-  // correct digit of a plane's value while these coordinates are still accurate to ~2^-100.
-  mutable exact::ApproxDD point[3];
-  mutable int point_state = 0;
-};
-
 // A point defined by three planes (Cramer's rule), or an input point (exact coordinates).
 struct VertexGeom {
   uint32_t basis[3] = {kNoPlane, kNoPlane, kNoPlane};
   int32_t mesh_point = kNoPoint;  // when the three planes meet at an input vertex
   int det_sign = 0;               // sign of det3 of the basis normals
-  Approx x[3];                    // coordinates with error bounds (exact when mesh_point)
-  // Computed on the first undecided side test and shared by copies: every further exact test
-  // at this vertex is one 4-term dot product instead of a 4x4 determinant.
-  mutable std::shared_ptr<const DDHomogeneous> dd;
-  mutable std::shared_ptr<const ExactHomogeneous> exact;
   // For a vertex built without the input-point search: the search's answer, found on the first
-  // side test the filter cannot decide (kPointNotSearched until then).
+  // side test the filter cannot decide (kPointNotSearched until then). (Here, not last: the
+  // record packs into 88 bytes.)
   mutable int32_t late_point = kNoPoint;
+  Approx x[3];  // coordinates with error bounds (exact when mesh_point)
+  // Computed on the first undecided side test and shared by copies: every further exact test
+  // at this vertex is one 4-term dot product instead of a 4x4 determinant. They live in the
+  // PlaneSet's arenas (PlaneSet::new_dd_homogeneous): a vertex is only used with the plane set
+  // it was made from, and never outlives it.
+  mutable const DDHomogeneous* dd = nullptr;
+  mutable const ExactHomogeneous* exact = nullptr;
 };
 
 // Coordinates of a vertex as unevaluated double-double sums hi + lo, accurate to ~1e-30
@@ -76,6 +56,10 @@ int32_t input_point_on(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, c
 // With find_input_point it also recognises an input point on the three planes (exact
 // coordinates, cheap exact side tests later): worth it for vertices that are kept, not for the
 // LP's transient candidates.
-VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point = true);
+// `known_det_sign`, when not 0, is the exact sign of det3(n_a, n_b, n_c) as the caller knows it
+// (the cuts do, from the edge's orientation): it replaces the exact evaluation where the filter
+// is uncertain.
+VertexGeom make_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t c, bool find_input_point = true,
+                       int known_det_sign = 0);
 
 }  // namespace kergen

@@ -25,6 +25,17 @@ void insert_sorted(PlaneIds& v, uint32_t x) {
   if (it == v.end() || *it != x) v.insert(it, x);
 }
 
+// `out` = the sorted set `v` with x added, in one pass (a cut point's tight set: its edge's
+// planes and the cutting plane).
+void copy_with(const PlaneIds& v, uint32_t x, PlaneIds& out) {
+  out.clear();
+  out.reserve(v.size() + 1);
+  const uint32_t* it = v.begin();
+  for (; it != v.end() && *it < x; ++it) out.push_back(*it);
+  if (it == v.end() || *it != x) out.push_back(x);
+  for (; it != v.end(); ++it) out.push_back(*it);
+}
+
 class Cutter {
  public:
   // `cuts` is the number of planes to come: a cut adds a few vertices and edges, so the arrays
@@ -121,7 +132,12 @@ class Cutter {
     }
     near = cur;
     if (val <= -margin) return true;  // strictly inside at every vertex: no change
-    const int top = side(ps_, h, vertices_[cur].geom);
+    // The exact sign where the double value is far from 0 (each value is within delta of exact),
+    // else side(): a vertex certainly outside is removed without reading its record.
+    auto sign_at = [&](uint32_t v, double fv) {
+      return fv <= -margin ? -1 : fv > tie ? 1 : side(ps_, h, vertices_[v].geom);
+    };
+    const int top = sign_at(cur, val);
     if (top < 0) return true;
 
     // The vertices with f_h >= 0 induce a connected subgraph holding the maximum: a search
@@ -141,7 +157,7 @@ class Cutter {
       for (const Link& link : adj_[v]) {
         const uint32_t w = link.to;
         if (state_[w] != kUnseen) continue;
-        classify(w, f(w) <= -margin ? -1 : side(ps_, h, vertices_[w].geom));
+        classify(w, sign_at(w, f(w)));
         region_.push_back(w);
       }
     }
@@ -232,10 +248,12 @@ class Cutter {
     const uint32_t opposite = ps_.opposite(h);
     cut_points_ = on_;
     for (uint32_t v : out_) {
-      // A copy: add_vertex below grows adj_, which moves v's list once a cut adds more vertices
-      // than the room reserved (a plane cutting a vertex of many edges, such as a fan's apex).
-      const SmallVector<Link, 4> edges_of_v = adj_[v];
-      for (const Link& link : edges_of_v) {
+      // By index, re-reading adj_[v] (which the loop does not change) each time: add_vertex
+      // below grows adj_, which moves v's list once a cut adds more vertices than the room
+      // reserved (a plane cutting a vertex of many edges, such as a fan's apex). (A copy of the
+      // list cost an allocation per removed vertex of more than four edges.)
+      for (size_t i = 0; i < adj_[v].size(); ++i) {
+        const Link link = adj_[v].data()[i];
         const uint32_t e = link.edge, w = link.to;
         if (!alive_e_[e]) continue;
         if (state_[w] == kOutside) {
@@ -249,10 +267,12 @@ class Cutter {
           TracedEdge& te = edges_[e];
           TracedVertex nv;
           // Most cut vertices are later cut away again: the input-point search is left to the
-          // first side test the filter cannot decide.
-          nv.geom = make_vertex(ps_, te.p, te.q, h, false);
-          nv.tight = te.planes;
-          insert_sorted(nv.tight, h);
+          // first side test the filter cannot decide. The sign of det3(n_p, n_q, n_h) is known:
+          // f_h falls strictly from v (outside) to w (inside), and its rate from te.a along the
+          // edge is sigma det3(n_p, n_q, n_h), negative when v is te.a, positive when v is te.b.
+          const int det_sign = te.a == v ? -te.sigma : te.sigma;
+          nv.geom = make_vertex(ps_, te.p, te.q, h, false, det_sign);
+          copy_with(te.planes, h, nv.tight);
           const uint32_t n = add_vertex(std::move(nv));
           (te.a == v ? te.a : te.b) = n;
           adj_[n].push_back({e, w});
@@ -269,19 +289,21 @@ class Cutter {
     if (any_cut_point == kNoVertex) return false;
     for (uint32_t v : out_) replaced_by_[v] = any_cut_point;
 
-    // The new face: cut points grouped by their other planes.
+    // The new face: cut points grouped by their other planes (one 64-bit key per pair sorts as
+    // the pairs would).
     by_plane_.clear();
     for (uint32_t cpt : cut_points_)
       for (uint32_t g : vertices_[cpt].tight) {
         if (g == opposite) return false;  // flat
-        if (g != h) by_plane_.push_back({g, cpt});
+        if (g != h) by_plane_.push_back(uint64_t(g) << 32 | cpt);
       }
     std::sort(by_plane_.begin(), by_plane_.end());
     for (size_t i = 0; i < by_plane_.size();) {
       size_t j = i;
-      while (j < by_plane_.size() && by_plane_[j].first == by_plane_[i].first) ++j;
+      const uint32_t g = uint32_t(by_plane_[i] >> 32);
+      while (j < by_plane_.size() && uint32_t(by_plane_[j] >> 32) == g) ++j;
       if (j - i > 2) return false;
-      if (j - i == 2 && !connect(by_plane_[i].first, h, by_plane_[i].second, by_plane_[i + 1].second)) return false;
+      if (j - i == 2 && !connect(g, h, uint32_t(by_plane_[i]), uint32_t(by_plane_[i + 1]))) return false;
       i = j;
     }
     for (uint32_t cpt : cut_points_)
@@ -301,7 +323,7 @@ class Cutter {
 
   uint32_t add_vertex(TracedVertex&& v) {
     const uint32_t id = uint32_t(vertices_.size());
-    xyz_.resize(xyz_.size() + 3);
+    for (int k = 0; k < 3; ++k) xyz_.push_back(0);  // (set below; within the reserved room)
     vertices_.push_back(std::move(v));
     note_coordinates(id);
     alive_v_.push_back(1);
@@ -310,6 +332,16 @@ class Cutter {
     state_.push_back(kUnseen);
     ++alive_count_;
     return id;
+  }
+
+  // sign det3(n_r, n_g, n_h) when it is the determinant of v's basis up to the order of r and g
+  // (a cut point made on the edge of planes r and g, or g and r, by h): its exact sign is known
+  // from make_vertex. 2 otherwise.
+  static int basis_det_sign(const VertexGeom& v, uint32_t r, uint32_t g, uint32_t h) {
+    if (v.basis[2] != h || v.det_sign == 0) return 2;
+    if (v.basis[0] == r && v.basis[1] == g) return v.det_sign;
+    if (v.basis[0] == g && v.basis[1] == r) return -v.det_sign;
+    return 2;
   }
 
   // Edge between cut points u and w on the line of planes g and h (unless it exists).
@@ -322,7 +354,8 @@ class Cutter {
     int sigma = 0;
     for (uint32_t r : tu) {
       if (std::binary_search(tw.begin(), tw.end(), r)) continue;
-      const int s = sign_det3_normals(ps_, r, g, h);
+      const int known = basis_det_sign(vertices_[u].geom, r, g, h);
+      const int s = known != 2 ? known : sign_det3_normals(ps_, r, g, h);
       if (s != 0) {
         sigma = -s;
         break;
@@ -349,18 +382,20 @@ class Cutter {
   std::vector<TracedEdge> edges_;
   std::vector<char> alive_v_, alive_e_;
   // Per vertex, its edges and the vertex at their other end (three at a simple vertex): the
-  // climbs and the region search step to neighbours without reading the edges.
+  // climbs and the region search step to neighbours without reading the edges. Room for six
+  // inside the list: the input points of a triangulated surface (a geodesic sphere's kernel
+  // vertices) have five or six, and a list on the heap costs the climbs a second random read.
   struct Link {
     uint32_t edge, to;
   };
-  std::vector<SmallVector<Link, 4>> adj_;
+  std::vector<SmallVector<Link, 6>> adj_;
   std::vector<double> xyz_;
   std::vector<uint32_t> replaced_by_;  // a cut point of the cut that removed the vertex
   std::vector<int8_t> state_;
   size_t alive_count_ = 0, traced_lines_ = 0;
   double max_abs_ = 0, coord_error_ = 0;  // over every vertex so far (upper bounds for the live ones)
   std::vector<uint32_t> region_, out_, on_, cut_points_;
-  std::vector<std::pair<uint32_t, uint32_t>> by_plane_;
+  std::vector<uint64_t> by_plane_;  // (plane << 32 | cut point): sorted, the pairs' order
 };
 
 }  // namespace

@@ -388,7 +388,7 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   for (size_t i = 0; i < sample; ++i) add(planes[rng.next() % planes.size()]);
 
   const TraceOptions& quiet = options;
-  std::vector<uint32_t> added_list, added_hint, on_kernel;
+  std::vector<uint32_t> added_list, added_hint;
   std::sort(S.begin(), S.end());
   TraceResult tr = trace_kernel_edges(ps, S, start, quiet);
   out.rounds = 1;
@@ -415,12 +415,15 @@ CulledTrace trace_with_culling(const PlaneSet& ps, const std::vector<uint32_t>& 
   // of S no vertex lies on cannot touch K_S, hence neither K_S'; they are dropped.
   if (!added_list.empty()) {
     ++out.rounds;
-    for (const auto& v : tr.vertices) on_kernel.insert(on_kernel.end(), v.tight.begin(), v.tight.end());
-    std::sort(on_kernel.begin(), on_kernel.end());
-    on_kernel.erase(std::unique(on_kernel.begin(), on_kernel.end()), on_kernel.end());
-    S = on_kernel;
-    S.insert(S.end(), added_list.begin(), added_list.end());
-    std::sort(S.begin(), S.end());
+    // (Marks, then one pass over the plane ids: S' comes out increasing without sorting the
+    // tens of thousands of planes a dense kernel adds.)
+    std::vector<char> in_next(ps.size(), 0);
+    for (const auto& v : tr.vertices)
+      for (uint32_t l : v.tight) in_next[l] = 1;
+    for (uint32_t l : added_list) in_next[l] = 1;
+    S.clear();
+    for (uint32_t l = 0; l < in_next.size(); ++l)
+      if (in_next[l]) S.push_back(l);
     // The cuts keep K_S's structure and touch only what each added plane removes; retracing is
     // the fallback for what they do not handle (a flat result).
     TraceResult cut;
