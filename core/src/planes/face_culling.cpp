@@ -121,6 +121,7 @@ FaceCulling cull_faces(const PreparedMesh& mesh, bool cull, uint64_t seed) {
   out.ms_lp = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_lp).count();
   if (out.lp.outcome == LpResult::Outcome::Infeasible) {
     out.kernel_empty = true;
+    out.lp.vertex = VertexGeom{};  // its cached coordinates live in sp's arenas, gone on return
     return out;
   }
   if (cull && out.lp.outcome == LpResult::Outcome::Optimal) {
@@ -130,6 +131,7 @@ FaceCulling cull_faces(const PreparedMesh& mesh, bool cull, uint64_t seed) {
       out.culled = faces_reaching(mesh, sample_kernel.trace, sample, out.kept_faces);
     if (!out.culled) out.kept_faces.clear();
   }
+  out.lp.vertex = VertexGeom{};  // as above: only the outcome and the conflict planes outlive sp
   return out;
 }
 
