@@ -20,9 +20,9 @@ namespace kergen {
 constexpr size_t kFaceCullingMinFaces = 700;
 
 struct FaceCulling {
-  bool kernel_empty = false;  // the face-sample kernel is empty, hence the kernel
-  LpResult lp;          // the face-sample LP: its outcome and conflict planes (the proof, when kernel_empty); no vertex
-  bool culled = false;  // kept_faces holds every face that may touch the kernel
+  bool kernel_empty = false;         // the face-sample kernel is empty, hence the kernel
+  LpResult lp;                       // the face-sample LP's outcome and conflict planes (no vertex)
+  bool culled = false;               // kept_faces holds every face that may touch the kernel
   std::vector<uint32_t> kept_faces;  // increasing
   double ms_lp = 0;                  // time in the face-sample LP
 };
