@@ -23,8 +23,8 @@ Warning unused_vertices_warning(size_t count) {
 }
 
 // The phases in order; each refuses the mesh or leaves its part of the state for the next.
-PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells) {
-  Prep s(mesh, options, allow_shells);
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells, PrepareFor purpose) {
+  Prep s(mesh, options, allow_shells, purpose == PrepareFor::Verdict);
   s.nv = mesh.num_vertices;
   s.nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
   s.m.input_faces = s.nf;

@@ -21,12 +21,13 @@ namespace kergen::prep {
 // The state prepare_mesh's phases share, filled in the order they run. Each phase returns false
 // once it has refused the mesh (m.error and m.message set by fail()).
 struct Prep {
-  Prep(const MeshView& mesh_in, const Options& options_in, bool allow_shells_in)
-      : mesh(mesh_in), options(options_in), allow_shells(allow_shells_in) {}
+  Prep(const MeshView& mesh_in, const Options& options_in, bool allow_shells_in, bool verdict_only_in)
+      : mesh(mesh_in), options(options_in), allow_shells(allow_shells_in), verdict_only(verdict_only_in) {}
   const MeshView& mesh;
   const Options& options;
   const bool allow_shells;
-  PreparedMesh m;  // the result
+  const bool verdict_only;  // PrepareFor::Verdict
+  PreparedMesh m;           // the result
   size_t nv = 0, nf = 0;
 
   // check_coordinates: the largest magnitude (for the scale) and the smallest non-zero one (for
@@ -39,8 +40,23 @@ struct Prep {
   // id and direction: bucket 2 lo + 1 holds the uses running up from lo (lo -> hi, hi > lo),
   // bucket 2 lo those running down to lo. bucket[b + 1]: size of bucket b, then its end, then
   // (after the fill) its start.
+  // When every face is a triangle of three distinct vertices (the usual case) the clean faces are
+  // the input's: `cl` then points at its indices (clean_viewed) and `clean` and `clean_offsets`
+  // stay empty until a phase that changes or walks the loops in general asks for its own copy
+  // (own_clean); the common phases read `cl`, whose loop f starts at 3 f when clean_size = 3 cf.
   RawVector<uint32_t> clean, clean_offsets;
+  const uint32_t* cl = nullptr;  // the clean loops' entries (clean.data() once owned)
+  size_t clean_size = 0;         // their number
+  bool clean_viewed = false;
   size_t cf = 0;
+  void own_clean() {
+    if (!clean_viewed) return;
+    clean.assign(cl, cl + clean_size);
+    clean_offsets.resize(cf + 1);
+    for (size_t f = 0; f <= cf; ++f) clean_offsets[f] = uint32_t(3 * f);
+    cl = clean.data();
+    clean_viewed = false;
+  }
   // The input face of each clean face, from the first face dropped on (before it: the identity).
   std::vector<uint32_t> clean_source;
   bool clean_renumbered = false;
@@ -113,6 +129,7 @@ void take_bounding_box(Prep& s);
 void sum_fan_volume(Prep& s);
 bool orient_by_volume(Prep& s);
 bool check_split_volume(Prep& s);
+bool needs_thin_certificate(const Prep& s);
 bool certify_thin_volume(Prep& s);
 
 // prep_plane_faces.cpp: the faces that carry planes (non-planar polygons split).

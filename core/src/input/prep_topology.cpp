@@ -15,6 +15,7 @@
 #include "input/prep_state.h"
 #include "util/compiler_hints.h"
 #include "util/point_table.h"
+#include "util/raw_vector.h"
 #include "util/union_find.h"
 
 namespace kergen::prep {
@@ -22,39 +23,77 @@ namespace kergen::prep {
 namespace {
 
 // Whether two used vertices have the same position (coordinates compared with ==, so -0 and +0
-// are one position): a PointTable of the used vertices, expected linear time, looked up a block
-// at a time with the slots prefetched (the table is larger than the caches for big meshes). The
-// same pass takes the bounding box of the used vertices, in id order (complete when the answer is
-// false).
+// are one position), in expected linear time. A table of every vertex is larger than the caches
+// on big meshes and every lookup missed; instead a first pass counts the vertices per bucket of
+// their positions' hashes (saturating at two; two bits per bucket, about 8 buckets per vertex,
+// so the counts stay in the caches), and a second pass puts only the vertices of buckets met
+// twice into a PointTable: both vertices of any shared position, and a few per cent of the
+// others. The first pass takes the bounding box of the used vertices, in id order (complete
+// when the answer is false). The counts live in `scratch` (of `scratch_slots` words) when they fit.
 bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used, double lo3[3],
-                         double hi3[3]) {
-  PointTable table(num_used);
-  const double* P = pts.data();
-  for (int k = 0; k < 3; ++k) {
-    lo3[k] = INFINITY;
-    hi3[k] = -INFINITY;
+                         double hi3[3], uint64_t* scratch, size_t scratch_slots) {
+  int bucket_bits = 6;
+  while ((size_t(1) << bucket_bits) < 8 * num_used) ++bucket_bits;
+  const int shift = 64 - bucket_bits;
+  const size_t words = (size_t(1) << bucket_bits) / 32;  // (32 buckets of two bits a word)
+  RawVector<uint64_t> own;
+  uint64_t* counts = scratch;
+  if (!scratch || words > scratch_slots) {
+    own.resize(words);
+    counts = own.data();
   }
+  std::fill(counts, counts + words, uint64_t(0));
+  const double* P = pts.data();
+  const char* us = used.data();
+  const size_t nv = used.size();
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  // Both passes take a block of used vertices at a time: their buckets first, with the count
+  // words prefetched, then the counts (the words are in the caches by then, mostly).
   constexpr size_t kBlock = 64;
   uint32_t ids[kBlock];
   uint64_t hashes[kBlock];
-  const char* us = used.data();
-  const size_t nv = used.size();
-  for (size_t v0 = 0; v0 < nv;) {
+  auto next_block = [&](size_t& v0, bool box) {
     size_t n = 0;
     for (; v0 < nv && n < kBlock; ++v0) {
       if (!us[v0]) continue;
       const double* p = P + 3 * v0;
-      for (int k = 0; k < 3; ++k) {
-        lo3[k] = std::min(lo3[k], p[k]);
-        hi3[k] = std::max(hi3[k], p[k]);
-      }
+      if (box)
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = std::min(lo[k], p[k]);
+          hi[k] = std::max(hi[k], p[k]);
+        }
       ids[n] = uint32_t(v0);
       hashes[n] = PointTable::hash(p);
-      table.prefetch_slot(hashes[n]);
+      prefetch(counts + (hashes[n] >> shift >> 5));
       ++n;
     }
-    for (size_t j = 0; j < n; ++j)
-      if (table.find_or_insert(P, P + 3 * size_t(ids[j]), hashes[j], ids[j]) != ids[j]) return true;
+    return n;
+  };
+  size_t twice = 0;  // buckets met twice
+  for (size_t v0 = 0; v0 < nv;) {
+    const size_t n = next_block(v0, true);
+    for (size_t j = 0; j < n; ++j) {
+      const uint64_t b = hashes[j] >> shift;
+      const int at = int(2 * (b & 31));
+      const uint64_t count = (counts[b >> 5] >> at) & 3;  // 0, 1, or 3 for two or more
+      twice += count == 1;
+      counts[b >> 5] |= ((count << 1 | 1) & 3) << at;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    lo3[k] = lo[k];
+    hi3[k] = hi[k];
+  }
+  if (twice == 0) return false;
+  PointTable table(2 * twice + 16);  // (about as many vertices as that at the buckets met twice)
+  for (size_t v0 = 0; v0 < nv;) {
+    const size_t n = next_block(v0, false);
+    for (size_t j = 0; j < n; ++j) {
+      const uint64_t b = hashes[j] >> shift;
+      if (((counts[b >> 5] >> (2 * (b & 31))) & 3) == 3 &&
+          table.find_or_insert(P, P + 3 * size_t(ids[j]), hashes[j], ids[j]) != ids[j])
+        return true;
+    }
   }
   return false;
 }
@@ -207,37 +246,40 @@ std::string edge_name(uint64_t k) {
 bool clean_faces(Prep& s) {
   const MeshView& mesh = s.mesh;
   const size_t nf = s.nf;
-  s.clean.resize(mesh.num_indices);  // (written in full below)
-  s.clean_offsets.resize(nf + 1);
   s.used.assign(s.nv, 0);
   s.bucket.assign(2 * s.nv + 2, 0);
   const uint32_t* in = mesh.indices;
-  uint32_t* cl = s.clean.data();
-  uint32_t* off = s.clean_offsets.data();
-  off[0] = 0;
   char* us = s.used.data();
   uint32_t* count = s.bucket.data() + 1;
   // (bucket 2 lo + 1 < 2 hi, bucket 2 lo < 2 hi + 1: the smaller is the use's bucket)
   auto count_use = [count](uint32_t u, uint32_t v) { count[std::min(2 * size_t(u) + 1, 2 * size_t(v))]++; };
-  size_t n = 0, dropped = 0, cf = 0;  // clean entries so far, faces dropped, clean faces
   size_t f = 0;
   if (!mesh.face_sizes) {
-    // The usual leading run of a triangle mesh: face f is at 3 f (the offsets are written after).
+    // The usual leading run of a triangle mesh: face f is at 3 f. When it is the whole mesh, the
+    // clean faces are the input's (Prep::cl); else it is copied, and the rest cleaned below.
     for (; f < nf; ++f, in += 3) {
       const uint32_t a = in[0], b = in[1], c = in[2];
       if (a == b || b == c || c == a) break;
-      cl[3 * f] = a;
-      cl[3 * f + 1] = b;
-      cl[3 * f + 2] = c;
       us[a] = us[b] = us[c] = 1;
       count_use(a, b);
       count_use(b, c);
       count_use(c, a);
     }
-    for (size_t g = 1; g <= f; ++g) off[g] = uint32_t(3 * g);
-    n = 3 * f;
-    cf = f;
+    if (f == nf) {
+      s.cl = mesh.indices;
+      s.clean_size = 3 * nf;
+      s.clean_viewed = true;
+      s.cf = nf;
+      return true;
+    }
   }
+  s.clean.resize(mesh.num_indices);  // (written in full below)
+  s.clean_offsets.resize(nf + 1);
+  uint32_t* cl = s.clean.data();
+  uint32_t* off = s.clean_offsets.data();
+  std::copy(mesh.indices, mesh.indices + 3 * f, cl);
+  for (size_t g = 0; g <= f; ++g) off[g] = uint32_t(3 * g);
+  size_t n = 3 * f, dropped = 0, cf = f;  // clean entries so far, faces dropped, clean faces
   for (; f < nf; ++f) {
     const size_t begin = n, k = mesh.face_sizes ? mesh.face_sizes[f] : 3;
     if (k == 3 && in[0] != in[1] && in[1] != in[2] && in[2] != in[0]) {  // the usual case
@@ -279,6 +321,8 @@ bool clean_faces(Prep& s) {
   }
   s.clean.resize(n);
   s.clean_offsets.resize(cf + 1);
+  s.cl = s.clean.data();
+  s.clean_size = n;
   s.m.dropped_faces += dropped;
   s.cf = cf;
   if (cf == 0) return s.fail(Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
@@ -316,8 +360,8 @@ void pair_edges(Prep& s) {
   // Filled backwards, each use at its bucket's end moved down by one: the buckets keep the uses
   // in face order, and bucket[b + 1] ends at the start of bucket b (no separate cursor array).
   // Then bucket b is [bucket[b + 1], bucket[b + 2]).
-  const uint32_t* cl = s.clean.data();
-  const uint32_t* off = s.clean_offsets.data();
+  const uint32_t* cl = s.cl;
+  const uint32_t* off = s.clean_offsets.data();  // (read only when some face is not a triangle)
   uint32_t* cursor = bucket.data() + 1;
   auto put = [&](uint32_t u, uint32_t v, uint32_t f) {
     const uint32_t slot = --cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))];
@@ -369,6 +413,7 @@ bool report_edge_faults(Prep& s) {
 // closed pieces are the caller's to judge (shells.h) when it says so; an open one is refused.
 bool count_components(Prep& s) {
   if (s.open) {
+    s.own_clean();
     std::vector<uint32_t> first_face(s.nv, 0xffffffffu);
     for (size_t f = 0; f < s.cf; ++f)
       for (size_t i = s.clean_offsets[f]; i < s.clean_offsets[f + 1]; ++i) {
@@ -397,7 +442,12 @@ bool count_components(Prep& s) {
 bool check_shared_positions(Prep& s) {
   const size_t unused = s.nv - size_t(std::count(s.used.begin(), s.used.end(), 1));
   if (unused) s.m.warnings.push_back(unused_vertices_warning(unused));
-  if (!has_shared_position(s.m.points, s.used, s.nv - unused, s.lo3, s.hi3)) return true;
+  // The representatives' storage holds the edge check's upper ids, read no more, until
+  // sum_fan_volume writes them: the bucket counts live there when they fit (no fresh pages).
+  static_assert(sizeof(std::array<uint32_t, 3>) == 12, "packed representatives");
+  uint64_t* scratch = reinterpret_cast<uint64_t*>(s.m.rep.data());
+  const size_t scratch_slots = s.m.rep.capacity() * 12 / sizeof(uint64_t);
+  if (!has_shared_position(s.m.points, s.used, s.nv - unused, s.lo3, s.hi3, scratch, scratch_slots)) return true;
   const auto pair = first_shared_position(s.m.points, s.used);
   return s.fail(Error::NonManifoldEdge,
                 "vertices " + std::to_string(pair[0]) + " and " + std::to_string(pair[1]) +
