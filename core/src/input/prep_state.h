@@ -82,6 +82,9 @@ struct Prep {
   double vol6 = 0, vol6_abs = 0;
   size_t first_general = 0;
   bool fans_enclose_nothing = false, flip = false;
+  // A verdict without several shells to judge reads no representative: the leading run's are
+  // then not written (m.rep holds that many unset entries; only their number is read).
+  bool reps_unwritten = false;
 
   // build_plane_faces
   size_t degenerate = 0, nonplanar = 0;

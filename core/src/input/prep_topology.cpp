@@ -116,18 +116,39 @@ std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, co
   return {0, 0};  // not reached: called only when a shared position exists
 }
 
+// The edge uses as the counting sort leaves them, use j of a bucket read by upper(j) (its upper
+// vertex) and face(j). Polygons: two arrays indexed alike. Triangles: one array of use ids
+// 3 f + c (the edge from corner c of clean face f to the next corner), half the bytes; the
+// upper vertex is read from the face (the faces using one vertex are mostly near each other).
+struct SeparateUses {
+  const uint32_t* upper_id;
+  const uint32_t* use_face;
+  KERGEN_INLINE uint32_t upper(size_t j) const { return upper_id[j]; }
+  KERGEN_INLINE uint32_t face(size_t j) const { return use_face[j]; }
+};
+struct TriangleUses {
+  const uint32_t* use_id;
+  const uint32_t* cl;  // the clean loops, face f at 3 f
+  KERGEN_INLINE uint32_t upper(size_t j) const {
+    const uint32_t u = use_id[j], corner = u % 3;
+    return std::max(cl[u], cl[corner == 2 ? u - 2 : u + 1]);
+  }
+  KERGEN_INLINE uint32_t face(size_t j) const { return use_id[j] / 3; }
+};
+
 // The edge check's pass over the edge uses, bucketed (Prep::bucket) by lower vertex: the uses of
 // the edges of one lower vertex are tallied per upper vertex, then each edge is judged once. On a
 // closed, consistently oriented 2-manifold every edge has one use each way, and its two faces
 // are a pair. Pairs are listed by lower vertex id, then in the order of the faces using the edge
 // upwards; each pair lists its lower face first. At most one pair per two uses; written through
-// a pointer (push_back went through a stack copy, a store-forwarding stall).
+// a pointer (push_back went through a stack copy, a store-forwarding stall) into the storage
+// of the uses themselves (pair_edges), behind the uses still to be read.
+template <class Uses>
 class EdgePairing {
  public:
-  EdgePairing(Prep& s, const uint32_t* upper, const uint32_t* use_face, size_t nv)
+  EdgePairing(Prep& s, Uses uses, size_t nv)
       : s_(s),
-        upper_(upper),
-        use_face_(use_face),
+        uses_(uses),
         tally_store_(nv),
         tally_(tally_store_.data()),
         parent_(s.components.parent.data()),
@@ -160,42 +181,53 @@ class EdgePairing {
     }
   }
   // The uses of lo's edges: [down_begin, up_begin) run down to lo, [up_begin, end) up from it.
+  // Their upper ids and faces are read once, into upper_ids_ and faces_ (the pairs are written
+  // over the uses: judge() may write pairs over uses not read yet).
   KERGEN_INLINE void pair_lower_vertex(size_t lo, size_t down_begin, size_t up_begin, size_t end) {
-    for (size_t j = down_begin; j != up_begin; ++j) {
-      Tally& t = tally_[upper_[j]];
-      ++t.down;
-      t.down_face = use_face_[j];
-    }
-    // The upward uses are paired as they are tallied, tentatively (a later use of the same edge
-    // may spoil a pair). When each upward use made a pair and each downward use is in one,
-    // every edge of lo has one use each way, and the pairs are the ones judge() would make, in
-    // the same order: they stand, and only the tallies are cleared. (A pair never overwrites a
-    // use not read yet: lo's pairs number at most its downward uses and its upward uses read.)
     const size_t downs = up_begin - down_begin, ups = end - up_begin;
-    std::array<uint32_t, 2>* const pairs_before = pair_out_;
-    for (size_t j = up_begin; j != end; ++j) {
-      Tally& t = tally_[upper_[j]];
-      ++t.up;
-      t.up_face = use_face_[j];
-      if (t.up == 1 && t.down == 1) {
-        (*pair_out_)[0] = std::min(t.up_face, t.down_face);
-        (*pair_out_)[1] = std::max(t.up_face, t.down_face);
-        ++pair_out_;
-      }
+    if (end - down_begin > upper_ids_.size()) {
+      upper_ids_.resize(2 * (end - down_begin));
+      faces_.resize(2 * (end - down_begin));
     }
-    if (ups == downs && pair_out_ == pairs_before + ups) {
-      for (size_t j = up_begin; j != end; ++j) {
-        tally_[upper_[j]] = Tally{};
-        const auto& pair = pairs_before[j - up_begin];
-        unite(pair[0], pair[1]);
+    uint32_t* const hi_of = upper_ids_.data();
+    uint32_t* const face_of = faces_.data();
+    for (size_t i = 0; i != downs + ups; ++i) {
+      hi_of[i] = uses_.upper(down_begin + i);
+      face_of[i] = uses_.face(down_begin + i);
+    }
+    for (size_t i = 0; i != downs; ++i) {
+      Tally& t = tally_[hi_of[i]];
+      ++t.down;
+      t.down_face = face_of[i];
+    }
+    // When every upward use meets an edge with one use each way (t.up == 1 and t.down == 1 once
+    // tallied) and there are as many downward uses, every edge of lo has one use each way: the
+    // pairs are the ones judge() would make, in the same order, and each use's tally is cleared
+    // as its pair is written.
+    bool paired = ups == downs;
+    for (size_t i = downs; i != downs + ups; ++i) {
+      Tally& t = tally_[hi_of[i]];
+      ++t.up;
+      t.up_face = face_of[i];
+      paired &= t.up == 1 && t.down == 1;
+    }
+    if (paired) {
+      for (size_t i = downs; i != downs + ups; ++i) {
+        Tally& t = tally_[hi_of[i]];
+        const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
+        t = Tally{};
+        (*pair_out_)[0] = f0;
+        (*pair_out_)[1] = f1;
+        ++pair_out_;
+        unite(f0, f1);
       }
       return;
     }
-    pair_out_ = pairs_before;
-    for (size_t j = up_begin; j != end; ++j) judge(lo, upper_[j]);
+    std::array<uint32_t, 2>* const pairs_before = pair_out_;
+    for (size_t i = downs; i != downs + ups; ++i) judge(lo, hi_of[i]);
     // (as many pairs as downward uses: each pair took one, all are judged and cleared)
     if (size_t(pair_out_ - pairs_before) == downs) return;
-    for (size_t j = down_begin; j != up_begin; ++j) judge(lo, upper_[j]);
+    for (size_t i = 0; i != downs; ++i) judge(lo, hi_of[i]);
   }
   // Edge (lo, hi), judged at its first upward use, or first downward use if it has none; then
   // its tally is cleared.
@@ -224,10 +256,10 @@ class EdgePairing {
     example = std::min(example, key);
   }
   Prep& s_;
-  const uint32_t* upper_;
-  const uint32_t* use_face_;
+  Uses uses_;
   std::vector<Tally> tally_store_;  // per upper vertex id; all zero between lower vertices
   Tally* tally_;
+  std::vector<uint32_t> upper_ids_ = std::vector<uint32_t>(64), faces_ = std::vector<uint32_t>(64);  // lo's uses
   uint32_t* parent_;
   std::array<uint32_t, 2>* pair_out_;
 };
@@ -330,13 +362,10 @@ bool clean_faces(Prep& s) {
 }
 
 // The edge check: a counting sort of the edge uses into their buckets (no hashing and no
-// comparison sort), then EdgePairing. A use is stored as its upper vertex id and its face, in two
-// arrays indexed alike. No fresh memory is taken for them (first touches of fresh pages are
-// costly): the faces go into the pairs' storage, which holds one face per use, and the upper ids
-// into the representatives' storage (written after the check) when it holds one id per use,
-// which is when every face is a triangle. The pairs written while a lower vertex's uses are
-// judged end before the uses not read yet (at most one pair per two uses, and each lower
-// vertex's faces are all read, by the tally, before its first pair is written).
+// comparison sort), then EdgePairing. No fresh memory is taken for the uses of a triangle mesh
+// (first touches of fresh pages are costly): they go into the pairs' storage, one use id of 4
+// bytes each (TriangleUses), and the pairs are written over the uses already read. A polygon
+// mesh's uses take their upper ids from a separate array and their faces from the pairs' storage.
 void pair_edges(Prep& s) {
   const size_t nv = s.nv, cf = s.cf;
   std::vector<uint32_t>& bucket = s.bucket;
@@ -345,43 +374,38 @@ void pair_edges(Prep& s) {
   bucket[2 * nv + 1] = total_uses;
   s.components = UnionFind(cf);
   s.face_pairs.resize((size_t(total_uses) + 1) / 2);
-  static_assert(sizeof(std::array<uint32_t, 3>) == 3 * sizeof(uint32_t), "packed representatives");
   static_assert(sizeof(std::array<uint32_t, 2>) == 2 * sizeof(uint32_t), "packed pairs");
-  RawVector<uint32_t> upper_store;
-  uint32_t* upper;
-  if (total_uses == 3 * cf) {
-    s.m.rep.resize(cf);
-    upper = reinterpret_cast<uint32_t*>(s.m.rep.data());
-  } else {
-    upper_store.resize(total_uses);
-    upper = upper_store.data();
-  }
-  uint32_t* use_face = reinterpret_cast<uint32_t*>(s.face_pairs.data());
+  uint32_t* const pair_storage = reinterpret_cast<uint32_t*>(s.face_pairs.data());
   // Filled backwards, each use at its bucket's end moved down by one: the buckets keep the uses
   // in face order, and bucket[b + 1] ends at the start of bucket b (no separate cursor array).
   // Then bucket b is [bucket[b + 1], bucket[b + 2]).
   const uint32_t* cl = s.cl;
-  const uint32_t* off = s.clean_offsets.data();  // (read only when some face is not a triangle)
   uint32_t* cursor = bucket.data() + 1;
-  auto put = [&](uint32_t u, uint32_t v, uint32_t f) {
-    const uint32_t slot = --cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))];
-    upper[slot] = std::max(u, v);
-    use_face[slot] = f;
-  };
-  if (total_uses == 3 * cf) {
+  auto slot_of = [cursor](uint32_t u, uint32_t v) { return --cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))]; };
+  if (total_uses == 3 * cf) {  // every clean face is a triangle
+    uint32_t* use_id = pair_storage;
     for (size_t f = cf; f-- > 0;) {
-      const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2];
-      put(c, a, uint32_t(f));
-      put(b, c, uint32_t(f));
-      put(a, b, uint32_t(f));
+      const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2], u = uint32_t(3 * f);
+      use_id[slot_of(c, a)] = u + 2;
+      use_id[slot_of(b, c)] = u + 1;
+      use_id[slot_of(a, b)] = u;
     }
-  } else {
-    for (size_t f = cf; f-- > 0;) {
-      const size_t b = off[f], e = off[f + 1];
-      for (size_t i = e; i-- > b;) put(cl[i], cl[i + 1 < e ? i + 1 : b], uint32_t(f));
+    EdgePairing<TriangleUses>(s, TriangleUses{use_id, cl}, nv).pair_all(nv);
+    return;
+  }
+  RawVector<uint32_t> upper_store(total_uses);
+  uint32_t* upper = upper_store.data();
+  uint32_t* use_face = pair_storage;
+  const uint32_t* off = s.clean_offsets.data();
+  for (size_t f = cf; f-- > 0;) {
+    const size_t b = off[f], e = off[f + 1];
+    for (size_t i = e; i-- > b;) {
+      const uint32_t u = cl[i], v = cl[i + 1 < e ? i + 1 : b], slot = slot_of(u, v);
+      upper[slot] = std::max(u, v);
+      use_face[slot] = uint32_t(f);
     }
   }
-  EdgePairing(s, upper, use_face, nv).pair_all(nv);
+  EdgePairing<SeparateUses>(s, SeparateUses{upper, use_face}, nv).pair_all(nv);
 }
 
 // Refuses non-manifold, inconsistently oriented and (unless allowed) open edges, in that order.
@@ -442,11 +466,10 @@ bool count_components(Prep& s) {
 bool check_shared_positions(Prep& s) {
   const size_t unused = s.nv - size_t(std::count(s.used.begin(), s.used.end(), 1));
   if (unused) s.m.warnings.push_back(unused_vertices_warning(unused));
-  // The representatives' storage holds the edge check's upper ids, read no more, until
-  // sum_fan_volume writes them: the bucket counts live there when they fit (no fresh pages).
-  static_assert(sizeof(std::array<uint32_t, 3>) == 12, "packed representatives");
-  uint64_t* scratch = reinterpret_cast<uint64_t*>(s.m.rep.data());
-  const size_t scratch_slots = s.m.rep.capacity() * 12 / sizeof(uint64_t);
+  // The edge check's buckets are read no more: the bucket counts live there when they fit (no
+  // fresh pages).
+  uint64_t* scratch = reinterpret_cast<uint64_t*>(s.bucket.data());
+  const size_t scratch_slots = s.bucket.size() * sizeof(uint32_t) / sizeof(uint64_t);
   if (!has_shared_position(s.m.points, s.used, s.nv - unused, s.lo3, s.hi3, scratch, scratch_slots)) return true;
   const auto pair = first_shared_position(s.m.points, s.used);
   return s.fail(Error::NonManifoldEdge,

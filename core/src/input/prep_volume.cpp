@@ -92,8 +92,13 @@ void sum_fan_volume(Prep& s) {
   }
   const size_t cf = s.cf;
   double vol6 = 0, vol6_abs = 0;
-  m.rep.resize(cf);
+  s.reps_unwritten = s.verdict_only && m.shells < 2;
+  if (s.reps_unwritten)
+    m.rep.reserve(cf);  // (its pages are not touched)
+  else
+    m.rep.resize(cf);
   std::array<uint32_t, 3>* rep_out = m.rep.data();
+  const bool write_reps = !s.reps_unwritten;
   const uint32_t* cl = s.cl;
   const uint32_t* off = s.clean_offsets.data();  // (read only when some face is not a triangle)
   const double* pts = m.points.data();
@@ -103,7 +108,7 @@ void sum_fan_volume(Prep& s) {
     vol6 += d;
     vol6_abs += std::fabs(d);
     if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) return false;
-    rep_out[f] = {i0, i1, i2};
+    if (write_reps) rep_out[f] = {i0, i1, i2};
     return true;
   };
   size_t f = 0;
@@ -154,7 +159,8 @@ bool orient_by_volume(Prep& s) {
     s.own_clean();
     for (size_t f = 0; f < s.cf; ++f)
       std::reverse(s.clean.begin() + s.clean_offsets[f], s.clean.begin() + s.clean_offsets[f + 1]);
-    for (auto& t : m.rep) std::swap(t[0], t[2]);
+    if (!s.reps_unwritten)
+      for (auto& t : m.rep) std::swap(t[0], t[2]);
   }
   return true;
 }
@@ -169,7 +175,8 @@ bool check_split_volume(Prep& s) {
   if (!open && s.nonplanar > 0 && m.volume < 0) {
     for (size_t f = 0; f + 1 < m.loop_offsets.size(); ++f)
       std::reverse(m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
-    for (auto& t : m.rep) std::swap(t[0], t[2]);
+    if (!s.reps_unwritten)
+      for (auto& t : m.rep) std::swap(t[0], t[2]);
     m.volume = -m.volume;
     auto flipped = std::find_if(m.warnings.begin(), m.warnings.end(),
                                 [](const Warning& w) { return w.kind == Warning::Kind::OrientationFlipped; });
