@@ -137,7 +137,8 @@ struct TriangleUses {
 };
 
 // The edge check's pass over the edge uses, bucketed (Prep::bucket) by lower vertex: the uses of
-// the edges of one lower vertex are tallied per upper vertex, then each edge is judged once. On a
+// the edges of one lower vertex are marked per upper vertex (4 bytes a vertex), or tallied when
+// they do not pair up, then each edge is judged once. On a
 // closed, consistently oriented 2-manifold every edge has one use each way, and its two faces
 // are a pair. Pairs are listed by lower vertex id, then in the order of the faces using the edge
 // upwards; each pair lists its lower face first. At most one pair per two uses; written through
@@ -147,12 +148,7 @@ template <class Uses>
 class EdgePairing {
  public:
   EdgePairing(Prep& s, Uses uses, size_t nv)
-      : s_(s),
-        uses_(uses),
-        tally_store_(nv),
-        tally_(tally_store_.data()),
-        parent_(s.components.parent.data()),
-        pair_out_(s.face_pairs.data()) {}
+      : s_(s), uses_(uses), mark_(nv), parent_(s.components.parent.data()), pair_out_(s.face_pairs.data()) {}
   void pair_all(size_t nv) {
     const uint32_t* start = s_.bucket.data() + 1;
     for (size_t lo = 0; lo < nv; ++lo) pair_lower_vertex(lo, start[2 * lo], start[2 * lo + 1], start[2 * lo + 2]);
@@ -188,6 +184,7 @@ class EdgePairing {
     if (end - down_begin > upper_ids_.size()) {
       upper_ids_.resize(2 * (end - down_begin));
       faces_.resize(2 * (end - down_begin));
+      match_.resize(2 * (end - down_begin));
     }
     uint32_t* const hi_of = upper_ids_.data();
     uint32_t* const face_of = faces_.data();
@@ -195,27 +192,28 @@ class EdgePairing {
       hi_of[i] = uses_.upper(down_begin + i);
       face_of[i] = uses_.face(down_begin + i);
     }
+    // Each edge of lo (each upper vertex) has one mark: the index + 1 of its one downward use,
+    // kManyDowns, or 0 for none; and kUpSeen once an upward use met it. When every upward use
+    // meets an edge with one downward use and no upward use yet, and there are as many downward
+    // uses, every edge of lo has one use each way: its pairs are the ones judge() would make, in
+    // the same order, and each mark is cleared as its pair is written.
+    bool paired = ups == downs && downs + ups < kManyDowns;
     for (size_t i = 0; i != downs; ++i) {
-      Tally& t = tally_[hi_of[i]];
-      ++t.down;
-      t.down_face = face_of[i];
+      uint32_t& mark = mark_[hi_of[i]];
+      mark = mark == 0 ? uint32_t(i + 1) : kManyDowns;
     }
-    // When every upward use meets an edge with one use each way (t.up == 1 and t.down == 1 once
-    // tallied) and there are as many downward uses, every edge of lo has one use each way: the
-    // pairs are the ones judge() would make, in the same order, and each use's tally is cleared
-    // as its pair is written.
-    bool paired = ups == downs;
+    uint32_t* const match = match_.data();
     for (size_t i = downs; i != downs + ups; ++i) {
-      Tally& t = tally_[hi_of[i]];
-      ++t.up;
-      t.up_face = face_of[i];
-      paired &= t.up == 1 && t.down == 1;
+      uint32_t& mark = mark_[hi_of[i]];
+      paired &= mark != 0 && mark < kManyDowns;  // (none, several, or kUpSeen set: no pair)
+      match[i] = mark - 1;
+      mark |= kUpSeen;
     }
     if (paired) {
       for (size_t i = downs; i != downs + ups; ++i) {
-        Tally& t = tally_[hi_of[i]];
-        const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
-        t = Tally{};
+        const uint32_t up_face = face_of[i], down_face = face_of[match[i]];
+        const uint32_t f0 = std::min(up_face, down_face), f1 = std::max(up_face, down_face);
+        mark_[hi_of[i]] = 0;
         (*pair_out_)[0] = f0;
         (*pair_out_)[1] = f1;
         ++pair_out_;
@@ -223,16 +221,48 @@ class EdgePairing {
       }
       return;
     }
+    for (size_t i = 0; i != downs + ups; ++i) mark_[hi_of[i]] = 0;
+    judge_each(lo, downs, ups);
+  }
+  // The edges of lo judged one by one (a fault, or an open mesh), their uses tallied in a table
+  // of their own: tally(hi), cleared by judge().
+  void judge_each(size_t lo, size_t downs, size_t ups) {
+    const uint32_t* const hi_of = upper_ids_.data();
+    const uint32_t* const face_of = faces_.data();
+    size_t slots = 16;
+    while (slots < 2 * (downs + ups)) slots <<= 1;
+    tally_key_.assign(slots, kNoKey);
+    tally_slot_.assign(slots, Tally{});
+    for (size_t i = 0; i != downs; ++i) {
+      Tally& t = tally(hi_of[i]);
+      ++t.down;
+      t.down_face = face_of[i];
+    }
+    for (size_t i = downs; i != downs + ups; ++i) {
+      Tally& t = tally(hi_of[i]);
+      ++t.up;
+      t.up_face = face_of[i];
+    }
     std::array<uint32_t, 2>* const pairs_before = pair_out_;
     for (size_t i = downs; i != downs + ups; ++i) judge(lo, hi_of[i]);
     // (as many pairs as downward uses: each pair took one, all are judged and cleared)
     if (size_t(pair_out_ - pairs_before) == downs) return;
     for (size_t i = 0; i != downs; ++i) judge(lo, hi_of[i]);
   }
+  Tally& tally(uint32_t hi) {
+    const size_t mask = tally_key_.size() - 1;
+    for (size_t slot = size_t(uint64_t(hi) * 0x9e3779b97f4a7c15ull >> 32) & mask;; slot = (slot + 1) & mask) {
+      if (tally_key_[slot] == hi) return tally_slot_[slot];
+      if (tally_key_[slot] == kNoKey) {
+        tally_key_[slot] = hi;
+        return tally_slot_[slot];
+      }
+    }
+  }
   // Edge (lo, hi), judged at its first upward use, or first downward use if it has none; then
   // its tally is cleared.
   void judge(size_t lo, uint32_t hi) {
-    Tally& t = tally_[hi];
+    Tally& t = tally(hi);
     if (t.up == 1 && t.down == 1) {
       const uint32_t f0 = std::min(t.up_face, t.down_face), f1 = std::max(t.up_face, t.down_face);
       (*pair_out_)[0] = f0;
@@ -257,9 +287,14 @@ class EdgePairing {
   }
   Prep& s_;
   Uses uses_;
-  std::vector<Tally> tally_store_;  // per upper vertex id; all zero between lower vertices
-  Tally* tally_;
-  std::vector<uint32_t> upper_ids_ = std::vector<uint32_t>(64), faces_ = std::vector<uint32_t>(64);  // lo's uses
+  static constexpr uint32_t kUpSeen = 0x80000000u, kManyDowns = 0x7fffffffu;
+  static constexpr uint64_t kNoKey = ~uint64_t(0);
+  std::vector<uint32_t> mark_;       // per upper vertex id; all zero between lower vertices
+  std::vector<uint64_t> tally_key_;  // judge_each's table: upper ids, or kNoKey
+  std::vector<Tally> tally_slot_;
+  // lo's uses (match: for an upward use, the index of the downward use of its edge)
+  std::vector<uint32_t> upper_ids_ = std::vector<uint32_t>(64), faces_ = std::vector<uint32_t>(64),
+                        match_ = std::vector<uint32_t>(64);
   uint32_t* parent_;
   std::array<uint32_t, 2>* pair_out_;
 };
