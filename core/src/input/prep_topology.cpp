@@ -320,18 +320,27 @@ bool clean_faces(Prep& s) {
   uint32_t* count = s.bucket.data() + 1;
   // (bucket 2 lo + 1 < 2 hi, bucket 2 lo < 2 hi + 1: the smaller is the use's bucket)
   auto count_use = [count](uint32_t u, uint32_t v) { count[std::min(2 * size_t(u) + 1, 2 * size_t(v))]++; };
+  // The usual leading run of a triangle mesh: face f is at 3 f. For a verdict, when the run is
+  // the whole mesh, the clean faces are the input's (Prep::cl), else the run is copied after;
+  // for the faces, it is copied as it is read (the loops are the result's).
   size_t f = 0;
-  if (!mesh.face_sizes) {
-    // The usual leading run of a triangle mesh: face f is at 3 f. When it is the whole mesh, the
-    // clean faces are the input's (Prep::cl); else it is copied, and the rest cleaned below.
+  auto leading_run = [&](uint32_t* copy) KERGEN_INLINE {
     for (; f < nf; ++f, in += 3) {
       const uint32_t a = in[0], b = in[1], c = in[2];
       if (a == b || b == c || c == a) break;
+      if (copy) {
+        copy[3 * f] = a;
+        copy[3 * f + 1] = b;
+        copy[3 * f + 2] = c;
+      }
       us[a] = us[b] = us[c] = 1;
       count_use(a, b);
       count_use(b, c);
       count_use(c, a);
     }
+  };
+  if (!mesh.face_sizes && s.verdict_only) {
+    leading_run(nullptr);
     if (f == nf) {
       s.cl = mesh.indices;
       s.clean_size = 3 * nf;
@@ -344,7 +353,10 @@ bool clean_faces(Prep& s) {
   s.clean_offsets.resize(nf + 1);
   uint32_t* cl = s.clean.data();
   uint32_t* off = s.clean_offsets.data();
-  std::copy(mesh.indices, mesh.indices + 3 * f, cl);
+  if (!mesh.face_sizes && !s.verdict_only)
+    leading_run(cl);
+  else
+    std::copy(mesh.indices, mesh.indices + 3 * f, cl);
   for (size_t g = 0; g <= f; ++g) off[g] = uint32_t(3 * g);
   size_t n = 3 * f, dropped = 0, cf = f;  // clean entries so far, faces dropped, clean faces
   for (; f < nf; ++f) {
@@ -397,10 +409,12 @@ bool clean_faces(Prep& s) {
 }
 
 // The edge check: a counting sort of the edge uses into their buckets (no hashing and no
-// comparison sort), then EdgePairing. No fresh memory is taken for the uses of a triangle mesh
-// (first touches of fresh pages are costly): they go into the pairs' storage, one use id of 4
-// bytes each (TriangleUses), and the pairs are written over the uses already read. A polygon
-// mesh's uses take their upper ids from a separate array and their faces from the pairs' storage.
+// comparison sort), then EdgePairing. The uses take no fresh memory where that can be avoided
+// (first touches of fresh pages are costly): their faces go into the pairs' storage, which holds
+// one face per use, and the pairs are written over the uses already read. The upper ids go into
+// the representatives' storage (written after the check) when it holds one id per use, which is
+// when every face is a triangle; a verdict writes no representatives, and its triangles' uses
+// are 4-byte use ids in the pairs' storage alone (TriangleUses). Polygons take a separate array.
 void pair_edges(Prep& s) {
   const size_t nv = s.nv, cf = s.cf;
   std::vector<uint32_t>& bucket = s.bucket;
@@ -417,7 +431,7 @@ void pair_edges(Prep& s) {
   const uint32_t* cl = s.cl;
   uint32_t* cursor = bucket.data() + 1;
   auto slot_of = [cursor](uint32_t u, uint32_t v) { return --cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))]; };
-  if (total_uses == 3 * cf) {  // every clean face is a triangle
+  if (total_uses == 3 * cf && s.verdict_only) {  // every clean face is a triangle
     uint32_t* use_id = pair_storage;
     for (size_t f = cf; f-- > 0;) {
       const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2], u = uint32_t(3 * f);
@@ -428,16 +442,36 @@ void pair_edges(Prep& s) {
     EdgePairing<TriangleUses>(s, TriangleUses{use_id, cl}, nv).pair_all(nv);
     return;
   }
-  RawVector<uint32_t> upper_store(total_uses);
-  uint32_t* upper = upper_store.data();
+  // (The faces' representatives are written after the check: when there are as many as uses,
+  // their storage holds the upper ids meanwhile.)
+  static_assert(sizeof(std::array<uint32_t, 3>) == 3 * sizeof(uint32_t), "packed representatives");
+  RawVector<uint32_t> upper_store;
+  uint32_t* upper;
+  if (total_uses == 3 * cf) {
+    s.m.rep.resize(cf);
+    upper = reinterpret_cast<uint32_t*>(s.m.rep.data());
+  } else {
+    upper_store.resize(total_uses);
+    upper = upper_store.data();
+  }
   uint32_t* use_face = pair_storage;
-  const uint32_t* off = s.clean_offsets.data();
-  for (size_t f = cf; f-- > 0;) {
-    const size_t b = off[f], e = off[f + 1];
-    for (size_t i = e; i-- > b;) {
-      const uint32_t u = cl[i], v = cl[i + 1 < e ? i + 1 : b], slot = slot_of(u, v);
-      upper[slot] = std::max(u, v);
-      use_face[slot] = uint32_t(f);
+  auto put = [&](uint32_t u, uint32_t v, uint32_t f) KERGEN_INLINE {
+    const uint32_t slot = slot_of(u, v);
+    upper[slot] = std::max(u, v);
+    use_face[slot] = f;
+  };
+  if (total_uses == 3 * cf) {
+    for (size_t f = cf; f-- > 0;) {
+      const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2];
+      put(c, a, uint32_t(f));
+      put(b, c, uint32_t(f));
+      put(a, b, uint32_t(f));
+    }
+  } else {
+    const uint32_t* off = s.clean_offsets.data();
+    for (size_t f = cf; f-- > 0;) {
+      const size_t b = off[f], e = off[f + 1];
+      for (size_t i = e; i-- > b;) put(cl[i], cl[i + 1 < e ? i + 1 : b], uint32_t(f));
     }
   }
   EdgePairing<SeparateUses>(s, SeparateUses{upper, use_face}, nv).pair_all(nv);
