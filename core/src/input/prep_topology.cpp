@@ -26,74 +26,87 @@ namespace {
 // are one position), in expected linear time. A table of every vertex is larger than the caches
 // on big meshes and every lookup missed; instead a first pass counts the vertices per bucket of
 // their positions' hashes (saturating at two; two bits per bucket, about 8 buckets per vertex,
-// so the counts stay in the caches), and a second pass puts only the vertices of buckets met
-// twice into a PointTable: both vertices of any shared position, and a few per cent of the
-// others. The first pass takes the bounding box of the used vertices, in id order (complete
-// when the answer is false). The counts live in `scratch` (of `scratch_slots` words) when they fit.
+// so the counts stay in the caches) and keeps each vertex's bucket, and a second pass puts only
+// the vertices of buckets met twice into a PointTable: both vertices of any shared position, and
+// a few per cent of the others. The first pass takes the bounding box of the used vertices, in id
+// order (complete when the answer is false). The counts and buckets live in `scratch` (of
+// `scratch_slots` words) when they fit.
 bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used, double lo3[3],
                          double hi3[3], uint64_t* scratch, size_t scratch_slots) {
-  int bucket_bits = 6;
-  while ((size_t(1) << bucket_bits) < 8 * num_used) ++bucket_bits;
-  const int shift = 64 - bucket_bits;
-  const size_t words = (size_t(1) << bucket_bits) / 32;  // (32 buckets of two bits a word)
-  RawVector<uint64_t> own;
-  uint64_t* counts = scratch;
-  if (!scratch || words > scratch_slots) {
-    own.resize(words);
-    counts = own.data();
-  }
-  std::fill(counts, counts + words, uint64_t(0));
   const double* P = pts.data();
   const char* us = used.data();
   const size_t nv = used.size();
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  // Both passes take a block of used vertices at a time: their buckets first, with the count
-  // words prefetched, then the counts (the words are in the caches by then, mostly).
-  constexpr size_t kBlock = 64;
-  uint32_t ids[kBlock];
-  uint64_t hashes[kBlock];
-  auto next_block = [&](size_t& v0, bool box) {
-    size_t n = 0;
-    for (; v0 < nv && n < kBlock; ++v0) {
-      if (!us[v0]) continue;
-      const double* p = P + 3 * v0;
-      if (box)
-        for (int k = 0; k < 3; ++k) {
-          lo[k] = std::min(lo[k], p[k]);
-          hi[k] = std::max(hi[k], p[k]);
-        }
-      ids[n] = uint32_t(v0);
-      hashes[n] = PointTable::hash(p);
-      prefetch(counts + (hashes[n] >> shift >> 5));
-      ++n;
+  auto take_box = [&](const double* p) KERGEN_INLINE {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
     }
-    return n;
   };
-  size_t twice = 0;  // buckets met twice
-  for (size_t v0 = 0; v0 < nv;) {
-    const size_t n = next_block(v0, true);
-    for (size_t j = 0; j < n; ++j) {
-      const uint64_t b = hashes[j] >> shift;
+  auto give_box = [&] {
+    for (int k = 0; k < 3; ++k) {
+      lo3[k] = lo[k];
+      hi3[k] = hi[k];
+    }
+  };
+  int bucket_bits = 6;
+  while ((size_t(1) << bucket_bits) < 8 * num_used) ++bucket_bits;
+  if (bucket_bits > 32) {  // (over 2^29 vertices: bucket ids of 32 bits do not suffice) a table of them all
+    PointTable table(num_used);
+    for (size_t v = 0; v < nv; ++v)
+      if (us[v]) {
+        take_box(P + 3 * v);
+        if (table.find_or_insert(P, P + 3 * v, PointTable::hash(P + 3 * v), uint32_t(v)) != v) return true;
+      }
+    give_box();
+    return false;
+  }
+  const int shift = 64 - bucket_bits;
+  const size_t words = (size_t(1) << bucket_bits) / 32;  // (32 buckets of two bits a word)
+  // The counts, then each used vertex's bucket (in id order), for the second pass.
+  const size_t slots = words + (num_used + 1) / 2;
+  RawVector<uint64_t> own;
+  uint64_t* counts = scratch;
+  if (!scratch || slots > scratch_slots) {
+    own.resize(slots);
+    counts = own.data();
+  }
+  std::fill(counts, counts + words, uint64_t(0));
+  uint32_t* const bucket_of = reinterpret_cast<uint32_t*>(counts + words);
+  // A block of used vertices at a time: their buckets first, with the count words prefetched,
+  // then the counts (the words are in the caches by then, mostly).
+  constexpr size_t kBlock = 64;
+  size_t twice = 0, k = 0;  // buckets met twice, used vertices so far
+  for (size_t v = 0; v < nv;) {
+    const size_t k0 = k;
+    for (; v < nv && k < k0 + kBlock; ++v) {
+      if (!us[v]) continue;
+      const double* p = P + 3 * v;
+      take_box(p);
+      bucket_of[k] = uint32_t(PointTable::hash(p) >> shift);
+      prefetch(counts + (bucket_of[k] >> 5));
+      ++k;
+    }
+    for (size_t j = k0; j < k; ++j) {
+      const uint32_t b = bucket_of[j];
       const int at = int(2 * (b & 31));
       const uint64_t count = (counts[b >> 5] >> at) & 3;  // 0, 1, or 3 for two or more
       twice += count == 1;
       counts[b >> 5] |= ((count << 1 | 1) & 3) << at;
     }
   }
-  for (int k = 0; k < 3; ++k) {
-    lo3[k] = lo[k];
-    hi3[k] = hi[k];
-  }
+  give_box();
   if (twice == 0) return false;
   PointTable table(2 * twice + 16);  // (about as many vertices as that at the buckets met twice)
-  for (size_t v0 = 0; v0 < nv;) {
-    const size_t n = next_block(v0, false);
-    for (size_t j = 0; j < n; ++j) {
-      const uint64_t b = hashes[j] >> shift;
-      if (((counts[b >> 5] >> (2 * (b & 31))) & 3) == 3 &&
-          table.find_or_insert(P, P + 3 * size_t(ids[j]), hashes[j], ids[j]) != ids[j])
-        return true;
-    }
+  k = 0;
+  for (size_t v = 0; v < nv; ++v) {
+    if (!us[v]) continue;
+    const uint32_t b = bucket_of[k];
+    if (k + 32 < num_used) prefetch(counts + (bucket_of[k + 32] >> 5));
+    ++k;
+    if (((counts[b >> 5] >> (2 * (b & 31))) & 3) != 3) continue;
+    const double* p = P + 3 * v;
+    if (table.find_or_insert(P, p, PointTable::hash(p), uint32_t(v)) != v) return true;
   }
   return false;
 }
