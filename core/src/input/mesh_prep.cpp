@@ -29,7 +29,9 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
   s.nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
   s.m.input_faces = s.nf;
   // (A phase that refuses the mesh has set m.error and m.message; m is returned as it stands.)
-  if (!check_arrays(s) || !check_coordinates_and_indices(s) || !scale_points(s) || !clean_faces(s))
+  // (clean_faces refuses indices out of range, before scale_points refuses a coordinate range;
+  // faces that all collapse are refused after it.)
+  if (!check_arrays(s) || !check_coordinates(s) || !clean_faces(s) || !scale_points(s) || !check_faces_left(s))
     return std::move(s.m);
   pair_edges(s);
   if (!report_edge_faults(s) || !count_components(s) || !check_shared_positions(s)) return std::move(s.m);

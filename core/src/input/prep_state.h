@@ -117,11 +117,13 @@ struct Prep {
 
 // prep_coordinates.cpp: the raw arrays, the coordinates and indices, the exact scale.
 bool check_arrays(Prep& s);
-bool check_coordinates_and_indices(Prep& s);
+bool check_coordinates(Prep& s);
 bool scale_points(Prep& s);
 
-// prep_topology.cpp: clean faces, the edge check, connected pieces, shared positions.
+// prep_topology.cpp: clean faces (and indices in range), the edge check, connected pieces,
+// shared positions.
 bool clean_faces(Prep& s);
+bool check_faces_left(Prep& s);
 void pair_edges(Prep& s);
 bool report_edge_faults(Prep& s);
 bool count_components(Prep& s);

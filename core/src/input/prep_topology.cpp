@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -316,16 +317,24 @@ std::string edge_name(uint64_t k) {
   return "(" + std::to_string(uint32_t(k >> 32)) + ", " + std::to_string(uint32_t(k & 0xffffffffu)) + ")";
 }
 
+// The refusal of the first index out of range, in face f (the input's numbering).
+bool fail_index(Prep& s, size_t f, uint32_t index) {
+  std::ostringstream msg;
+  msg << "face " << f << " refers to vertex " << index << " but the mesh has " << s.nv << " vertices";
+  return s.fail(Error::IndexOutOfRange, msg.str());
+}
+
 }  // namespace
 
 // Faces without repeated consecutive vertices; faces left with < 3 distinct vertices carry no
 // area and no edges of their own (a -> b -> a pairs cancel), so they are dropped here. The same
-// pass marks the used vertices and counts the edge uses per bucket (Prep::bucket). (Raw pointers
+// pass refuses the first index out of range (each face is checked before it is used), marks the
+// used vertices and counts the edge uses per bucket (Prep::bucket). (Raw pointers
 // in the loops: the stores through char would otherwise make the compiler reload every vector's
 // pointers after each one.)
 bool clean_faces(Prep& s) {
   const MeshView& mesh = s.mesh;
-  const size_t nf = s.nf;
+  const size_t nf = s.nf, nv = s.nv;
   s.used.assign(s.nv, 0);
   s.bucket.assign(2 * s.nv + 2, 0);
   const uint32_t* in = mesh.indices;
@@ -340,7 +349,7 @@ bool clean_faces(Prep& s) {
   auto leading_run = [&](uint32_t* copy) KERGEN_INLINE {
     for (; f < nf; ++f, in += 3) {
       const uint32_t a = in[0], b = in[1], c = in[2];
-      if (a == b || b == c || c == a) break;
+      if (a == b || b == c || c == a || std::max(a, std::max(b, c)) >= nv) break;
       if (copy) {
         copy[3 * f] = a;
         copy[3 * f + 1] = b;
@@ -374,7 +383,8 @@ bool clean_faces(Prep& s) {
   size_t n = 3 * f, dropped = 0, cf = f;  // clean entries so far, faces dropped, clean faces
   for (; f < nf; ++f) {
     const size_t begin = n, k = mesh.face_sizes ? mesh.face_sizes[f] : 3;
-    if (k == 3 && in[0] != in[1] && in[1] != in[2] && in[2] != in[0]) {  // the usual case
+    if (k == 3 && in[0] != in[1] && in[1] != in[2] && in[2] != in[0] &&
+        std::max(in[0], std::max(in[1], in[2])) < nv) {  // the usual case
       const uint32_t a = in[0], b = in[1], c = in[2];
       cl[n] = a;
       cl[n + 1] = b;
@@ -389,6 +399,8 @@ bool clean_faces(Prep& s) {
       count_use(c, a);
       continue;
     }
+    for (size_t i = 0; i < k; ++i)
+      if (in[i] >= nv) return fail_index(s, f, in[i]);
     for (size_t i = 0; i < k; ++i)
       if (n == begin || cl[n - 1] != in[i]) cl[n++] = in[i];
     while (n - begin > 1 && cl[n - 1] == cl[begin]) --n;
@@ -417,7 +429,11 @@ bool clean_faces(Prep& s) {
   s.clean_size = n;
   s.m.dropped_faces += dropped;
   s.cf = cf;
-  if (cf == 0) return s.fail(Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
+  return true;
+}
+
+bool check_faces_left(Prep& s) {
+  if (s.cf == 0) return s.fail(Error::DegenerateInput, "every face has fewer than 3 distinct vertices");
   return true;
 }
 

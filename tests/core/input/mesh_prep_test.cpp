@@ -360,3 +360,42 @@ TEST(MeshPrep, VerdictIsTheFacesVerdict) {
       EXPECT_EQ(verdict.num_faces(), faces.num_faces());
     }
 }
+
+// Indices are checked while the faces are cleaned, after the coordinates' finiteness and before
+// their range; faces that all collapse are refused after the range. The refusals keep that order,
+// and name the first index out of range in input order (triangles and polygons alike).
+TEST(MeshPrep, RefusalsKeepTheirPrecedence) {
+  Mesh base;
+  base.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  base.indices = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+  auto refusal = [](const Mesh& m) {
+    const PreparedMesh p = prepare_mesh(m.view(), Options{});
+    return std::make_pair(p.error, p.message);
+  };
+  Mesh wide = base;  // coordinates too wide for exact evaluation
+  wide.positions[3] = 1e300;
+  wide.positions[4] = 1e-300;
+  EXPECT_EQ(refusal(wide).first, Error::CoordinateRange);
+  Mesh m = wide;
+  m.indices[7] = 9;
+  EXPECT_EQ(refusal(m), std::make_pair(Error::IndexOutOfRange,
+                                       std::string("face 2 refers to vertex 9 but the mesh has 4 vertices")));
+  m = wide;
+  m.indices = {0, 0, 1, 2, 2, 3};  // every face collapses
+  EXPECT_EQ(refusal(m).first, Error::CoordinateRange);
+  m.positions = base.positions;
+  EXPECT_EQ(refusal(m).first, Error::DegenerateInput);
+  m.indices = {0, 0, 1, 2, 2, 9};  // a collapsed face, then an index out of range
+  EXPECT_EQ(refusal(m), std::make_pair(Error::IndexOutOfRange,
+                                       std::string("face 1 refers to vertex 9 but the mesh has 4 vertices")));
+  m = base;
+  m.positions[5] = NAN;
+  m.indices[2] = 7;
+  EXPECT_EQ(refusal(m).first, Error::NonFiniteCoordinate);
+  m = base;  // polygons: the first index out of range in input order
+  m.face_sizes = {3, 3, 3, 3};
+  m.indices[11] = 4;
+  m.indices[5] = 5;
+  EXPECT_EQ(refusal(m), std::make_pair(Error::IndexOutOfRange,
+                                       std::string("face 1 refers to vertex 5 but the mesh has 4 vertices")));
+}
