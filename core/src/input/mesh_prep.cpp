@@ -33,9 +33,12 @@ PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool all
   // faces that all collapse are refused after it.)
   if (!check_arrays(s) || !check_coordinates(s) || !clean_faces(s) || !scale_points(s) || !check_faces_left(s))
     return std::move(s.m);
+  // (The shared positions and the box are found before the edge check, whose pass over a
+  // verdict's triangles sums their volume about the box's centre; they are reported after it.)
+  find_shared_positions(s);
+  take_bounding_box(s);
   pair_edges(s);
   if (!report_edge_faults(s) || !count_components(s) || !check_shared_positions(s)) return std::move(s.m);
-  take_bounding_box(s);
   sum_fan_volume(s);
   if (!orient_by_volume(s) || !build_plane_faces(s) || !check_split_volume(s)) return std::move(s.m);
   move_loops(s);

@@ -38,8 +38,8 @@ struct Prep {
   // clean_faces: the faces without repeated consecutive vertices (cf of them), the used
   // vertices, and the edge uses counted per bucket. Edge uses are bucketed by their lower vertex
   // id and direction: bucket 2 lo + 1 holds the uses running up from lo (lo -> hi, hi > lo),
-  // bucket 2 lo those running down to lo. bucket[b + 1]: size of bucket b, then its end, then
-  // (after the fill) its start.
+  // bucket 2 lo those running down to lo. bucket[b + 1]: size of bucket b, then its start, then
+  // (after pair_edges' fill) its end.
   // When every face is a triangle of three distinct vertices (the usual case) the clean faces are
   // the input's: `cl` then points at its indices (clean_viewed) and `clean` and `clean_offsets`
   // stay empty until a phase that changes or walks the loops in general asks for its own copy
@@ -73,7 +73,11 @@ struct Prep {
   size_t unions = 0;
   RawVector<std::array<uint32_t, 2>> face_pairs;
 
-  // check_shared_positions: the bounding box of the used vertices.
+  // find_shared_positions (run before the edge check, reported by check_shared_positions after
+  // it): the unused vertices, whether two used vertices share a position, the bounding box of
+  // the used vertices (its zero bounds' signs set by take_bounding_box).
+  size_t unused = 0;
+  bool shared_position = false;
   double lo3[3], hi3[3];
 
   // sum_fan_volume: the box centre, its largest side, six times the volume of the fans about the
@@ -81,6 +85,7 @@ struct Prep {
   double c[3] = {0, 0, 0}, ext = 0;
   double vol6 = 0, vol6_abs = 0;
   size_t first_general = 0;
+  bool volume_summed = false;  // by pair_edges, for a verdict's triangles (in its pass over them)
   bool fans_enclose_nothing = false, flip = false;
   // A verdict without several shells to judge reads no representative: the leading run's are
   // then not written (m.rep holds that many unset entries; only their number is read).
@@ -127,10 +132,12 @@ bool check_faces_left(Prep& s);
 void pair_edges(Prep& s);
 bool report_edge_faults(Prep& s);
 bool count_components(Prep& s);
+void find_shared_positions(Prep& s);
 bool check_shared_positions(Prep& s);
 
 // prep_volume.cpp: bounding box, enclosed volume, orientation.
 void take_bounding_box(Prep& s);
+void take_centre(Prep& s);
 void sum_fan_volume(Prep& s);
 bool orient_by_volume(Prep& s);
 bool check_split_volume(Prep& s);

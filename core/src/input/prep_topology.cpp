@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "exact/predicates.h"
 #include "input/prep_state.h"
 #include "util/compiler_hints.h"
 #include "util/point_table.h"
@@ -30,8 +31,7 @@ namespace {
 // so the counts stay in the caches) and keeps each vertex's bucket, and a second pass puts only
 // the vertices of buckets met twice into a PointTable: both vertices of any shared position, and
 // a few per cent of the others. The first pass takes the bounding box of the used vertices, in id
-// order (complete when the answer is false). The counts and buckets live in `scratch` (of
-// `scratch_slots` words) when they fit.
+// order. The counts and buckets live in `scratch` (of `scratch_slots` words) when they fit.
 bool has_shared_position(const std::vector<double>& pts, const std::vector<char>& used, size_t num_used, double lo3[3],
                          double hi3[3], uint64_t* scratch, size_t scratch_slots) {
   const double* P = pts.data();
@@ -53,13 +53,12 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
   int bucket_bits = 6;
   while ((size_t(1) << bucket_bits) < 8 * num_used) ++bucket_bits;
   if (bucket_bits > 32) {  // (over 2^29 vertices: bucket ids of 32 bits do not suffice) a table of them all
+    for (size_t v = 0; v < nv; ++v)
+      if (us[v]) take_box(P + 3 * v);
+    give_box();
     PointTable table(num_used);
     for (size_t v = 0; v < nv; ++v)
-      if (us[v]) {
-        take_box(P + 3 * v);
-        if (table.find_or_insert(P, P + 3 * v, PointTable::hash(P + 3 * v), uint32_t(v)) != v) return true;
-      }
-    give_box();
+      if (us[v] && table.find_or_insert(P, P + 3 * v, PointTable::hash(P + 3 * v), uint32_t(v)) != v) return true;
     return false;
   }
   const int shift = 64 - bucket_bits;
@@ -164,7 +163,7 @@ class EdgePairing {
   EdgePairing(Prep& s, Uses uses, size_t nv)
       : s_(s), uses_(uses), mark_(nv), parent_(s.components.parent.data()), pair_out_(s.face_pairs.data()) {}
   void pair_all(size_t nv) {
-    const uint32_t* start = s_.bucket.data() + 1;
+    const uint32_t* start = s_.bucket.data();  // (bucket b is [start[b], start[b + 1]))
     for (size_t lo = 0; lo < nv; ++lo) pair_lower_vertex(lo, start[2 * lo], start[2 * lo + 1], start[2 * lo + 2]);
     s_.face_pairs.resize(size_t(pair_out_ - s_.face_pairs.data()));
   }
@@ -447,27 +446,47 @@ bool check_faces_left(Prep& s) {
 void pair_edges(Prep& s) {
   const size_t nv = s.nv, cf = s.cf;
   std::vector<uint32_t>& bucket = s.bucket;
+  // Bucket b's size is bucket[b + 1]: it becomes the bucket's start (a running sum), then its
+  // fill's cursor, and ends at the bucket's end, the start of bucket b + 1 (no separate cursor
+  // array). Then bucket b is [bucket[b], bucket[b + 1]) (bucket[0] = 0). Filled in face order,
+  // the buckets keep the uses in face order.
   uint32_t total_uses = 0;  // (the running sum stays in a register)
-  for (size_t b = 1; b <= 2 * nv; ++b) bucket[b] = total_uses += bucket[b];
-  bucket[2 * nv + 1] = total_uses;
+  for (size_t b = 1; b <= 2 * nv; ++b) {
+    const uint32_t size = bucket[b];
+    bucket[b] = total_uses;
+    total_uses += size;
+  }
   s.components = UnionFind(cf);
-  s.face_pairs.resize((size_t(total_uses) + 1) / 2);
+  s.face_pairs.resize((size_t(total_uses) + 1) / 2);  // (taken by find_shared_positions already)
   static_assert(sizeof(std::array<uint32_t, 2>) == 2 * sizeof(uint32_t), "packed pairs");
   uint32_t* const pair_storage = reinterpret_cast<uint32_t*>(s.face_pairs.data());
-  // Filled backwards, each use at its bucket's end moved down by one: the buckets keep the uses
-  // in face order, and bucket[b + 1] ends at the start of bucket b (no separate cursor array).
-  // Then bucket b is [bucket[b + 1], bucket[b + 2]).
   const uint32_t* cl = s.cl;
   uint32_t* cursor = bucket.data() + 1;
-  auto slot_of = [cursor](uint32_t u, uint32_t v) { return --cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))]; };
+  auto slot_of = [cursor](uint32_t u, uint32_t v) { return cursor[std::min(2 * size_t(u) + 1, 2 * size_t(v))]++; };
   if (total_uses == 3 * cf && s.verdict_only) {  // every clean face is a triangle
+    // The same pass over the faces sums their fans' volume (sum_fan_volume's, in its order) and
+    // finds the end of the leading run of triangles the float filter certifies.
+    take_centre(s);
+    const double* pts = s.m.points.data();
+    double vol6 = 0, vol6_abs = 0;
+    size_t first_general = cf;
     uint32_t* use_id = pair_storage;
-    for (size_t f = cf; f-- > 0;) {
+    for (size_t f = 0; f < cf; ++f) {
       const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2], u = uint32_t(3 * f);
-      use_id[slot_of(c, a)] = u + 2;
-      use_id[slot_of(b, c)] = u + 1;
       use_id[slot_of(a, b)] = u;
+      use_id[slot_of(b, c)] = u + 1;
+      use_id[slot_of(c, a)] = u + 2;
+      const double d = s.vol6_about_centre(a, b, c);
+      vol6 += d;
+      vol6_abs += std::fabs(d);
+      if (first_general == cf &&
+          !certainly_not_collinear(pts + 3 * size_t(a), pts + 3 * size_t(b), pts + 3 * size_t(c)))
+        first_general = f;
     }
+    s.vol6 = vol6;
+    s.vol6_abs = vol6_abs;
+    s.first_general = first_general;
+    s.volume_summed = true;
     EdgePairing<TriangleUses>(s, TriangleUses{use_id, cl}, nv).pair_all(nv);
     return;
   }
@@ -490,17 +509,17 @@ void pair_edges(Prep& s) {
     use_face[slot] = f;
   };
   if (total_uses == 3 * cf) {
-    for (size_t f = cf; f-- > 0;) {
+    for (size_t f = 0; f < cf; ++f) {
       const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2];
-      put(c, a, uint32_t(f));
-      put(b, c, uint32_t(f));
       put(a, b, uint32_t(f));
+      put(b, c, uint32_t(f));
+      put(c, a, uint32_t(f));
     }
   } else {
     const uint32_t* off = s.clean_offsets.data();
-    for (size_t f = cf; f-- > 0;) {
+    for (size_t f = 0; f < cf; ++f) {
       const size_t b = off[f], e = off[f + 1];
-      for (size_t i = e; i-- > b;) put(cl[i], cl[i + 1 < e ? i + 1 : b], uint32_t(f));
+      for (size_t i = b; i < e; ++i) put(cl[i], cl[i + 1 < e ? i + 1 : b], uint32_t(f));
     }
   }
   EdgePairing<SeparateUses>(s, SeparateUses{upper, use_face}, nv).pair_all(nv);
@@ -559,16 +578,22 @@ bool count_components(Prep& s) {
 
 // Unused vertices are a warning. Two distinct vertices of a closed surface at one position: the
 // surface touches itself there (it is not embedded), and the intersection of its face
-// half-spaces is then not its kernel — refused rather than answered wrongly. The same pass takes
-// the bounding box of the used vertices (Prep::lo3, hi3).
+// half-spaces is then not its kernel — refused rather than answered wrongly (once the edges and
+// pieces are judged: check_shared_positions). The same pass takes the bounding box of the used
+// vertices (Prep::lo3, hi3).
+void find_shared_positions(Prep& s) {
+  s.unused = s.nv - size_t(std::count(s.used.begin(), s.used.end(), 1));
+  // The pairs' storage, taken now (one pair per two edge uses, one use per clean loop entry),
+  // is filled by the edge check only: the bucket counts live there (no fresh pages).
+  s.face_pairs.resize((s.clean_size + 1) / 2);
+  uint64_t* scratch = reinterpret_cast<uint64_t*>(s.face_pairs.data());
+  const size_t scratch_slots = s.face_pairs.size() * sizeof(s.face_pairs[0]) / sizeof(uint64_t);
+  s.shared_position = has_shared_position(s.m.points, s.used, s.nv - s.unused, s.lo3, s.hi3, scratch, scratch_slots);
+}
+
 bool check_shared_positions(Prep& s) {
-  const size_t unused = s.nv - size_t(std::count(s.used.begin(), s.used.end(), 1));
-  if (unused) s.m.warnings.push_back(unused_vertices_warning(unused));
-  // The edge check's buckets are read no more: the bucket counts live there when they fit (no
-  // fresh pages).
-  uint64_t* scratch = reinterpret_cast<uint64_t*>(s.bucket.data());
-  const size_t scratch_slots = s.bucket.size() * sizeof(uint32_t) / sizeof(uint64_t);
-  if (!has_shared_position(s.m.points, s.used, s.nv - unused, s.lo3, s.hi3, scratch, scratch_slots)) return true;
+  if (s.unused) s.m.warnings.push_back(unused_vertices_warning(s.unused));
+  if (!s.shared_position) return true;
   const auto pair = first_shared_position(s.m.points, s.used);
   return s.fail(Error::NonManifoldEdge,
                 "vertices " + std::to_string(pair[0]) + " and " + std::to_string(pair[1]) +

@@ -51,7 +51,7 @@ Warning flipped_warning(size_t faces) {
 
 }  // namespace
 
-// Bounding box of the used vertices. It is defined as if taken over every use in loop order: ties
+// Bounding box of the used vertices (Prep::lo3, hi3). It is defined as if taken over every use in loop order: ties
 // keep the held bound, so a zero bound has the sign of the first zero met. Over the used vertices
 // in id order the values are the same; only a zero bound may differ (in sign). All values on that
 // side are then >= 0 (<= 0 for a maximum), so the bound in loop order is the first zero
@@ -73,9 +73,16 @@ void take_bounding_box(Prep& s) {
         --zeros;
       }
     }
+}
+
+// The box into the result, its centre and largest side (for the fans' volume).
+void take_centre(Prep& s) {
+  s.ext = 0;
   for (int k = 0; k < 3; ++k) {
-    s.m.bbox_min[k] = lo3[k];
-    s.m.bbox_max[k] = hi3[k];
+    s.m.bbox_min[k] = s.lo3[k];
+    s.m.bbox_max[k] = s.hi3[k];
+    s.c[k] = 0.5 * (s.m.bbox_min[k] + s.m.bbox_max[k]);
+    s.ext = std::max(s.ext, s.m.bbox_max[k] - s.m.bbox_min[k]);
   }
 }
 
@@ -86,13 +93,16 @@ void take_bounding_box(Prep& s) {
 // shortcuts the exact test, so the order of the corners it sees does not matter).
 void sum_fan_volume(Prep& s) {
   PreparedMesh& m = s.m;
-  for (int k = 0; k < 3; ++k) {
-    s.c[k] = 0.5 * (m.bbox_min[k] + m.bbox_max[k]);
-    s.ext = std::max(s.ext, m.bbox_max[k] - m.bbox_min[k]);
-  }
+  take_centre(s);
   const size_t cf = s.cf;
-  double vol6 = 0, vol6_abs = 0;
   s.reps_unwritten = s.verdict_only && m.shells < 2;
+  if (s.volume_summed && s.reps_unwritten) {  // (by pair_edges, with the leading run's end)
+    m.rep.reserve(cf);                        // (its pages are not touched)
+    m.rep.resize(s.first_general);
+    if (s.first_general < cf) s.own_clean();  // (build_plane_faces walks the loops from there)
+    return;
+  }
+  double vol6 = 0, vol6_abs = 0;
   if (s.reps_unwritten)
     m.rep.reserve(cf);  // (its pages are not touched)
   else
