@@ -98,6 +98,21 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
   give_box();
   if (twice == 0) return false;
   PointTable table(2 * twice + 16);  // (about as many vertices as that at the buckets met twice)
+  // The candidates are taken a block at a time: their positions prefetched as they are found,
+  // then hashed with their slots prefetched, then looked up in id order.
+  uint32_t candidate[kBlock];
+  uint64_t hash[kBlock];
+  size_t found = 0;
+  auto shared_in_block = [&] {
+    for (size_t j = 0; j < found; ++j) {
+      hash[j] = PointTable::hash(P + 3 * size_t(candidate[j]));
+      table.prefetch_slot(hash[j]);
+    }
+    for (size_t j = 0; j < found; ++j)
+      if (table.find_or_insert(P, P + 3 * size_t(candidate[j]), hash[j], candidate[j]) != candidate[j]) return true;
+    found = 0;
+    return false;
+  };
   k = 0;
   for (size_t v = 0; v < nv; ++v) {
     if (!us[v]) continue;
@@ -105,10 +120,11 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
     if (k + 32 < num_used) prefetch(counts + (bucket_of[k + 32] >> 5));
     ++k;
     if (((counts[b >> 5] >> (2 * (b & 31))) & 3) != 3) continue;
-    const double* p = P + 3 * v;
-    if (table.find_or_insert(P, p, PointTable::hash(p), uint32_t(v)) != v) return true;
+    prefetch(P + 3 * v);
+    candidate[found++] = uint32_t(v);
+    if (found == kBlock && shared_in_block()) return true;
   }
-  return false;
+  return shared_in_block();
 }
 
 // The pair reported when used vertices share a position: the two lowest ids at the
