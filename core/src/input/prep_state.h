@@ -87,8 +87,9 @@ struct Prep {
   size_t first_general = 0;
   bool volume_summed = false;  // by pair_edges, for a verdict's triangles (in its pass over them)
   bool fans_enclose_nothing = false, flip = false;
-  // A verdict without several shells to judge reads no representative: the leading run's are
-  // then not written (m.rep holds that many unset entries; only their number is read).
+  // A verdict without several shells to judge reads no representative: when every face is in
+  // the leading run they are not written (m.rep holds cf unset entries; only their number is
+  // read, and none is added: build_plane_faces has nothing left to walk).
   bool reps_unwritten = false;
 
   // build_plane_faces

@@ -95,20 +95,16 @@ void sum_fan_volume(Prep& s) {
   PreparedMesh& m = s.m;
   take_centre(s);
   const size_t cf = s.cf;
-  s.reps_unwritten = s.verdict_only && m.shells < 2;
-  if (s.volume_summed && s.reps_unwritten) {  // (by pair_edges, with the leading run's end)
-    m.rep.reserve(cf);                        // (its pages are not touched)
-    m.rep.resize(s.first_general);
-    if (s.first_general < cf) s.own_clean();  // (build_plane_faces walks the loops from there)
+  // When pair_edges summed the volume (a verdict's triangles), every face is in the leading run
+  // and no shells are judged, the representatives are not written (Prep::reps_unwritten).
+  if (s.volume_summed && m.shells < 2 && s.first_general == cf) {
+    s.reps_unwritten = true;
+    m.rep.resize(cf);  // (uninitialised: its pages are not touched)
     return;
   }
   double vol6 = 0, vol6_abs = 0;
-  if (s.reps_unwritten)
-    m.rep.reserve(cf);  // (its pages are not touched)
-  else
-    m.rep.resize(cf);
+  m.rep.resize(cf);
   std::array<uint32_t, 3>* rep_out = m.rep.data();
-  const bool write_reps = !s.reps_unwritten;
   const uint32_t* cl = s.cl;
   const uint32_t* off = s.clean_offsets.data();  // (read only when some face is not a triangle)
   const double* pts = m.points.data();
@@ -118,7 +114,7 @@ void sum_fan_volume(Prep& s) {
     vol6 += d;
     vol6_abs += std::fabs(d);
     if (!certainly_not_collinear(pts + 3 * size_t(i0), pts + 3 * size_t(i1), pts + 3 * size_t(i2))) return false;
-    if (write_reps) rep_out[f] = {i0, i1, i2};
+    rep_out[f] = {i0, i1, i2};
     return true;
   };
   size_t f = 0;
