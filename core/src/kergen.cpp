@@ -201,7 +201,7 @@ RepairedMesh repair_mesh(const MeshView& mesh, const Options& options) {
 
 Validation validate_mesh(const MeshView& mesh, const Options& options) {
   Validation v;
-  PreparedMesh m = prepare_input(mesh, options);
+  PreparedMesh m = prepare_input(mesh, options, nullptr, PrepareFor::Verdict);
   v.error = m.error;
   v.message = m.message;
   v.warnings = m.warnings;

@@ -23,17 +23,22 @@ Warning unused_vertices_warning(size_t count) {
 }
 
 // The phases in order; each refuses the mesh or leaves its part of the state for the next.
-PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells) {
-  Prep s(mesh, options, allow_shells);
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells, PrepareFor purpose) {
+  Prep s(mesh, options, allow_shells, purpose == PrepareFor::Verdict);
   s.nv = mesh.num_vertices;
   s.nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
   s.m.input_faces = s.nf;
   // (A phase that refuses the mesh has set m.error and m.message; m is returned as it stands.)
-  if (!check_arrays(s) || !check_coordinates_and_indices(s) || !scale_points(s) || !clean_faces(s))
+  // (clean_faces refuses indices out of range, before scale_points refuses a coordinate range;
+  // faces that all collapse are refused after it.)
+  if (!check_arrays(s) || !check_coordinates(s) || !clean_faces(s) || !scale_points(s) || !check_faces_left(s))
     return std::move(s.m);
+  // (The shared positions and the box are found before the edge check, whose pass over a
+  // verdict's triangles sums their volume about the box's centre; they are reported after it.)
+  find_shared_positions(s);
+  take_bounding_box(s);
   pair_edges(s);
   if (!report_edge_faults(s) || !count_components(s) || !check_shared_positions(s)) return std::move(s.m);
-  take_bounding_box(s);
   sum_fan_volume(s);
   if (!orient_by_volume(s) || !build_plane_faces(s) || !check_split_volume(s)) return std::move(s.m);
   move_loops(s);

@@ -63,8 +63,14 @@ struct PreparedMesh {
 // The warning for `count` vertices no face uses (prepare_mesh's; the weld reports it anew).
 Warning unused_vertices_warning(size_t count);
 
+// What a caller of prepare_mesh needs: the faces that carry planes (Faces), or only the verdict
+// (Verdict: error, message, warnings, volume and the counts, as Faces gives them; the loops may
+// then be left empty, which spares a copy of the input's faces when it is used as it is).
+enum class PrepareFor { Faces, Verdict };
+
 // `allow_shells`: a closed mesh of several pieces is prepared (PreparedMesh::shells counts them)
 // instead of refused with Error::MultipleComponents.
-PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells = false);
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells = false,
+                          PrepareFor purpose = PrepareFor::Faces);
 
 }  // namespace kergen

@@ -1,7 +1,7 @@
 // The first phases of prepare_mesh (prep_state.h), over the raw arrays: null and empty arrays,
 // the size limits and face sizes (check_arrays); finite coordinates and indices in range, with the
 // largest and smallest non-zero magnitudes taken in one branch-free pass
-// (check_coordinates_and_indices); and the exact power-of-two scale and shift that keep the exact
+// (check_coordinates); and the exact power-of-two scale and shift that keep the exact
 // predicates clear of overflow and underflow (scale_points, which refuses coordinate ranges too
 // wide for exact evaluation).
 #include <algorithm>
@@ -141,9 +141,9 @@ bool check_arrays(Prep& s) {
 }
 
 // Finite coordinates, the largest magnitude and the smallest non-zero one in one pass
-// (magnitude_extrema), and indices in range (the largest one first, a branch-free pass); the
-// culprits are looked for only if needed.
-bool check_coordinates_and_indices(Prep& s) {
+// (magnitude_extrema); the culprit is looked for only if needed. (The indices are checked by
+// clean_faces, which reads them anyway.)
+bool check_coordinates(Prep& s) {
   const double* pos = s.mesh.positions;
   uint64_t top_bits;
   int64_t low_bits;
@@ -160,17 +160,7 @@ bool check_coordinates_and_indices(Prep& s) {
     const uint64_t min_bits = uint64_t(low_bits) + 1;
     std::memcpy(&s.min_nonzero_abs, &min_bits, sizeof s.min_nonzero_abs);
   }
-  const uint32_t* indices = s.mesh.indices;
-  uint32_t max_index = 0;
-  for (size_t i = 0; i < s.mesh.num_indices; ++i) max_index = std::max(max_index, indices[i]);
-  if (max_index < s.nv) return true;
-  size_t i = 0;
-  while (indices[i] < s.nv) ++i;
-  size_t f = 0;
-  for (size_t end = s.face_size(0); end <= i; end += s.face_size(++f)) {}
-  std::ostringstream msg;
-  msg << "face " << f << " refers to vertex " << indices[i] << " but the mesh has " << s.nv << " vertices";
-  return s.fail(Error::IndexOutOfRange, msg.str());
+  return true;
 }
 
 // Scale by a power of two (exact) so that coordinates are below 1 in magnitude: keeps the exact

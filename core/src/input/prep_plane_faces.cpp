@@ -192,6 +192,7 @@ bool split_nonplanar(Prep& s, size_t f, const uint32_t* loop, size_t k) {
 // keep one representative triangle at their lexicographically smallest vertex (a strictly convex
 // corner, so the triangle has the polygon's orientation); non-planar polygons are split.
 bool build_plane_faces(Prep& s) {
+  if (s.first_general < s.cf) s.own_clean();  // (done by sum_fan_volume already)
   for (size_t f = s.first_general; f < s.cf; ++f) {
     const uint32_t* loop = &s.clean[s.clean_offsets[f]];
     const size_t k = s.clean_offsets[f + 1] - s.clean_offsets[f];
@@ -220,9 +221,16 @@ bool build_plane_faces(Prep& s) {
 }
 
 // The loops and the pairs of neighbouring faces, renumbered if faces were dropped or split.
+// A verdict needs no loops, unless several shells are judged (judge_shells) or a thin shape's
+// volume is certified; the input's faces are then not copied.
 void move_loops(Prep& s) {
   PreparedMesh& m = s.m;
   if (!s.renumbered) {
+    if (s.clean_viewed && s.verdict_only && m.shells < 2 && !needs_thin_certificate(s)) {
+      m.adjacent = std::move(s.face_pairs);
+      return;
+    }
+    s.own_clean();
     if (s.clean_renumbered) m.source_face = std::move(s.clean_source);
     m.loops = std::move(s.clean);
     m.loop_offsets = std::move(s.clean_offsets);

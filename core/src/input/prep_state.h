@@ -21,12 +21,13 @@ namespace kergen::prep {
 // The state prepare_mesh's phases share, filled in the order they run. Each phase returns false
 // once it has refused the mesh (m.error and m.message set by fail()).
 struct Prep {
-  Prep(const MeshView& mesh_in, const Options& options_in, bool allow_shells_in)
-      : mesh(mesh_in), options(options_in), allow_shells(allow_shells_in) {}
+  Prep(const MeshView& mesh_in, const Options& options_in, bool allow_shells_in, bool verdict_only_in)
+      : mesh(mesh_in), options(options_in), allow_shells(allow_shells_in), verdict_only(verdict_only_in) {}
   const MeshView& mesh;
   const Options& options;
   const bool allow_shells;
-  PreparedMesh m;  // the result
+  const bool verdict_only;  // PrepareFor::Verdict
+  PreparedMesh m;           // the result
   size_t nv = 0, nf = 0;
 
   // check_coordinates: the largest magnitude (for the scale) and the smallest non-zero one (for
@@ -37,10 +38,25 @@ struct Prep {
   // clean_faces: the faces without repeated consecutive vertices (cf of them), the used
   // vertices, and the edge uses counted per bucket. Edge uses are bucketed by their lower vertex
   // id and direction: bucket 2 lo + 1 holds the uses running up from lo (lo -> hi, hi > lo),
-  // bucket 2 lo those running down to lo. bucket[b + 1]: size of bucket b, then its end, then
-  // (after the fill) its start.
+  // bucket 2 lo those running down to lo. bucket[b + 1]: size of bucket b, then its start, then
+  // (after pair_edges' fill) its end.
+  // When every face is a triangle of three distinct vertices (the usual case) the clean faces are
+  // the input's: `cl` then points at its indices (clean_viewed) and `clean` and `clean_offsets`
+  // stay empty until a phase that changes or walks the loops in general asks for its own copy
+  // (own_clean); the common phases read `cl`, whose loop f starts at 3 f when clean_size = 3 cf.
   RawVector<uint32_t> clean, clean_offsets;
+  const uint32_t* cl = nullptr;  // the clean loops' entries (clean.data() once owned)
+  size_t clean_size = 0;         // their number
+  bool clean_viewed = false;
   size_t cf = 0;
+  void own_clean() {
+    if (!clean_viewed) return;
+    clean.assign(cl, cl + clean_size);
+    clean_offsets.resize(cf + 1);
+    for (size_t f = 0; f <= cf; ++f) clean_offsets[f] = uint32_t(3 * f);
+    cl = clean.data();
+    clean_viewed = false;
+  }
   // The input face of each clean face, from the first face dropped on (before it: the identity).
   std::vector<uint32_t> clean_source;
   bool clean_renumbered = false;
@@ -57,7 +73,11 @@ struct Prep {
   size_t unions = 0;
   RawVector<std::array<uint32_t, 2>> face_pairs;
 
-  // check_shared_positions: the bounding box of the used vertices.
+  // find_shared_positions (run before the edge check, reported by check_shared_positions after
+  // it): the unused vertices, whether two used vertices share a position, the bounding box of
+  // the used vertices (its zero bounds' signs set by take_bounding_box).
+  size_t unused = 0;
+  bool shared_position = false;
   double lo3[3], hi3[3];
 
   // sum_fan_volume: the box centre, its largest side, six times the volume of the fans about the
@@ -65,7 +85,12 @@ struct Prep {
   double c[3] = {0, 0, 0}, ext = 0;
   double vol6 = 0, vol6_abs = 0;
   size_t first_general = 0;
+  bool volume_summed = false;  // by pair_edges, for a verdict's triangles (in its pass over them)
   bool fans_enclose_nothing = false, flip = false;
+  // A verdict without several shells to judge reads no representative: when every face is in
+  // the leading run they are not written (m.rep holds cf unset entries; only their number is
+  // read, and none is added: build_plane_faces has nothing left to walk).
+  bool reps_unwritten = false;
 
   // build_plane_faces
   size_t degenerate = 0, nonplanar = 0;
@@ -98,21 +123,26 @@ struct Prep {
 
 // prep_coordinates.cpp: the raw arrays, the coordinates and indices, the exact scale.
 bool check_arrays(Prep& s);
-bool check_coordinates_and_indices(Prep& s);
+bool check_coordinates(Prep& s);
 bool scale_points(Prep& s);
 
-// prep_topology.cpp: clean faces, the edge check, connected pieces, shared positions.
+// prep_topology.cpp: clean faces (and indices in range), the edge check, connected pieces,
+// shared positions.
 bool clean_faces(Prep& s);
+bool check_faces_left(Prep& s);
 void pair_edges(Prep& s);
 bool report_edge_faults(Prep& s);
 bool count_components(Prep& s);
+void find_shared_positions(Prep& s);
 bool check_shared_positions(Prep& s);
 
 // prep_volume.cpp: bounding box, enclosed volume, orientation.
 void take_bounding_box(Prep& s);
+void take_centre(Prep& s);
 void sum_fan_volume(Prep& s);
 bool orient_by_volume(Prep& s);
 bool check_split_volume(Prep& s);
+bool needs_thin_certificate(const Prep& s);
 bool certify_thin_volume(Prep& s);
 
 // prep_plane_faces.cpp: the faces that carry planes (non-planar polygons split).

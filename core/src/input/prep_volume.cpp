@@ -51,7 +51,7 @@ Warning flipped_warning(size_t faces) {
 
 }  // namespace
 
-// Bounding box of the used vertices. It is defined as if taken over every use in loop order: ties
+// Bounding box of the used vertices (Prep::lo3, hi3). It is defined as if taken over every use in loop order: ties
 // keep the held bound, so a zero bound has the sign of the first zero met. Over the used vertices
 // in id order the values are the same; only a zero bound may differ (in sign). All values on that
 // side are then >= 0 (<= 0 for a maximum), so the bound in loop order is the first zero
@@ -63,9 +63,9 @@ void take_bounding_box(Prep& s) {
   bool zero[3];
   int zeros = 0;
   for (int k = 0; k < 3; ++k) zeros += zero[k] = lo3[k] == 0 || hi3[k] == 0;
-  for (size_t i = 0; i < s.clean.size() && zeros > 0; ++i)
+  for (size_t i = 0; i < s.clean_size && zeros > 0; ++i)
     for (int k = 0; k < 3; ++k) {
-      const double x = pts[3 * size_t(s.clean[i]) + k];
+      const double x = pts[3 * size_t(s.cl[i]) + k];
       if (zero[k] && x == 0) {
         if (lo3[k] == 0) lo3[k] = x;
         if (hi3[k] == 0) hi3[k] = x;
@@ -73,9 +73,16 @@ void take_bounding_box(Prep& s) {
         --zeros;
       }
     }
+}
+
+// The box into the result, its centre and largest side (for the fans' volume).
+void take_centre(Prep& s) {
+  s.ext = 0;
   for (int k = 0; k < 3; ++k) {
-    s.m.bbox_min[k] = lo3[k];
-    s.m.bbox_max[k] = hi3[k];
+    s.m.bbox_min[k] = s.lo3[k];
+    s.m.bbox_max[k] = s.hi3[k];
+    s.c[k] = 0.5 * (s.m.bbox_min[k] + s.m.bbox_max[k]);
+    s.ext = std::max(s.ext, s.m.bbox_max[k] - s.m.bbox_min[k]);
   }
 }
 
@@ -86,16 +93,20 @@ void take_bounding_box(Prep& s) {
 // shortcuts the exact test, so the order of the corners it sees does not matter).
 void sum_fan_volume(Prep& s) {
   PreparedMesh& m = s.m;
-  for (int k = 0; k < 3; ++k) {
-    s.c[k] = 0.5 * (m.bbox_min[k] + m.bbox_max[k]);
-    s.ext = std::max(s.ext, m.bbox_max[k] - m.bbox_min[k]);
-  }
+  take_centre(s);
   const size_t cf = s.cf;
+  // When pair_edges summed the volume (a verdict's triangles), every face is in the leading run
+  // and no shells are judged, the representatives are not written (Prep::reps_unwritten).
+  if (s.volume_summed && m.shells < 2 && s.first_general == cf) {
+    s.reps_unwritten = true;
+    m.rep.resize(cf);  // (uninitialised: its pages are not touched)
+    return;
+  }
   double vol6 = 0, vol6_abs = 0;
   m.rep.resize(cf);
   std::array<uint32_t, 3>* rep_out = m.rep.data();
-  const uint32_t* cl = s.clean.data();
-  const uint32_t* off = s.clean_offsets.data();
+  const uint32_t* cl = s.cl;
+  const uint32_t* off = s.clean_offsets.data();  // (read only when some face is not a triangle)
   const double* pts = m.points.data();
   // The volume term of a triangle, and whether it extends the leading run.
   auto take_triangle = [&](size_t f, uint32_t i0, uint32_t i1, uint32_t i2) KERGEN_INLINE {
@@ -107,7 +118,7 @@ void sum_fan_volume(Prep& s) {
     return true;
   };
   size_t f = 0;
-  if (s.clean.size() == 3 * cf) {  // every clean face is a triangle: loop f starts at 3 f
+  if (s.clean_size == 3 * cf) {  // every clean face is a triangle: loop f starts at 3 f
     for (; f < cf; ++f)
       if (!take_triangle(f, cl[3 * f], cl[3 * f + 1], cl[3 * f + 2])) break;
   } else {
@@ -117,6 +128,11 @@ void sum_fan_volume(Prep& s) {
     }
   }
   s.first_general = f;
+  if (f < cf) {  // (build_plane_faces walks the loops from f on)
+    s.own_clean();
+    cl = s.cl;
+    off = s.clean_offsets.data();
+  }
   if (f < cf && off[f + 1] - off[f] == 3) ++f;  // (its volume is counted)
   for (; f < cf; ++f) {
     const size_t b = off[f], e = off[f + 1];
@@ -146,9 +162,11 @@ bool orient_by_volume(Prep& s) {
   m.volume = s.flip ? -s.vol6 / 6 : s.vol6 / 6;
   if (s.flip) {
     m.warnings.push_back(flipped_warning(s.cf));
+    s.own_clean();
     for (size_t f = 0; f < s.cf; ++f)
       std::reverse(s.clean.begin() + s.clean_offsets[f], s.clean.begin() + s.clean_offsets[f + 1]);
-    for (auto& t : m.rep) std::swap(t[0], t[2]);
+    if (!s.reps_unwritten)
+      for (auto& t : m.rep) std::swap(t[0], t[2]);
   }
   return true;
 }
@@ -163,7 +181,8 @@ bool check_split_volume(Prep& s) {
   if (!open && s.nonplanar > 0 && m.volume < 0) {
     for (size_t f = 0; f + 1 < m.loop_offsets.size(); ++f)
       std::reverse(m.loops.begin() + m.loop_offsets[f], m.loops.begin() + m.loop_offsets[f + 1]);
-    for (auto& t : m.rep) std::swap(t[0], t[2]);
+    if (!s.reps_unwritten)
+      for (auto& t : m.rep) std::swap(t[0], t[2]);
     m.volume = -m.volume;
     auto flipped = std::find_if(m.warnings.begin(), m.warnings.end(),
                                 [](const Warning& w) { return w.kind == Warning::Kind::OrientationFlipped; });
@@ -196,9 +215,11 @@ bool check_split_volume(Prep& s) {
 // its error bound, must certify that the surface as oriented encloses a positive volume; when it
 // cannot, the volume was lost in the double sum's rounding and no orientation can be trusted
 // (fuzzed: folded shapes with scaled coordinates from 1e-18 to 1, a single face a b b a c).
+bool needs_thin_certificate(const Prep& s) { return !s.open && s.m.volume < 1e-6 * s.ext * s.ext * s.ext; }
+
 bool certify_thin_volume(Prep& s) {
   PreparedMesh& m = s.m;
-  if (s.open || !(m.volume < 1e-6 * s.ext * s.ext * s.ext)) return true;
+  if (!needs_thin_certificate(s)) return true;
   const exact::ApproxDD vol6_dd = accurate_volume6(m, s.c);
   m.volume = (vol6_dd.hi + vol6_dd.lo) / 6;
   if (vol6_dd.sign() == 1) return true;

@@ -98,23 +98,24 @@ std::vector<Warning> weld_and_repair_warnings(const WeldResult& w, const RepairC
 
 }  // namespace
 
-PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated) {
+PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated, PrepareFor purpose) {
   if (options.open_boundary == OpenBoundary::Perpendicular && !options.allow_open) {
     Options accepting = options;
     accepting.allow_open = true;
-    return prepare_input(mesh, accepting, validated);
+    return prepare_input(mesh, accepting, validated, purpose);
   }
   const bool weld = options.weld >= 0;
-  const bool can_weld = weldable(mesh);
-  if ((!weld && !options.repair) || !can_weld) {
-    if (validated && can_weld) *validated = copy_of(mesh);
-    return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true)));
+  if (!weld && !options.repair) {  // (no pass over the input to check what no one asked for)
+    if (validated && weldable(mesh)) *validated = copy_of(mesh);
+    return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true, purpose)));
   }
+  const bool can_weld = weldable(mesh);
+  if (!can_weld) return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true, purpose)));
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
   RepairCounts repaired;
   std::vector<uint32_t> repair_kept;
   if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
-  PreparedMesh m = mention_open_boundary(judge_shells(prepare_mesh(w.mesh.view(), options, true)));
+  PreparedMesh m = mention_open_boundary(judge_shells(prepare_mesh(w.mesh.view(), options, true, purpose)));
   // Faces are named by their index in the input (the witness): through the repair, then the weld.
   m.welded_source = std::move(w.source_face);
   if (options.repair) {

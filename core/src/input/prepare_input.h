@@ -14,7 +14,9 @@ namespace kergen {
 // counted with the input's. `validated`, when given, receives the mesh prepare_mesh judged (the
 // welded and repaired one, or a copy of the input; left empty for malformed input, which
 // validation refuses). OpenBoundary::Perpendicular accepts open meshes as allow_open does.
-PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated = nullptr);
+// PrepareFor::Verdict: only the verdict is needed (mesh_prep.h; validate_mesh).
+PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated = nullptr,
+                           PrepareFor purpose = PrepareFor::Faces);
 
 // `mesh` without the vertices no face uses, the others renumbered in their order (the mesh that
 // repair_mesh returns: the merged vertices of a weld are left unused).

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <random>
 #include <string>
@@ -280,3 +281,121 @@ TEST(MeshPrep, LargeNonConvexPolygonsAreEarClipped) {
 }
 
 }  // namespace
+
+// PrepareFor::Verdict (validate_mesh's) skips work only the faces need: the input's triangles
+// are not copied, the leading run's representatives not written. Its verdict is the one
+// PrepareFor::Faces gives, on meshes that take each of the paths it changes: a flip, dropped
+// zero-area triangles, polygons (planar and not), an open mesh accepted or refused, several
+// shells, a thin slab, shared positions, faulty edges.
+TEST(MeshPrep, VerdictIsTheFacesVerdict) {
+  std::vector<std::pair<std::string, Mesh>> meshes = {
+      {"tessellated cube", kergen_test::tessellated_cube(3)},
+      {"flipped torus", kergen_test::flipped(kergen_test::torus())},
+      {"turned l prism (polygons)", kergen_test::turned(kergen_test::l_prism())},
+      {"bumpy sphere", kergen_test::bumpy_sphere(24, 12)},
+      {"open cube", kergen_test::open_cube()},
+      {"t-junction box", kergen_test::t_junction_box()},
+      {"cubes sharing an edge", kergen_test::cubes_sharing_edge()},
+      {"thin slab", kergen_test::box(0, 0, 0, 1, 1, 1e-9)},
+  };
+  {  // a zero-area triangle (1, 0, mid) in a cube: the face d -> 1 -> 0 split at mid, the middle of edge 0-1
+    Mesh m = unit_cube();
+    const uint32_t mid = kergen_test::add_point(m, 0.5, 0, 0);
+    for (size_t t = 0; t < m.indices.size(); t += 3)
+      for (int k = 0; k < 3; ++k)
+        if (m.indices[t + k] == 1 && m.indices[t + (k + 1) % 3] == 0) {
+          const uint32_t d = m.indices[t + (k + 2) % 3];
+          m.indices[t + (k + 1) % 3] = mid;  // (1, mid, d)
+          m.indices.insert(m.indices.end(), {mid, 0, d, 1, 0, mid});
+          t = m.indices.size();
+          break;
+        }
+    meshes.push_back({"cube with a zero-area triangle", m});
+  }
+  {  // two disjoint cubes: two shells
+    Mesh m = unit_cube();
+    const Mesh b = kergen_test::box(3, 0, 0, 4, 1, 1);
+    const uint32_t base = uint32_t(m.num_vertices());
+    m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+    for (uint32_t v : b.indices) m.indices.push_back(base + v);
+    meshes.push_back({"two cubes", m});
+  }
+  {  // two cubes whose corners (1, 1, 1) are distinct vertices at one position
+    Mesh m = unit_cube();
+    const Mesh b = kergen_test::box(1, 1, 1, 2, 2, 2);
+    const uint32_t base = uint32_t(m.num_vertices());
+    m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+    for (uint32_t v : b.indices) m.indices.push_back(base + v);
+    meshes.push_back({"shared position", m});
+  }
+  {  // one face turned over: inconsistent orientation
+    Mesh m = unit_cube();
+    std::swap(m.indices[0], m.indices[1]);
+    meshes.push_back({"inconsistent", m});
+  }
+  {  // a face repeated: non-manifold edges
+    Mesh m = unit_cube();
+    m.indices.insert(m.indices.end(), m.indices.begin(), m.indices.begin() + 3);
+    meshes.push_back({"repeated face", m});
+  }
+  for (bool allow_open : {false, true})
+    for (const auto& [name, mesh] : meshes) {
+      Options options;
+      options.allow_open = allow_open;
+      const PreparedMesh faces = prepare_mesh(mesh.view(), options, true, PrepareFor::Faces);
+      const PreparedMesh verdict = prepare_mesh(mesh.view(), options, true, PrepareFor::Verdict);
+      SCOPED_TRACE(name + (allow_open ? " (allow_open)" : ""));
+      EXPECT_EQ(verdict.error, faces.error);
+      EXPECT_EQ(verdict.message, faces.message);
+      ASSERT_EQ(verdict.warnings.size(), faces.warnings.size());
+      for (size_t i = 0; i < faces.warnings.size(); ++i) {
+        EXPECT_EQ(verdict.warnings[i].kind, faces.warnings[i].kind);
+        EXPECT_EQ(verdict.warnings[i].count, faces.warnings[i].count);
+        EXPECT_EQ(verdict.warnings[i].message, faces.warnings[i].message);
+      }
+      EXPECT_EQ(std::memcmp(&verdict.volume, &faces.volume, sizeof(double)), 0);
+      EXPECT_EQ(verdict.shells, faces.shells);
+      EXPECT_EQ(verdict.boundary_edges, faces.boundary_edges);
+      EXPECT_EQ(verdict.dropped_faces, faces.dropped_faces);
+      EXPECT_EQ(verdict.num_faces(), faces.num_faces());
+    }
+}
+
+// Indices are checked while the faces are cleaned, after the coordinates' finiteness and before
+// their range; faces that all collapse are refused after the range. The refusals keep that order,
+// and name the first index out of range in input order (triangles and polygons alike).
+TEST(MeshPrep, RefusalsKeepTheirPrecedence) {
+  Mesh base;
+  base.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  base.indices = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+  auto refusal = [](const Mesh& m) {
+    const PreparedMesh p = prepare_mesh(m.view(), Options{});
+    return std::make_pair(p.error, p.message);
+  };
+  Mesh wide = base;  // coordinates too wide for exact evaluation
+  wide.positions[3] = 1e300;
+  wide.positions[4] = 1e-300;
+  EXPECT_EQ(refusal(wide).first, Error::CoordinateRange);
+  Mesh m = wide;
+  m.indices[7] = 9;
+  EXPECT_EQ(refusal(m), std::make_pair(Error::IndexOutOfRange,
+                                       std::string("face 2 refers to vertex 9 but the mesh has 4 vertices")));
+  m = wide;
+  m.indices = {0, 0, 1, 2, 2, 3};  // every face collapses
+  EXPECT_EQ(refusal(m).first, Error::CoordinateRange);
+  m.positions = base.positions;
+  EXPECT_EQ(refusal(m).first, Error::DegenerateInput);
+  m.indices = {0, 0, 1, 2, 2, 9};  // a collapsed face, then an index out of range
+  EXPECT_EQ(refusal(m), std::make_pair(Error::IndexOutOfRange,
+                                       std::string("face 1 refers to vertex 9 but the mesh has 4 vertices")));
+  m = base;
+  m.positions[5] = NAN;
+  m.indices[2] = 7;
+  EXPECT_EQ(refusal(m).first, Error::NonFiniteCoordinate);
+  m = base;  // polygons: the first index out of range in input order
+  m.face_sizes = {3, 3, 3, 3};
+  m.indices[11] = 4;
+  m.indices[5] = 5;
+  EXPECT_EQ(refusal(m), std::make_pair(Error::IndexOutOfRange,
+                                       std::string("face 1 refers to vertex 5 but the mesh has 4 vertices")));
+}
