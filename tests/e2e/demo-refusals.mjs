@@ -11,6 +11,7 @@ import path from 'node:path';
 import { createRequire } from 'node:module';
 import { viewPixels, setRange, controls } from './demo-view-tools.mjs';
 import { bumpySphere } from '../../scripts/gen-big-mesh.mjs';
+import { CUBE_V, CUBE_Q } from './mesh-files.mjs';
 
 const require = createRequire(import.meta.url);
 
@@ -335,15 +336,8 @@ export async function demoRefusalTests(page, context, base, tmp, h) {
 
   await test('refusal: a cube of 6 separate quads (24 vertices): repair merges equal positions, said without "within 0"', async () => {
     const file = path.join(tmp, 'quad-soup.off');
-    const q = [
-      [0, 3, 2, 1],
-      [4, 5, 6, 7],
-      [0, 1, 5, 4],
-      [1, 2, 6, 5],
-      [2, 3, 7, 6],
-      [3, 0, 4, 7],
-    ];
-    const V = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1];
+    const q = CUBE_Q,
+      V = CUBE_V;
     const positions = q.flatMap((f) => f.flatMap((v) => V.slice(3 * v, 3 * v + 3)));
     writeOFF(
       file,

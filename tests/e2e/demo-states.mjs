@@ -5,25 +5,8 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { clipBoxHalfSize } from '../../web/unbounded.js';
 import { viewPixels, setRange, setChecked, controls, writeOpenBox } from './demo-view-tools.mjs';
-
-// A unit cube whose top is two rectangles split at x = 0.5, while the -y and +y sides keep their
-// whole top edge: the split points are T-junctions, closed geometrically but OPEN_MESH as indexed.
-function writeTJunctionCube(file) {
-  const v = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1, 0.5, 0, 1, 0.5, 1, 1];
-  const q = [
-    [0, 3, 2, 1],
-    [4, 8, 9, 7],
-    [8, 5, 6, 9],
-    [0, 1, 5, 4],
-    [1, 2, 6, 5],
-    [2, 3, 7, 6],
-    [3, 0, 4, 7],
-  ];
-  const lines = ['OFF', `${v.length / 3} ${q.length} 0`];
-  for (let i = 0; i < v.length; i += 3) lines.push(v.slice(i, i + 3).join(' '));
-  for (const f of q) lines.push(`${f.length} ${f.join(' ')}`);
-  fs.writeFileSync(file, lines.join('\n') + '\n');
-}
+import { writeQuadOFF } from './mesh-files.mjs';
+import { T_JUNCTION_CUBE } from '../node/lib/geometry.mjs';
 
 export async function demoStateTests(page, context, base, tmp, h) {
   const {
@@ -228,7 +211,7 @@ export async function demoStateTests(page, context, base, tmp, h) {
   // ---------------------------------------------------------------------------------- repair
   await test('repair: a T-junction cube is OPEN_MESH; "Repair and compute" gives the unit cube with the repair noted', async () => {
     const file = path.join(tmp, 't-junction-cube.off');
-    writeTJunctionCube(file);
+    writeQuadOFF(file, T_JUNCTION_CUBE.vertices, T_JUNCTION_CUBE.quads);
     const s = await loadFile(page, file);
     assert(s.state === 'error' && s.message?.code === 'OPEN_MESH', JSON.stringify(s));
     assert((await controls(page)).actions.repair, 'repair not offered');

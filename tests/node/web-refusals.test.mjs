@@ -8,6 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import * as K from '../../wasm/index.js';
+import { T_JUNCTION_CUBE, tJunctionCube } from './lib/geometry.mjs';
 import { candidatesFor, rankTrials, messageInWords, warningInWords, trialInWords } from '../../web/alternatives.js';
 import { boxFaceIds, faceSourceInWords, edgeLines, FACE_SOURCE_BOX, FACE_SOURCE_WALL } from '../../web/face-sources.js';
 
@@ -17,21 +18,8 @@ await K.init({ wasmBinary: fs.readFileSync(path.join(repo, 'dist/kergen.wasm')) 
 const OPTION_NAMES = /weld: true|allowOpen|repair: true|open: 'perpendicular'|Options::/;
 
 // A unit cube whose top is two rectangles split at x = 0.5 (T-junctions on the y sides' top edges).
-const V = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1, 0.5, 0, 1, 0.5, 1, 1];
-const Q = [
-  [0, 3, 2, 1],
-  [4, 8, 9, 7],
-  [8, 5, 6, 9],
-  [0, 1, 5, 4],
-  [1, 2, 6, 5],
-  [2, 3, 7, 6],
-  [3, 0, 4, 7],
-];
-const tj = {
-  positions: Float64Array.from(V),
-  indices: Uint32Array.from(Q.flat()),
-  faceSizes: Uint32Array.from(Q.map((q) => q.length)),
-};
+const Q = T_JUNCTION_CUBE.quads;
+const tj = tJunctionCube();
 
 test('the package messages of OPEN_MESH, NON_MANIFOLD_EDGE, MULTIPLE_COMPONENTS read without option names', () => {
   const messages = [];

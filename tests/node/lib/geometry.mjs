@@ -180,6 +180,33 @@ export function extrude(poly, z0 = 0, z1 = 1) {
   return { positions: Float64Array.from(positions), indices: Uint32Array.from(indices), faceSizes: null };
 }
 
+/**
+ * A unit cube whose top is two rectangles split at x = 0.5, while the -y and +y sides keep their
+ * whole top edge: the split points are T-junctions, closed geometrically but OPEN_MESH as indexed.
+ * Flat xyz `vertices` and quad loops `quads`; tJunctionCube() gives it as package arrays.
+ */
+export const T_JUNCTION_CUBE = {
+  vertices: [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1, 0.5, 0, 1, 0.5, 1, 1],
+  quads: [
+    [0, 3, 2, 1],
+    [4, 8, 9, 7],
+    [8, 5, 6, 9],
+    [0, 1, 5, 4],
+    [1, 2, 6, 5],
+    [2, 3, 7, 6],
+    [3, 0, 4, 7],
+  ],
+};
+
+export function tJunctionCube() {
+  const { vertices, quads } = T_JUNCTION_CUBE;
+  return {
+    positions: Float64Array.from(vertices),
+    indices: Uint32Array.from(quads.flat()),
+    faceSizes: Uint32Array.from(quads.map((q) => q.length)),
+  };
+}
+
 /** Axis-aligned box as 6 quads (polygon input) or 12 triangles. */
 export function box(lo = [0, 0, 0], hi = [1, 1, 1], { quads = false } = {}) {
   const positions = [];
