@@ -6,9 +6,9 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { execFileSync } from 'node:child_process';
 import { assertBuilt, nativeCli, offFiles, sharedMeshesMissing, repoRoot } from './lib/env.mjs';
 import { readOff } from './lib/off.mjs';
+import { runCli } from './lib/cli-compare.mjs';
 
 let K;
 before(async () => {
@@ -16,27 +16,6 @@ before(async () => {
   K = await import('../../wasm/index.js');
   await K.init();
 });
-
-function runNative(file) {
-  let stdout;
-  try {
-    stdout = execFileSync(nativeCli, ['--json', file], {
-      encoding: 'utf8',
-      stdio: ['ignore', 'pipe', 'pipe'],
-      timeout: 120000,
-    });
-  } catch (err) {
-    stdout = err.stdout || '';
-    if (!stdout.trim())
-      throw new Error(`native CLI failed on ${file} without JSON output: ${err.stderr || err.message}`);
-  }
-  const objects = stdout
-    .split('\n')
-    .filter((l) => l.trim().startsWith('{'))
-    .map((l) => JSON.parse(l));
-  assert.equal(objects.length, 1, `one JSON object per mesh from the CLI for ${file}`);
-  return objects[0];
-}
 
 function nativeError(obj) {
   const e = obj.error ?? obj.error_code ?? obj.code;
@@ -80,7 +59,7 @@ function compareFolder(folder) {
     const problems = [];
     for (const file of files) {
       const name = path.relative(path.dirname(path.dirname(file)), file);
-      const n = runNative(file);
+      const n = runCli(file);
       const w = runWasm(file);
       const nErr = nativeError(n);
       if (w.parseError) {
