@@ -114,7 +114,8 @@ class Replay {
       // The same rounding as the result's coordinates (polytope assembly).
       double hi[3], lo[3];
       precise_coordinates(ps_, tr_.vertices[v].geom, hi, lo);
-      for (int k = 0; k < 3; ++k) ev.position[k] = std::ldexp(hi[k], opt_.unscale_exp);
+      // (+0 for a zero, as the result's vertices: polytope.cpp.)
+      for (int k = 0; k < 3; ++k) ev.position[k] = std::ldexp(hi[k] + 0.0, opt_.unscale_exp);
     }
     const bool go = emit(ev);
     for (uint32_t i = offset_[v]; i < offset_[v + 1]; ++i)

@@ -34,7 +34,8 @@ void expect_canonical(const Kernel& k, const std::string& name) {
   for (size_t e = 0; e < k.num_edges(); ++e) {
     EXPECT_LT(k.edges[2 * e], k.edges[2 * e + 1]) << name << ": edge " << e;
     if (e > 0) {
-      const std::array<uint32_t, 2> prev{k.edges[2 * e - 2], k.edges[2 * e - 1]}, cur{k.edges[2 * e], k.edges[2 * e + 1]};
+      const std::array<uint32_t, 2> prev{k.edges[2 * e - 2], k.edges[2 * e - 1]},
+          cur{k.edges[2 * e], k.edges[2 * e + 1]};
       EXPECT_LT(prev, cur) << name << ": edge " << e;
     }
   }
@@ -93,7 +94,8 @@ void expect_same_under_steps(const Mesh& mesh, const Kernel& canonical, const st
   EXPECT_GT(events, 0u) << name;
   auto as_points = [](const Kernel& k) {
     std::vector<std::array<double, 3>> p(k.num_vertices());
-    for (size_t i = 0; i < p.size(); ++i) p[i] = {k.vertices[3 * i] + 0.0, k.vertices[3 * i + 1] + 0.0, k.vertices[3 * i + 2] + 0.0};
+    for (size_t i = 0; i < p.size(); ++i)
+      p[i] = {k.vertices[3 * i] + 0.0, k.vertices[3 * i + 1] + 0.0, k.vertices[3 * i + 2] + 0.0};
     return p;
   };
   std::vector<std::array<double, 3>> stepped = as_points(s);
