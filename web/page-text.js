@@ -50,6 +50,29 @@ export function setStatus(stateName, text, value = '', outcome = '') {
   ui.status.dataset.outcome = outcome;
   ui.status.textContent = text;
   viewer.renderer.domElement.setAttribute('aria-label', `3D view${state.name ? ` of ${state.name}` : ''}: ${text}`);
+  if (stateName !== 'idle') revealVerdict();
+}
+
+/**
+ * Brings the verdict (the status line) and the first action offered under it into view. A load
+ * starts from wherever the panel (and, on a phone, the page around it) was scrolled to reach
+ * Choose…, a sample or an action, which leaves the verdict above the screen. Both scrolled back
+ * to the top when that shows the verdict and the action (on a phone, under the 3D view), else
+ * the verdict to the top.
+ */
+export function revealVerdict() {
+  const panel = ui.status.closest('#panel');
+  const inView = () => {
+    const first = ui.actions.hidden ? null : [...ui.actions.children].find((b) => !b.hidden);
+    const top = ui.status.getBoundingClientRect().top;
+    const bottom = (first ?? ui.status).getBoundingClientRect().bottom;
+    const box = panel.getBoundingClientRect();
+    return top >= Math.max(0, box.top) && bottom <= Math.min(window.innerHeight, box.bottom);
+  };
+  if (inView()) return;
+  document.scrollingElement.scrollTop = 0;
+  panel.scrollTop = 0;
+  if (!inView()) ui.status.scrollIntoView({ block: 'start' });
 }
 
 // The message box: a title and paragraphs, each its own sentence(s).
