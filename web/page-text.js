@@ -6,6 +6,9 @@ import { ROWS, describeError, describeResult, sentence } from './outcome.js';
 import { $, state, ui, viewer } from './page-state.js';
 
 export const fmt = (x, digits = 6) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : String(x));
+// A count and its noun ("1 face", "2,048 faces").
+const counted = (n, one, many = `${one}s`) => `${fmtCount(n)} ${n === 1 ? one : many}`;
+
 // Durations: "850 ms", "1.3 s".
 const fmtMs = (ms) => (ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(ms < 10000 ? 1 : 0)} s`);
 export const fmtBytes = (n) => (n < 1e6 ? `${(n / 1e3).toFixed(0)} kB` : `${(n / 1e6).toFixed(1)} MB`);
@@ -118,9 +121,9 @@ const PHASE_TEXT = {
   loading: () => 'Loading the kernel module…',
   reading: (p) => `Reading ${state.name} (${fmtBytes(p.bytes ?? 0)})…`,
   computing: () => 'Computing…',
-  validating: (p) => `Validating ${fmtCount(p.count ?? 0)} faces…`,
-  planes: (p) => `Merging planes of ${fmtCount(p.count ?? 0)} faces…`,
-  lp: (p) => `Finding a kernel point (LP over ${fmtCount(p.count ?? 0)} planes)…`,
+  validating: (p) => `Validating ${counted(p.count ?? 0, 'face')}…`,
+  planes: (p) => `Merging planes of ${counted(p.count ?? 0, 'face')}…`,
+  lp: (p) => `Finding a kernel point (LP over ${counted(p.count ?? 0, 'plane')})…`,
   tracing: (p) => `Tracing the kernel · ${fmtCount(p.steps)} steps…`,
   assembling: (p) => `Assembling the kernel (${fmtCount(p.count ?? 0)})…`,
   done: () => 'Drawing…',
@@ -157,7 +160,7 @@ export function showStats(result, wall, V, E, F) {
   );
   const planesNote = [
     s.activePlanes != null ? `${s.activePlanes} active` : null,
-    s.culledFaces ? `${s.culledFaces} faces culled first` : null,
+    s.culledFaces ? `${counted(s.culledFaces, 'face')} culled first` : null,
   ]
     .filter(Boolean)
     .join(', ');

@@ -126,7 +126,7 @@ export async function showMesh(mesh, token) {
   const faces = mesh.faceSizes ? mesh.faceSizes.length : mesh.indices.length / 3;
   setStat(
     'stat-input-faces',
-    `${fmtCount(faces)} ${mesh.faceSizes ? 'faces' : 'triangles'} (${fmtCount(mesh.positions.length / 3)} vertices)`,
+    `${fmtCount(faces)} ${mesh.faceSizes ? 'face' : 'triangle'}${faces === 1 ? '' : 's'} (${fmtCount(mesh.positions.length / 3)} ${mesh.positions.length === 3 ? 'vertex' : 'vertices'})`,
     faces,
   );
   const edges = (state.view.edges ?? faces <= EDGE_FACES) && faces <= EDGE_FACES;
