@@ -13,9 +13,9 @@
 namespace kergen {
 
 struct CappedVolume {
-  double volume = 0;      // enclosed volume of the capped surface, in the input's units
-  bool inward = false;    // volume < 0, by more than the rounding of its terms
-  size_t holes = 0;       // boundary loops capped (0: the surface is closed)
+  double volume = 0;    // enclosed volume of the capped surface, in the input's units
+  bool inward = false;  // volume < 0, by more than the rounding of its terms
+  size_t holes = 0;     // boundary loops capped (0: the surface is closed)
 };
 
 // `mesh` must be a valid surface except for being open (every edge used by one or two faces,
