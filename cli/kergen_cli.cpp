@@ -1,7 +1,8 @@
 // kergen — command-line front end: computes the kernel of one or many mesh files.
 //
 //   kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open] [--deepest]
-//                  [--open clip|perpendicular] [--write-repaired FILE] [--max-steps N] [--jobs N]
+//                  [--open clip|perpendicular] [--flip-faces] [--write-repaired FILE] [--max-steps N]
+//                  [--jobs N]
 //
 // Exit code: 0 when every mesh was processed (an empty kernel is a result, not an error), 1 when
 // some mesh could not be read or was rejected by validation, 2 for a usage error.
@@ -36,7 +37,7 @@ const char* const kUsage =
     "usage: kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open]\n"
     "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
     "                      [--weld [EPS]] [--weld-relative R] [--no-weld] [--repair]\n"
-    "                      [--open clip|perpendicular] [--write-repaired FILE]\n"
+    "                      [--open clip|perpendicular] [--flip-faces] [--write-repaired FILE]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -48,6 +49,8 @@ const char* const kUsage =
     "  --open MODE     accept meshes with holes and bound their kernel: clip (as --allow-open)\n"
     "                  or perpendicular (also a wall through each boundary edge, perpendicular\n"
     "                  to its face; the kernel may still be unbounded, then clipped)\n"
+    "  --flip-faces    turn every face over first (an open surface given inside out; an open\n"
+    "                  surface is never turned over by itself)\n"
     "  --deepest       also compute the centre and radius of the largest inscribed ball\n"
     "  --max-steps N   stop after N trace events (the result is then partial)\n"
     "  --jobs N        compute N meshes at a time (default: the machine's threads); the\n"
@@ -157,6 +160,8 @@ Arguments parse_arguments(int argc, char** argv) {
       }
     } else if (arg == "--repair") {
       args.options.repair = true;
+    } else if (arg == "--flip-faces") {
+      args.options.flip_faces = true;
     } else if (arg == "--weld-relative") {
       args.weld_given = true;
       const std::string text = value();
@@ -329,7 +334,7 @@ std::string json_line(const MeshOutcome& m) {
     const kergen::Warning& w = k.warnings[i];
     if (i) s += ",";
     s += "{\"kind\":" + json_string(kergen::warning_kind_name(w.kind)) + ",\"count\":" + std::to_string(w.count) +
-         ",\"message\":" + json_string(w.message) + "}";
+         ",\"message\":" + json_string(in_cli_words(w.message)) + "}";
   }
   s += "]";
   const kergen::Stats& st = k.stats;
@@ -374,7 +379,12 @@ void append_human(std::string& out, const MeshOutcome& m) {
   appendf(out, "%s\n", m.file.c_str());
   appendf(out, "  status      %s%s\n", kergen::kernel_type_name(k.type), k.complete ? "" : " (partial: stopped early)");
   appendf(out, "  kernel      V %zu  E %zu  F %zu\n", k.num_vertices(), k.num_edges(), k.num_faces());
-  appendf(out, "  volume      %.10g  (shape %.10g, ratio %.6g)\n", k.volume, k.shape_volume, k.volume_ratio);
+  // (An open surface's shape volume is that of the surface closed over its holes, which its
+  // kernel may exceed: the core gives it no ratio.)
+  if (!(k.volume > 0 && k.volume_ratio == 0))
+    appendf(out, "  volume      %.10g  (shape %.10g, ratio %.6g)\n", k.volume, k.shape_volume, k.volume_ratio);
+  else
+    appendf(out, "  volume      %.10g  (shape %.10g)\n", k.volume, k.shape_volume);
   appendf(out, "  area        %.10g\n", k.area);
   if (k.has_kernel_point)
     appendf(out, "  point       %.10g %.10g %.10g\n", k.kernel_point[0], k.kernel_point[1], k.kernel_point[2]);
@@ -395,7 +405,8 @@ void append_human(std::string& out, const MeshOutcome& m) {
     appendf(out, "  deepest     %.10g %.10g %.10g  (radius %.10g)\n", k.deepest_point[0], k.deepest_point[1],
             k.deepest_point[2], k.inscribed_radius);
   for (const kergen::Warning& w : k.warnings)
-    appendf(out, "  warning     %s (%zu): %s\n", kergen::warning_kind_name(w.kind), w.count, w.message.c_str());
+    appendf(out, "  warning     %s (%zu): %s\n", kergen::warning_kind_name(w.kind), w.count,
+            in_cli_words(w.message).c_str());
   const kergen::Stats& st = k.stats;
   appendf(
       out,
@@ -575,7 +586,7 @@ int main(int argc, char** argv) {
   });
 
   if (batch) {
-    std::string summary = "kergen: " + std::to_string(files.size()) + " meshes in ";
+    std::string summary = "kergen: " + std::to_string(files.size()) + (files.size() == 1 ? " mesh in " : " meshes in ");
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.2f s", milliseconds_since(start) / 1000);
     summary += seconds;

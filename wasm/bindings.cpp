@@ -53,7 +53,7 @@ namespace {
 // clang-format off
 #define KERGEN_OPTION_SLOTS(X) \
   X(fromX) X(fromY) X(fromZ) X(maxSteps) X(allowOpen) X(deepestPoint) X(maxFaces) X(maxVertices) \
-  X(cullFaces) X(seed) X(weld) X(weldRelative) X(repair) X(openBoundary)
+  X(cullFaces) X(seed) X(weld) X(weldRelative) X(repair) X(openBoundary) X(flipFaces)
 // clang-format on
 enum Option : uint32_t {
 #define KERGEN_ENUM(name) kOpt_##name,
@@ -276,6 +276,7 @@ kergen::Options read_options(uintptr_t request) {
   if (!std::isnan(slot[kOpt_weld])) o.weld = slot[kOpt_weld];
   if (!std::isnan(slot[kOpt_weldRelative])) o.weld_relative = slot[kOpt_weldRelative] != 0;
   if (!std::isnan(slot[kOpt_repair])) o.repair = slot[kOpt_repair] != 0;
+  if (!std::isnan(slot[kOpt_flipFaces])) o.flip_faces = slot[kOpt_flipFaces] != 0;
   // (index.js sends a code of wireFormat().openBoundaries, the enum's values in order)
   if (!std::isnan(slot[kOpt_openBoundary]))
     o.open_boundary = static_cast<kergen::OpenBoundary>(static_cast<int>(slot[kOpt_openBoundary]));

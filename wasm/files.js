@@ -124,7 +124,7 @@ export function writeMesh(meshOrKernel, format) {
     if (indices[i] >= numVertices) {
       throw new KergenError(
         'INDEX_OUT_OF_RANGE',
-        `${fn}: indices[${i}] = ${indices[i]} but the mesh has ${numVertices} vertices`,
+        `${fn}: indices[${i}] = ${indices[i]} but the mesh has ${numVertices} ${numVertices === 1 ? 'vertex' : 'vertices'}`,
       );
     }
   }

@@ -170,12 +170,23 @@ export interface KernelOptions {
    * `DUPLICATE_FACES_REMOVED`, `CANCELLING_FACES_REMOVED`, `T_JUNCTIONS_SPLIT`). Default: off.
    */
   repair?: boolean;
+  /**
+   * Turn every face over (reverse its loop) first: for an open surface given inside out (warning
+   * `FACES_POINT_INWARD`), which is never turned over by itself. A closed surface is oriented by
+   * its volume either way. Default: false.
+   */
+  flipFaces?: boolean;
   /** Vertices per face, for polygon input (absent or null: every face is a triangle, as readMesh gives it). */
   faceSizes?: Uint32Array | readonly number[] | null;
 }
 
 export interface KernelWarning {
-  /** 'ORIENTATION_FLIPPED' | 'DEGENERATE_FACES_DROPPED' | 'NON_PLANAR_FACES_SPLIT' | 'UNUSED_VERTICES' | 'VERTICES_WELDED' */
+  /**
+   * 'ORIENTATION_FLIPPED' | 'DEGENERATE_FACES_DROPPED' | 'NON_PLANAR_FACES_SPLIT' | 'UNUSED_VERTICES' |
+   * 'VERTICES_WELDED' | 'DUPLICATE_FACES_REMOVED' | 'CANCELLING_FACES_REMOVED' | 'T_JUNCTIONS_SPLIT' |
+   * 'SEPARATE_SHELLS' | 'FACES_POINT_INWARD' (an open surface whose faces point inward: closed over
+   * its holes it encloses a negative volume; see `flipFaces`) | 'CROSSINGS_UNCHECKED'
+   */
   kind: string;
   count: number;
   message: string;
@@ -254,9 +265,12 @@ export interface KernelResult {
   volume: number;
   /** Kernel surface area ('POLYGON': the polygon's area). */
   area: number;
-  /** Volume enclosed by the input mesh. */
+  /**
+   * Volume enclosed by the input mesh; for an open mesh, by the surface closed over its holes,
+   * each capped by a fan from its centroid (negative when its faces point inward).
+   */
   shapeVolume: number;
-  /** volume / shapeVolume. */
+  /** volume / shapeVolume; 0 for an open mesh, whose kernel may reach beyond the caps of its holes. */
   volumeRatio: number;
   /**
    * Why the kernel is 'EMPTY': at most four half-spaces, of input faces and (with `open:
@@ -404,7 +418,7 @@ export function writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' 
 /** What repairMesh accepts: the options that change the mesh the kernel is computed on. */
 export type RepairMeshOptions = Pick<
   KernelOptions,
-  'weld' | 'repair' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'
+  'weld' | 'repair' | 'flipFaces' | 'allowOpen' | 'open' | 'faceSizes' | 'maxFaces' | 'maxVertices'
 >;
 
 /**

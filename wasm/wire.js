@@ -2,6 +2,7 @@
 // request written into the heap, the result block and step events copied out of it.
 import { KergenError } from './errors.js';
 import { W } from './load.js';
+import { inJsWords } from './checks.js';
 
 // Data crosses as one request block and one result block instead of embind values: each embind
 // value costs JS<->wasm round trips, which on small meshes cost as much as the computation.
@@ -40,6 +41,7 @@ export function writeRequest(m, positions, indices, faceSizes, opts) {
   f64[at + o.weldRelative] = opts.weld ? Number(opts.weld.relative) : NaN;
   f64[at + o.repair] = slot(opts.repair);
   f64[at + o.openBoundary] = slot(opts.openBoundary);
+  f64[at + o.flipFaces] = slot(opts.flipFaces);
   f64.set(positions, at + slots);
   const u32 = m.HEAPU32;
   const indexAt = (at + slots + positions.length) * 2;
@@ -148,7 +150,7 @@ export function readResult(m, ptr) {
     if (u32[h + H.ok] === 0) return { error: text[0], message: text[1] };
     const warnings = new Array(numWarnings);
     for (let i = 0; i < numWarnings; i++) {
-      warnings[i] = { kind: text[2 + 2 * i], count: f64[counts + i], message: text[3 + 2 * i] };
+      warnings[i] = { kind: text[2 + 2 * i], count: f64[counts + i], message: inJsWords(text[3 + 2 * i]) };
     }
     const st = s + S.stats;
     return {

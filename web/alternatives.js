@@ -29,10 +29,20 @@ export const ALTERNATIVES = {
     button: 'retryOpen',
     label: 'Compute as an open surface',
   },
+  // Tried only when the surface's faces point inward (warning FACES_POINT_INWARD of another
+  // trial): offered first when it has a kernel, by its status (rankTrials), after the others else.
+  flipWalls: {
+    options: { flipFaces: true, walls: true, allowOpen: false },
+    button: 'retryFlip',
+    label: 'Turn the faces outward and compute with walls',
+  },
 };
 
+/** Whether a computation's warnings say that an open surface's faces point inward. */
+export const facesPointInward = (warnings) => (warnings ?? []).some((w) => w.kind === 'FACES_POINT_INWARD');
+
 /**
- * The package's options for the page's run options ({ allowOpen, walls, repair, weld }). Walls at
+ * The package's options for the page's run options ({ allowOpen, walls, repair, weld, flipFaces }). Walls at
  * the boundary edges (open: 'perpendicular') bound an open surface's kernel where allowOpen clips
  * it to a box; walls win when both were asked for.
  */
@@ -41,6 +51,7 @@ export function packageOptions(run) {
     ...(run.walls ? { open: 'perpendicular' } : run.allowOpen ? { allowOpen: true } : {}),
     ...(run.repair ? { repair: true } : {}),
     ...(run.weld ? { weld: true } : {}),
+    ...(run.flipFaces ? { flipFaces: true } : {}),
   };
 }
 
@@ -130,7 +141,7 @@ export function warningInWords(w) {
     case 'VERTICES_WELDED': {
       const tol = weldTolerance(w.message);
       const where = tol ? `closer than ${fmt(tol)} to another vertex` : 'at the same position as another vertex';
-      const dropped = /(\d+) faces that collapsed/.exec(w.message ?? '');
+      const dropped = /(\d+) faces? that collapsed/.exec(w.message ?? '');
       const also = dropped
         ? `; ${plural(Number(dropped[1]), 'face')} that collapsed ${dropped[1] === '1' ? 'was' : 'were'} dropped`
         : '';
@@ -138,6 +149,11 @@ export function warningInWords(w) {
     }
     case 'DUPLICATE_FACES_REMOVED':
       return `${plural(n, 'face')} repeating another face ${n === 1 ? 'was' : 'were'} removed.`;
+    case 'FACES_POINT_INWARD': {
+      const volume = /volume of ([-+0-9.eE]+)/.exec(w.message ?? '');
+      const holes = /closed over its holes/.test(w.message ?? '') ? 'holes' : 'hole';
+      return `The surface is open and its faces point inward: closed over its ${holes}, it encloses a negative volume${volume ? ` (${fmt(Number(volume[1]))})` : ''}. An open surface is taken as given, never turned over by itself.`;
+    }
     case 'CANCELLING_FACES_REMOVED':
       return `${plural(n, 'face')} in pairs of opposite orientation on the same corners ${n === 1 ? 'was' : 'were'} removed.`;
     default:
@@ -145,8 +161,11 @@ export function warningInWords(w) {
   }
 }
 
-/** Why an alternative that worked works, and what it gives, as one paragraph. */
-export function trialInWords(id, t) {
+/**
+ * Why an alternative that worked works, and what it gives, as one paragraph (`trials`: every
+ * alternative tried, for what one says about another).
+ */
+export function trialInWords(id, t, trials = {}) {
   const kernel = kernelInWords(t);
   const repairs = (t.warnings ?? []).map(warningInWords).filter(Boolean).join(' ');
   switch (id) {
@@ -155,9 +174,13 @@ export function trialInWords(id, t) {
     case 'weld':
       return `${repairs || 'Repair changes nothing that shows here.'} Then the kernel is ${kernel}.`;
     case 'walls':
-      return t.status === 'EMPTY'
-        ? 'With a wall at each open edge (perpendicular to its face), no point is behind every face and inside every wall: the walls make the kernel empty.'
-        : `With a wall at each open edge (perpendicular to its face), the kernel is ${kernel}.`;
+      if (t.status !== 'EMPTY')
+        return `With a wall at each open edge (perpendicular to its face), the kernel is ${kernel}.`;
+      return trials.allowOpen?.status === 'EMPTY'
+        ? 'With a wall at each open edge (perpendicular to its face), the kernel is empty: no point is behind every face, walls or not.'
+        : 'With a wall at each open edge (perpendicular to its face), no point is behind every face and inside every wall: the walls make the kernel empty.';
+    case 'flipWalls':
+      return `With every face turned over (they then point outward) and a wall at each open edge, the kernel is ${kernel}.`;
     case 'allowOpen':
       return `As an open surface (only its faces bound the kernel, no walls), the kernel is ${kernel}.`;
     default:
@@ -173,6 +196,7 @@ export function failureInWords(id, t) {
     weld: 'Merging close vertices',
     walls: 'Walls at the open edges',
     allowOpen: 'Computing it as an open surface',
+    flipWalls: 'Turning the faces outward, with walls',
   }[id];
   return `${what} was tried: refused too (${t.error}).`;
 }
@@ -185,9 +209,14 @@ export function failureInWords(id, t) {
 export function messageInWords(message) {
   let text = String(message ?? '');
   // A parenthesis that names options: "(weld: true merges …; allowOpen: true accepts open meshes)".
-  text = text.replace(/\s*\([^()]*(?:weld: |repair: |allowOpen: |open: '|Options::)[^()]*\)/g, '');
+  text = text.replace(/\s*\([^()]*(?:weld: |repair: |allowOpen: |flipFaces: |open: '|Options::)[^()]*\)/g, '');
   // A trailing clause that names one: "; open: 'perpendicular' bounds such a surface's kernel …".
-  text = text.replace(/;\s*(?:[^;]*?)(?:weld: |repair: |allowOpen: |open: '|Options::)[^;]*$/g, '');
+  // (Cut from the end, one clause after another.)
+  const trailing = /;\s*(?:[^;]*?)(?:weld: |repair: |allowOpen: |flipFaces: |open: '|Options::)[^;]*$/;
+  for (let before = ''; before !== text;) {
+    before = text;
+    text = text.replace(trailing, '');
+  }
   return text.replace(/\b(\d+) (edge|face|vertex)\(s\)/g, (_, n, w) =>
     `${n} ${n === '1' ? w : `${w}s`}`.replace('vertexs', 'vertices'),
   );

@@ -3,7 +3,7 @@
 
 import { state, ui, viewer } from './page-state.js';
 import { showError } from './page-text.js';
-import { drawRequest, worker } from './runs.js';
+import { drawRequest, worker } from './workers.js';
 import { shareUrl } from './share.js';
 
 function download(blob, filename) {

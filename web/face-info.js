@@ -7,7 +7,7 @@ import * as THREE from 'three';
 import { faceHighlight } from './draw-prep.js';
 import { faceSourceInWords } from './face-sources.js';
 import { state, ui, viewer } from './page-state.js';
-import { drawRequest } from './runs.js';
+import { drawRequest } from './workers.js';
 
 const raycaster = new THREE.Raycaster();
 let shownFace = -1;

@@ -7,7 +7,7 @@
 
 import { viewer, state, PARAMS } from './page-state.js';
 import { setStatus, showRows } from './page-text.js';
-import { drawRequest } from './runs.js';
+import { drawRequest } from './workers.js';
 import { openSource, openUrl } from './sources.js';
 import { viewToControls, updateShareUrl } from './controls.js';
 import './playback.js';

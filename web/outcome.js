@@ -123,13 +123,15 @@ export function describeResult(result, V, E, F, extra = {}) {
   const planes = s.distinctPlanes > 0 ? ['planes'] : [];
   const head = ['name', 'input-faces', ...planes, 'status'];
   const deepest = result.deepestPoint ? ['deepest'] : [];
+  const ratio = result.volumeRatio > 0 ? ['ratio'] : [];
   switch (result.status) {
     case 'POLYHEDRON':
       return {
         outcome: 'star',
         status: `Star-shaped: the kernel is a polyhedron (${V} vertices, ${E} edges, ${F} faces).`,
         kind: null,
-        rows: [...head, 'counts', 'volume', 'area', 'ratio', 'kernel-point', ...deepest, ...timing],
+        // (An open surface's kernel has no ratio: it may reach beyond the caps of its holes.)
+        rows: [...head, 'counts', 'volume', 'area', ...ratio, 'kernel-point', ...deepest, ...timing],
       };
     case 'EMPTY': {
       if (extra.walls) return emptyWithWalls(extra, [...head, ...timing]);

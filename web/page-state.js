@@ -64,6 +64,7 @@ export const ui = {
   shareNote: $('share-note'),
   actions: $('actions'),
   retryOpen: $('retry-open'),
+  retryFlip: $('retry-flip'),
   retryWalls: $('retry-walls'),
   retryRepair: $('retry-repair'),
   retryWeld: $('retry-weld'),
@@ -98,6 +99,7 @@ export const state = {
     repair: PARAMS.get('repair') === '1',
     walls: PARAMS.get('open') === 'perpendicular',
     weld: PARAMS.get('weld') === '1',
+    flipFaces: PARAMS.get('flipFaces') === '1',
   },
   view: viewFromParams(PARAMS),
   mesh: null, // the parsed input when it is drawn on this thread (small); else the drawing worker has it

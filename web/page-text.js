@@ -6,6 +6,9 @@ import { ROWS, describeError, describeResult, sentence } from './outcome.js';
 import { $, state, ui, viewer } from './page-state.js';
 
 export const fmt = (x, digits = 6) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : String(x));
+// A count and its noun ("1 face", "2,048 faces").
+const counted = (n, one, many = `${one}s`) => `${fmtCount(n)} ${n === 1 ? one : many}`;
+
 // Durations: "850 ms", "1.3 s".
 const fmtMs = (ms) => (ms < 1000 ? `${ms.toFixed(0)} ms` : `${(ms / 1000).toFixed(ms < 10000 ? 1 : 0)} s`);
 export const fmtBytes = (n) => (n < 1e6 ? `${(n / 1e3).toFixed(0)} kB` : `${(n / 1e6).toFixed(1)} MB`);
@@ -50,6 +53,29 @@ export function setStatus(stateName, text, value = '', outcome = '') {
   ui.status.dataset.outcome = outcome;
   ui.status.textContent = text;
   viewer.renderer.domElement.setAttribute('aria-label', `3D view${state.name ? ` of ${state.name}` : ''}: ${text}`);
+  if (stateName !== 'idle') revealVerdict();
+}
+
+/**
+ * Brings the verdict (the status line) and the first action offered under it into view. A load
+ * starts from wherever the panel (and, on a phone, the page around it) was scrolled to reach
+ * Choose…, a sample or an action, which leaves the verdict above the screen. Both scrolled back
+ * to the top when that shows the verdict and the action (on a phone, under the 3D view), else
+ * the verdict to the top.
+ */
+export function revealVerdict() {
+  const panel = ui.status.closest('#panel');
+  const inView = () => {
+    const first = ui.actions.hidden ? null : [...ui.actions.children].find((b) => !b.hidden);
+    const top = ui.status.getBoundingClientRect().top;
+    const bottom = (first ?? ui.status).getBoundingClientRect().bottom;
+    const box = panel.getBoundingClientRect();
+    return top >= Math.max(0, box.top) && bottom <= Math.min(window.innerHeight, box.bottom);
+  };
+  if (inView()) return;
+  document.scrollingElement.scrollTop = 0;
+  panel.scrollTop = 0;
+  if (!inView()) ui.status.scrollIntoView({ block: 'start' });
 }
 
 // The message box: a title and paragraphs, each its own sentence(s).
@@ -95,9 +121,9 @@ const PHASE_TEXT = {
   loading: () => 'Loading the kernel module…',
   reading: (p) => `Reading ${state.name} (${fmtBytes(p.bytes ?? 0)})…`,
   computing: () => 'Computing…',
-  validating: (p) => `Validating ${fmtCount(p.count ?? 0)} faces…`,
-  planes: (p) => `Merging planes of ${fmtCount(p.count ?? 0)} faces…`,
-  lp: (p) => `Finding a kernel point (LP over ${fmtCount(p.count ?? 0)} planes)…`,
+  validating: (p) => `Validating ${counted(p.count ?? 0, 'face')}…`,
+  planes: (p) => `Merging planes of ${counted(p.count ?? 0, 'face')}…`,
+  lp: (p) => `Finding a kernel point (LP over ${counted(p.count ?? 0, 'plane')})…`,
   tracing: (p) => `Tracing the kernel · ${fmtCount(p.steps)} steps…`,
   assembling: (p) => `Assembling the kernel (${fmtCount(p.count ?? 0)})…`,
   done: () => 'Drawing…',
@@ -134,7 +160,7 @@ export function showStats(result, wall, V, E, F) {
   );
   const planesNote = [
     s.activePlanes != null ? `${s.activePlanes} active` : null,
-    s.culledFaces ? `${s.culledFaces} faces culled first` : null,
+    s.culledFaces ? `${counted(s.culledFaces, 'face')} culled first` : null,
   ]
     .filter(Boolean)
     .join(', ');

@@ -1,7 +1,6 @@
-// One computation: the kernel worker and the drawing worker, the run's lifecycle (begin, step
+// One computation (in the workers of workers.js): the run's lifecycle (begin, step
 // events, finish or fail) and what a finished run draws (open edges, witness faces, box facets).
 
-import { KernelWorker } from 'kergen-wasm/worker';
 import { applySection } from './controls.js';
 import { faceHighlight, openEdgeLines, prepareDrawing } from './draw-prep.js';
 import {
@@ -34,37 +33,7 @@ import { setPlayButton } from './playback.js';
 import { boxFaceIds, edgeLines } from './face-sources.js';
 import { clearFaceInfo } from './face-info.js';
 import { hideAlternatives, offerAlternatives } from './trials.js';
-
-export function worker() {
-  state.worker ??= new KernelWorker();
-  return state.worker;
-}
-
-// The drawing worker, and its replies by request id.
-const draw = { worker: null, nextId: 1, waiting: new Map() };
-export function drawRequest(message, transfer = []) {
-  if (!draw.worker) {
-    draw.worker = new Worker(new URL('./draw-worker.js', import.meta.url), { type: 'module' });
-    draw.worker.onmessage = ({ data }) => {
-      draw.waiting.get(data.id)?.(data);
-      draw.waiting.delete(data.id);
-    };
-    // A failure (out of memory on a huge file...) answers every request with nothing to draw:
-    // the kernel is still shown, around the origin.
-    draw.worker.onerror = (e) => {
-      e.preventDefault?.();
-      for (const resolve of draw.waiting.values()) resolve({ error: e.message ?? 'the drawing worker failed' });
-      draw.waiting.clear();
-      draw.worker.terminate();
-      draw.worker = null;
-    };
-  }
-  const id = draw.nextId++;
-  return new Promise((resolve) => {
-    draw.waiting.set(id, resolve);
-    draw.worker.postMessage({ ...message, id }, transfer);
-  });
-}
+import { drawRequest } from './workers.js';
 
 // Stops whatever is running and starts a new run; returns its token.
 export function beginRun(name) {
@@ -157,7 +126,7 @@ export async function showMesh(mesh, token) {
   const faces = mesh.faceSizes ? mesh.faceSizes.length : mesh.indices.length / 3;
   setStat(
     'stat-input-faces',
-    `${fmtCount(faces)} ${mesh.faceSizes ? 'faces' : 'triangles'} (${fmtCount(mesh.positions.length / 3)} vertices)`,
+    `${fmtCount(faces)} ${mesh.faceSizes ? 'face' : 'triangle'}${faces === 1 ? '' : 's'} (${fmtCount(mesh.positions.length / 3)} ${mesh.positions.length === 3 ? 'vertex' : 'vertices'})`,
     faces,
   );
   const edges = (state.view.edges ?? faces <= EDGE_FACES) && faces <= EDGE_FACES;

@@ -1,5 +1,5 @@
 // The page's state in its URL: what is open (?sample=<id> or ?url=<http(s) URL>), how it was
-// computed (allowOpen=1, open=perpendicular, repair=1, weld=1) and the view options that differ from the defaults, so that a
+// computed (allowOpen=1, open=perpendicular, repair=1, weld=1, flipFaces=1) and the view options that differ from the defaults, so that a
 // copied link reopens the same view.
 
 export const VIEW_DEFAULTS = Object.freeze({
@@ -36,7 +36,7 @@ export function viewFromParams(params) {
 
 /**
  * The URL that reopens `source` ({ kind: 'sample', id } or { kind: 'url', url }; anything else
- * cannot be reopened by a link: null) with `options` ({ allowOpen, walls, repair, weld }) and `view`.
+ * cannot be reopened by a link: null) with `options` ({ allowOpen, walls, repair, weld, flipFaces }) and `view`.
  */
 export function shareUrl(base, source, options, view) {
   if (source?.kind !== 'sample' && source?.kind !== 'url') return null;
@@ -50,6 +50,7 @@ export function shareUrl(base, source, options, view) {
   if (options.repair) p.set('repair', '1');
   if (options.walls) p.set('open', 'perpendicular');
   if (options.weld) p.set('weld', '1');
+  if (options.flipFaces) p.set('flipFaces', '1');
   const d = VIEW_DEFAULTS;
   if (view.opacity !== d.opacity) p.set('opacity', String(view.opacity));
   if (view.shape !== d.shape) p.set('shape', view.shape ? '1' : '0');

@@ -6,7 +6,8 @@ import { updateShareUrl } from './controls.js';
 import { isGltfName, readGltf } from './gltf.js';
 import { INLINE_FACES, state, ui, viewer } from './page-state.js';
 import { fmtBytes, setBusy, setStatus, showCancelled, showError } from './page-text.js';
-import { beginRun, endRun, runKernel, showMesh, stopPlayback, worker } from './runs.js';
+import { beginRun, endRun, runKernel, showMesh, stopPlayback } from './runs.js';
+import { worker } from './workers.js';
 import { SAMPLES, sampleById } from './samples.js';
 import { ALTERNATIVES, kernelOptions as optionsFor } from './alternatives.js';
 
@@ -23,7 +24,7 @@ const faceCount = (mesh) => (mesh.faceSizes ? mesh.faceSizes.length : mesh.indic
  */
 export async function openSource(
   source,
-  options = { allowOpen: false, repair: false, walls: false, weld: false },
+  options = { allowOpen: false, repair: false, walls: false, weld: false, flipFaces: false },
   t0 = performance.now(),
 ) {
   // What was tried after a refusal stays known while the same input is computed again.
@@ -196,6 +197,7 @@ for (const [id, fallback] of [
   ['retryWalls', 'walls'],
   ['retryRepair', 'repair'],
   ['retryWeld', 'weld'],
+  ['retryFlip', 'flipWalls'],
 ])
   ui[id].addEventListener('click', () => reopen(ui[id].dataset.alt || fallback));
 

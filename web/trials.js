@@ -10,12 +10,14 @@ import {
   trialInWords,
   failureInWords,
   kernelOptions,
+  facesPointInward,
+  warningInWords,
 } from './alternatives.js';
 import { state, ui } from './page-state.js';
-import { addParagraph, setBusy } from './page-text.js';
-import { worker } from './runs.js';
+import { addParagraph, revealVerdict, setBusy } from './page-text.js';
+import { worker } from './workers.js';
 
-const BUTTONS = ['retryRepair', 'retryWeld', 'retryWalls', 'retryOpen'];
+const BUTTONS = ['retryFlip', 'retryRepair', 'retryWeld', 'retryWalls', 'retryOpen'];
 
 /** Hides every retry button (a new run, or nothing to offer). */
 export function hideAlternatives() {
@@ -31,26 +33,37 @@ async function runTrials(ids, token) {
   const results = {};
   state.trying = true;
   ui.cancel.disabled = false; // trials can take a while on a big mesh
+  const tryOne = async (id) => {
+    setBusy(`Trying first: ${ALTERNATIVES[id].label.toLowerCase()}…`);
+    const run = { ...state.runOptions, ...ALTERNATIVES[id].options };
+    try {
+      const r = await worker().compute(mesh.positions, mesh.indices, {
+        faceSizes: mesh.faceSizes,
+        ...options,
+        ...kernelOptions(run),
+      });
+      trials[id] = { status: r.status, volume: r.volume, warnings: r.warnings };
+      results[id] = r;
+    } catch (err) {
+      if (token !== state.token) return null;
+      if (err?.code === 'CANCELLED') return 'cancelled'; // the Cancel button: offer them untried
+      trials[id] = { error: err?.code ?? 'ERROR', message: err?.message ?? String(err) };
+    }
+    return token === state.token ? 'tried' : null;
+  };
   try {
     for (const id of ids) {
       // Merging close vertices is tried only when repair alone (equal positions) is refused.
       if ((id === 'weldRepair' || id === 'weld') && trials.repair && !trials.repair.error) continue;
-      setBusy(`Trying first: ${ALTERNATIVES[id].label.toLowerCase()}…`);
-      const run = { ...state.runOptions, ...ALTERNATIVES[id].options };
-      try {
-        const r = await worker().compute(mesh.positions, mesh.indices, {
-          faceSizes: mesh.faceSizes,
-          ...options,
-          ...kernelOptions(run),
-        });
-        trials[id] = { status: r.status, volume: r.volume, warnings: r.warnings };
-        results[id] = r;
-      } catch (err) {
-        if (token !== state.token) return null;
-        if (err?.code === 'CANCELLED') return 'cancelled'; // the Cancel button: offer them untried
-        trials[id] = { error: err?.code ?? 'ERROR', message: err?.message ?? String(err) };
-      }
-      if (token !== state.token) return null;
+      const outcome = await tryOne(id);
+      if (outcome !== 'tried') return outcome;
+    }
+    // An open surface given inside out (the core says so in the accepted trials' warnings): the
+    // same with its faces turned over, never done without asking.
+    const inward = Object.values(trials).some((t) => facesPointInward(t.warnings));
+    if (inward && !state.runOptions.flipFaces) {
+      const outcome = await tryOne('flipWalls');
+      if (outcome !== 'tried') return outcome;
     }
   } finally {
     state.trying = false;
@@ -108,8 +121,10 @@ export async function offerAlternatives(code, token) {
   );
   ui.actions.hidden = order.length === 0;
   if (trials) {
+    const inward = Object.values(trials).find((t) => facesPointInward(t.warnings));
+    if (inward) addParagraph(warningInWords(inward.warnings.find((w) => w.kind === 'FACES_POINT_INWARD')));
     if (order.length) addParagraph('Each way offered above was computed first; the first gives the best answer.');
-    for (const id of order) addParagraph(trialInWords(id, trials[id]));
+    for (const id of order) addParagraph(trialInWords(id, trials[id], trials));
     for (const [id, t] of Object.entries(trials)) if (t.error) addParagraph(failureInWords(id, t));
   } else {
     addParagraph(
@@ -119,4 +134,5 @@ export async function offerAlternatives(code, token) {
     );
   }
   ui.actions.dataset.state = order.length ? 'ready' : 'none';
+  revealVerdict();
 }

@@ -11,6 +11,7 @@ import { SectionPlane } from './section.js';
 import { KernelView } from './kernel-view.js';
 import { Overlays } from './overlays.js';
 import { FOV, boxOf, fitBox } from './camera-fit.js';
+import { warmUpPipelines } from './warm-up.js';
 
 export { KERNEL_BLUE } from './kernel-view.js';
 
@@ -97,63 +98,9 @@ export class Viewer {
   }
 
   // Draws one frame with every material at page load: compiling a shader and, with software
-  // WebGL, generating its pipeline on first use cost a few hundred ms, which would otherwise fall
-  // in the middle of a file's computation. A pipeline is built per material *and* vertex layout
-  // (attributes, index type), so each material is drawn with the layouts the page draws it with:
-  // position only (the kernel's indexed faces and edges, the flat-shaded input, overlays without
-  // an index), position + normal (the smoothly shaded simplified input), and the ball's own
-  // sphere (16-bit index).
+  // The pipelines of every material and vertex layout, built before the first mesh (warm-up.js).
   warmUp() {
-    // A 100 × 100 grid (20k triangles) filling the view in front of the camera (at the origin,
-    // looking down -z until the first fit()): software rasterizers build their pixel stage and
-    // start their threads only when fragments are drawn, and a drawing of this size is what a
-    // big input costs.
-    const grid = new THREE.PlaneGeometry(2, 2, 100, 100);
-    grid.translate(0, 0, -1);
-    grid.setIndex(new THREE.BufferAttribute(Uint32Array.from(grid.index.array), 1));
-    // The other layouts on a coarse grid covering the same pixels (what builds a pipeline is
-    // drawing fragments, not the triangle count).
-    const coarse = new THREE.PlaneGeometry(2, 2, 4, 4);
-    coarse.translate(0, 0, -1);
-    const index = new THREE.BufferAttribute(Uint32Array.from(coarse.index.array), 1);
-    const layout = (names, indexed) => {
-      const g = new THREE.BufferGeometry();
-      for (const n of names) g.setAttribute(n, coarse.getAttribute(n));
-      if (indexed) g.setIndex(index);
-      return g;
-    };
-    const layouts = [
-      grid,
-      layout(['position'], true),
-      layout(['position'], false),
-      layout(['position', 'normal'], true),
-    ];
-    const dummies = [];
-    const add = (o) => {
-      const Kind = o.isMesh ? THREE.Mesh : o.isLineSegments ? THREE.LineSegments : o.isPoints ? THREE.Points : null;
-      if (!Kind) return;
-      for (const geo of layouts) {
-        const dummy = new Kind(geo, o.material);
-        dummy.renderOrder = o.renderOrder;
-        dummies.push(dummy);
-      }
-    };
-    add(new THREE.Mesh(grid, this.inputMaterial));
-    add(new THREE.Mesh(grid, this.smoothInputMaterial));
-    add(new THREE.LineSegments(grid, this.wireMaterial));
-    this.scene.traverse((o) => add(o));
-    this.inputGroup.add(...dummies);
-    // Hidden objects (the ball, overlays) are drawn once too, with their own geometry.
-    const hidden = [];
-    this.scene.traverse((o) => {
-      if (!o.visible) hidden.push(o);
-    });
-    for (const o of hidden) o.visible = true;
-    this.renderer.render(this.scene, this.camera);
-    for (const o of hidden) o.visible = false;
-    this.inputGroup.remove(...dummies);
-    for (const g of [...layouts, coarse]) g.dispose();
-    this.dirty = true;
+    warmUpPipelines(this);
   }
 
   // Materials live as long as the page: a new material would cost a shader compile per mesh.

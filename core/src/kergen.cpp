@@ -101,13 +101,32 @@ bool assemble(const Setup& s, const Options& options, int unscale_exp, const Tra
     }
   }
   out.stats.ms_assemble = ms_since(t);
-  out.volume_ratio = s.mesh.volume > 0 ? scaled_volume / s.mesh.volume : 0;
+  // (An open mesh's volume is its surface's closed over its holes, which the kernel may exceed.)
+  out.volume_ratio = s.mesh.volume > 0 && s.mesh.boundary_edges == 0 ? scaled_volume / s.mesh.volume : 0;
   return true;
 }
 
 }  // namespace
 
-Kernel compute_kernel(const MeshView& mesh, const Options& options) {
+namespace {
+
+// An open surface whose faces point inward and whose kernel is empty: the warning says whether
+// its faces turned over (Options::flip_faces) have a kernel, from one LP on them.
+void offer_flipped(const MeshView& mesh, const Options& options, Kernel& out) {
+  if (!out.ok() || out.type != KernelType::Empty || options.flip_faces) return;
+  for (Warning& w : out.warnings) {
+    if (w.kind != Warning::Kind::FacesPointInward) continue;
+    Options flipped = options;
+    flipped.flip_faces = true;
+    flipped.on_step = nullptr;
+    flipped.on_progress = nullptr;
+    const KernelPoint p = find_kernel_point(mesh, flipped);
+    if (p.error == Error::Ok && p.star_shaped) w.message += "; turned over, its kernel is not empty";
+    return;
+  }
+}
+
+Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
   const auto t_total = Clock::now();
   Kernel out;
   Setup s;
@@ -158,6 +177,14 @@ Kernel compute_kernel(const MeshView& mesh, const Options& options) {
   }
   out.stats.exact_fallbacks = s.planes->exact_fallbacks;
   out.stats.ms_total = ms_since(t_total);
+  return out;
+}
+
+}  // namespace
+
+Kernel compute_kernel(const MeshView& mesh, const Options& options) {
+  Kernel out = compute_kernel_as_given(mesh, options);
+  offer_flipped(mesh, options, out);
   return out;
 }
 

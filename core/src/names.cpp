@@ -50,6 +50,7 @@ const std::vector<OptionName>& option_names() {
       {"weld_relative", "--weld-relative", "weld: { relative }"},
       {"weld", "--weld", "weld: true"},
       {"repair", "--repair", "repair: true"},
+      {"flip_faces", "--flip-faces", "flipFaces: true"},
       {"deepest_point", "--deepest", "deepestPoint: true"},
       {"max_steps", "--max-steps", "maxSteps"},
       {"cull_faces", "--no-cull-faces", "cullFaces"},
@@ -82,6 +83,7 @@ const char* warning_kind_name(Warning::Kind k) {
     case Warning::Kind::CancellingFacesRemoved: return "CANCELLING_FACES_REMOVED";
     case Warning::Kind::TJunctionsSplit: return "T_JUNCTIONS_SPLIT";
     case Warning::Kind::SeparateShells: return "SEPARATE_SHELLS";
+    case Warning::Kind::FacesPointInward: return "FACES_POINT_INWARD";
     case Warning::Kind::CrossingsUnchecked: return "CROSSINGS_UNCHECKED";
   }
   return "UNKNOWN";

@@ -18,18 +18,51 @@ scene.add(shown);
 const output = document.querySelector('output');
 const worker = new KernelWorker();
 
-// The file as a three.js object: STL and OBJ give meshes, a GLB a whole scene.
-async function load(file) {
+// A mesh as the package's readers give it (polygons, faceSizes) as a three.js mesh: fan triangles.
+function meshObject({ positions, indices, faceSizes }) {
+  const triangles = [];
+  let at = 0;
+  for (const n of faceSizes ?? Array(indices.length / 3).fill(3)) {
+    for (let i = 1; i + 1 < n; i++) triangles.push(indices[at], indices[at + i], indices[at + i + 1]);
+    at += n;
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(positions), 3));
+  geometry.setIndex(triangles);
+  return new THREE.Mesh(geometry);
+}
+
+// The file as a three.js object and its kernel. STL, OBJ and glTF (.glb, or a .gltf with its
+// buffers embedded) through three.js's loaders, the kernel computed in the worker from the
+// object; any other file (OFF, PLY, ...) read by the package's own readers, in the worker.
+async function shapeAndKernel(file) {
   const bytes = await file.arrayBuffer();
-  if (/\.stl$/i.test(file.name)) return new THREE.Mesh(new STLLoader().parse(bytes));
-  if (/\.obj$/i.test(file.name)) return new OBJLoader().parse(new TextDecoder().decode(bytes));
-  return (await new GLTFLoader().parseAsync(bytes, '')).scene;
+  const name = file.name.toLowerCase();
+  let shape;
+  if (name.endsWith('.stl')) shape = new THREE.Mesh(new STLLoader().parse(bytes));
+  else if (name.endsWith('.obj')) shape = new OBJLoader().parse(new TextDecoder().decode(bytes));
+  else if (name.endsWith('.glb') || name.endsWith('.gltf'))
+    shape = (await new GLTFLoader().parseAsync(bytes, '')).scene;
+  else {
+    const { mesh, result } = await worker.computeFile(bytes, { name: file.name });
+    return { shape: meshObject(mesh), kernel: result };
+  }
+  const kernel = await worker.computeObject(shape); // every mesh, world transforms applied
+  return { shape, kernel };
+}
+
+// The last file's shape and kernel go as the next file comes: a file that fails leaves nothing.
+function clearShown() {
+  shown.traverse((o) => o.geometry?.dispose());
+  shown.clear();
 }
 
 document.querySelector('input').onchange = async (event) => {
+  const file = event.target.files[0];
+  clearShown();
+  output.textContent = `Reading ${file.name}…`;
   try {
-    const shape = await load(event.target.files[0]);
-    const kernel = await worker.computeObject(shape); // every mesh, world transforms applied
+    const { shape, kernel } = await shapeAndKernel(file);
     const { mesh, edges } = kernelToGeometry(kernel);
     const glass = new THREE.MeshBasicMaterial({
       color: 'steelblue',
@@ -38,7 +71,6 @@ document.querySelector('input').onchange = async (event) => {
       depthWrite: false,
     });
     shape.traverse((o) => o.isMesh && (o.material = glass));
-    shown.clear(); // (a long-running app would also dispose the old geometries)
     const kernelMesh = new THREE.Mesh(mesh, new THREE.MeshStandardMaterial({ color: 'orange' }));
     shown.add(shape, kernelMesh, new THREE.LineSegments(edges));
     const { center, radius } = new THREE.Box3().setFromObject(shape).getBoundingSphere(new THREE.Sphere());

@@ -2,7 +2,10 @@
 # examples/cpp-consumer built the two ways CMake users take the library, each run on analytic cases:
 #   (a) this checkout configured, built and installed to a temporary prefix (Release, library +
 #       CLI only), the consumer built against it with find_package(kergen CONFIG REQUIRED);
-#   (b) the consumer built with FetchContent of this checkout (no install, no network).
+#   (b) the consumer built with FetchContent of this checkout (no install, no network);
+#   (c) the consumer built with FetchContent's GIT_REPOSITORY (this checkout's repository, as a
+#       file:// URL) and GIT_TAG (its HEAD commit): the snippet of the README, with values that work
+#       (skipped when the checkout is not a git repository).
 # Every configure runs with GoogleTest, CGAL, Google Benchmark and Qhull disabled
 # (CMAKE_DISABLE_FIND_PACKAGE_*: a find_package(... REQUIRED) of them would fail the configure,
 # a QUIET one would find nothing), and the configures' traces show no find_package of them at all:
@@ -143,4 +146,21 @@ core=$(compile_command "$WORK/consumer-fetch" core/src/kergen.cpp)
 [[ "$core" == *" -O2 "* && "$core" != *"-O3"* ]] || fail "(b) kergen's sources do not follow the parent's Release flags: $core"
 run_consumer "FetchContent" "$WORK/consumer-fetch/kernel_info"
 
-echo "consumer: both ways passed in $(($(date +%s) - START)) s"
+# ---- (c) FetchContent with GIT_REPOSITORY and GIT_TAG ---------------------------------------
+ways="both ways"
+if commit=$(git -C "$SRC" rev-parse HEAD 2>/dev/null); then
+  echo "consumer: (c) FetchContent GIT_REPOSITORY file://$SRC GIT_TAG $commit"
+  "$CMAKE" -S "$SRC/examples/cpp-consumer" -B "$WORK/consumer-git" "${COMMON[@]}" -DKERGEN_CONSUMER_FETCH=ON \
+    "-DKERGEN_GIT_REPOSITORY=file://$SRC" "-DKERGEN_GIT_TAG=$commit" >"$WORK/consumer-git.log" 2>&1 ||
+    fail "configure of the consumer with GIT_REPOSITORY (see $WORK/consumer-git.log)"
+  "$CMAKE" --build "$WORK/consumer-git" -j2 >>"$WORK/consumer-git.log" ||
+    fail "build of the consumer with GIT_REPOSITORY (see $WORK/consumer-git.log)"
+  got=$(git -C "$WORK/consumer-git/_deps/kergen-src" rev-parse HEAD)
+  [ "$got" = "$commit" ] || fail "(c) fetched $got, not $commit"
+  run_consumer "FetchContent GIT_TAG" "$WORK/consumer-git/kernel_info"
+  ways="all three ways"
+else
+  echo "consumer: (c) skipped: $SRC is not a git checkout"
+fi
+
+echo "consumer: $ways passed in $(($(date +%s) - START)) s"

@@ -495,3 +495,38 @@ TEST_F(CliTest, WriteRepairedSavesWhatTheKernelIsComputedOn) {
   EXPECT_TRUE(fs::exists(open_out));
   EXPECT_EQ(run("--write-repaired out.ply " + shell_quote(path)).exit_code, 2);
 }
+
+namespace {
+
+// An open surface given inside out: the CLI says so (refused, and accepted with walls, in its own
+// flag names), and --flip-faces computes the kernel of the surface turned over: the unit cube
+// that the five faces and the walls at the open top's edges enclose, with no ratio printed.
+TEST_F(CliTest, InsideOutOpenSurfaceIsSaidAndFlippedOnRequest) {
+  kergen::Mesh m = kergen_test::open_cube();
+  for (size_t t = 0; t < m.indices.size(); t += 3) std::swap(m.indices[t], m.indices[t + 2]);
+  const std::string path = (dir_ / "inside-out.off").string();
+  std::string message;
+  ASSERT_EQ(kergen::write_mesh_file(path, m, &message), kergen::Error::Ok) << message;
+
+  const CliRun refused = run(shell_quote(path));
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("its faces point inward"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--flip-faces turns every face over"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.err.find("Options::"), std::string::npos) << refused.err;
+
+  const CliRun walled = run("--open perpendicular " + shell_quote(path));
+  EXPECT_EQ(walled.exit_code, 0) << walled.err;
+  EXPECT_NE(walled.out.find("status      EMPTY"), std::string::npos) << walled.out;
+  EXPECT_NE(walled.out.find("FACES_POINT_INWARD (10)"), std::string::npos) << walled.out;
+  EXPECT_NE(walled.out.find("--flip-faces turns every face over; turned over, its kernel is not empty"),
+            std::string::npos)
+      << walled.out;
+
+  const CliRun flipped = run("--open perpendicular --flip-faces " + shell_quote(path));
+  EXPECT_EQ(flipped.exit_code, 0) << flipped.err;
+  EXPECT_NE(flipped.out.find("status      POLYHEDRON"), std::string::npos) << flipped.out;
+  EXPECT_NE(flipped.out.find("volume      1  (shape 1)\n"), std::string::npos) << flipped.out;
+  EXPECT_EQ(flipped.out.find("FACES_POINT_INWARD"), std::string::npos) << flipped.out;
+}
+
+}  // namespace

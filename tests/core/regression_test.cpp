@@ -1013,7 +1013,7 @@ TEST(RegressionValidation, OpenMeshNamesTheSmallestBoundaryEdge) {
   const kergen::Kernel k = validate(m);
   EXPECT_EQ(k.error, kergen::Error::OpenMesh);
   EXPECT_EQ(k.message,
-            "the mesh is open: 6 edge(s) belong to one face only, e.g. edge (0, 1) (Options::weld merges nearly "
+            "the mesh is open: 6 edges belong to one face only, e.g. edge (0, 1) (Options::weld merges nearly "
             "coincident vertices, Options::repair also splits T-junctions; Options::allow_open accepts open meshes); "
             "Options::open_boundary bounds such a surface's kernel by walls at its boundary edges");
 }
@@ -1024,7 +1024,7 @@ TEST(RegressionValidation, InconsistentOrientationNamesTheSmallestEdge) {
   const kergen::Kernel k = validate(m);
   EXPECT_EQ(k.error, kergen::Error::InconsistentOrientation);
   EXPECT_EQ(k.message,
-            "3 edge(s) are traversed in the same direction by both of their faces (inconsistent orientation), e.g. "
+            "3 edges are traversed in the same direction by both of their faces (inconsistent orientation), e.g. "
             "edge (0, 2)");
 }
 

@@ -15,7 +15,7 @@
 // the summary); the tests live beside it: harness.mjs (test/skip/assert, E2E_ONLY, shared paths),
 // page-state.mjs, mesh-files.mjs and demo-view-tools.mjs (helpers), gallery-and-files.mjs,
 // progress-and-messages.mjs, export-and-cancel.mjs, demo-states.mjs, demo-features.mjs,
-// demo-refusals.mjs, big-meshes.mjs, three-app-test.mjs, examples.mjs.
+// demo-refusals.mjs, first-visit.mjs, big-meshes.mjs, three-app-test.mjs, examples.mjs.
 // Environment: CHROMIUM (default /usr/bin/chromium), KERGEN_CLI (default build/kergen),
 // E2E_HEADFUL=1, E2E_ONLY=<substring of test names>.
 
@@ -30,6 +30,7 @@ import { examplesTests } from './examples.mjs';
 import { demoStateTests } from './demo-states.mjs';
 import { demoFeatureTests } from './demo-features.mjs';
 import { demoRefusalTests } from './demo-refusals.mjs';
+import { firstVisitTests } from './first-visit.mjs';
 import {
   test,
   skip,
@@ -157,6 +158,7 @@ async function main() {
     await demoStateTests(page, context, base, tmp, helpers);
     await demoFeatureTests(page, context, base, tmp, helpers);
     await demoRefusalTests(page, context, base, tmp, { ...helpers, webDist });
+    await firstVisitTests(page, context, base, helpers);
     await themeAndBigFile(page, tmp, served);
     await bigKernelTest(page, tmp);
     await threeAppTest(context, tmp);

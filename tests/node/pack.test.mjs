@@ -166,6 +166,14 @@ test('the tarball holds the runtime files only', (t) => {
     assert.ok(!/^(tests|core|cli|bench|web|scripts|build|node_modules)\//.test(f), `${f} should not be packed`);
     assert.ok(!/\.(cpp|h|hpp|txt|sh|off|stl)$/.test(f), `${f} should not be packed`);
   }
+  // The package README once, at the root (npm packs a README of any packed folder: the pack
+  // moves wasm/README.md to the root for its duration).
+  assert.deepEqual(
+    files.filter((f) => /(^|\/)readme(\.|$)/i.test(f)),
+    ['README.md'],
+    'one README in the tarball',
+  );
+  assert.ok(fs.existsSync(path.join(repoRoot, 'wasm', 'README.md')), 'wasm/README.md is back after packing');
   const wasmEntry = packInfo.files.find((f) => f.path === 'dist/kergen.wasm');
   assert.equal(wasmEntry.size, fs.statSync(path.join(repoRoot, 'dist/kergen.wasm')).size);
 });

@@ -80,7 +80,7 @@ test('repair warnings in words: T-junctions with their count, a weld at toleranc
   const relative = {
     ...w,
     count: 3,
-    message: '3 vertices were merged into others within 1e-09, and 1 faces that collapsed were dropped',
+    message: '3 vertices were merged into others within 1e-09, and 1 face that collapsed was dropped',
   };
   assert.equal(
     warningInWords(relative),

@@ -216,6 +216,10 @@ struct Options {
   // How an open mesh's kernel is bounded (see OpenBoundary); Perpendicular accepts open meshes
   // without allow_open. Closed meshes are not affected.
   OpenBoundary open_boundary = OpenBoundary::Clip;
+  // Turn every face over (reverse its loop) before anything else. For an open surface given
+  // inside out (Warning::Kind::FacesPointInward), which is never turned over by itself; a closed
+  // surface is oriented by its volume either way.
+  bool flip_faces = false;
 };
 
 // How each front end names an Options field, for messages that suggest one: the library's
@@ -240,6 +244,10 @@ struct Warning {
     TJunctionsSplit,         // Options::repair inserted vertices lying on edges into their faces
     SeparateShells,          // a closed mesh of several pieces that neither cross nor touch (count):
                              // disjoint solids or a solid with a void, whose kernel is empty
+    FacesPointInward,        // an open surface (accepted) whose faces point inward: closed over its
+                             // holes (each capped by a fan from its centroid) it encloses a negative
+                             // volume; kept as given (an open surface is never flipped), see
+                             // Options::flip_faces. count = input faces
     CrossingsUnchecked,      // a polygon face is not a simple polygon in its plane, so the exact test
                              // that the surface does not cross itself (where the kernel has no point
                              // inside it, see Error::SelfIntersection) could not run: not certified
@@ -331,8 +339,11 @@ struct Kernel {
 
   double volume = 0;        // kernel volume (0 unless Polyhedron and complete)
   double area = 0;          // kernel surface area (Polygon: the polygon's area)
-  double shape_volume = 0;  // volume enclosed by the input mesh
-  double volume_ratio = 0;  // volume / shape_volume
+  double shape_volume = 0;  // volume enclosed by the input mesh; for an open mesh, by the surface
+                            // closed over its holes, each capped by a fan from its centroid
+                            // (negative when its faces point inward: Warning::Kind::FacesPointInward)
+  double volume_ratio = 0;  // volume / shape_volume; 0 for an open mesh, whose kernel may reach
+                            // beyond the caps of its holes (a wall leaning outward)
 
   // What bounds the kernel: for each face (in face order; with a stopped run, each face
   // reported), the input face whose plane it lies on, with the same inner side: the lowest index

@@ -12,6 +12,7 @@
 #include "certify/embedding.h"
 #include "certify/self_contact.h"
 #include "certify/witness.h"
+#include "util/plural.h"
 
 namespace kergen {
 
@@ -24,8 +25,8 @@ void refuse_crossing(const PreparedMesh& mesh, const EmbeddingCheck& check, Erro
                 mesh.to_input(check.point[2]));
   error = Error::SelfIntersection;
   message = "the surface crosses itself: a ray from " + std::string(point) +
-            ", a point every face is seen from the inside, crosses it " + std::to_string(check.crossings) +
-            " times (a closed surface that does not cross itself is crossed once)";
+            ", a point every face is seen from the inside, crosses it " + count_of(check.crossings, "time", "times") +
+            " (a closed surface that does not cross itself is crossed once)";
 }
 
 }  // namespace

@@ -13,13 +13,15 @@
 #include <utility>
 
 #include "input/prep_state.h"
+#include "util/plural.h"
 
 namespace kergen {
 
 using namespace prep;  // the phases (prep_state.h)
 
 Warning unused_vertices_warning(size_t count) {
-  return {Warning::Kind::UnusedVertices, count, std::to_string(count) + " vertices are not used by any face"};
+  return {Warning::Kind::UnusedVertices, count,
+          count_of(count, "vertex", "vertices") + verb_for(count, " is", " are") + " not used by any face"};
 }
 
 // The phases in order; each refuses the mesh or leaves its part of the state for the next.

@@ -16,6 +16,7 @@
 #include "exact/predicates.h"
 #include "input/prep_state.h"
 #include "util/compiler_hints.h"
+#include "util/plural.h"
 #include "util/point_table.h"
 #include "util/raw_vector.h"
 #include "util/union_find.h"
@@ -545,22 +546,28 @@ void pair_edges(Prep& s) {
 bool report_edge_faults(Prep& s) {
   if (s.nonmanifold) {
     return s.fail(Error::NonManifoldEdge,
-                  std::to_string(s.nonmanifold) + " edge(s) are shared by more than two faces, e.g. edge " +
-                      edge_name(s.nonmanifold_ex) + " (repeated faces? Options::repair removes them)");
+                  count_of(s.nonmanifold, "edge", "edges") + verb_for(s.nonmanifold, " is", " are") +
+                      " shared by more than two faces, e.g. edge " + edge_name(s.nonmanifold_ex) +
+                      " (repeated faces? Options::repair removes them)");
   }
   if (s.inconsistent) {
     return s.fail(Error::InconsistentOrientation,
-                  std::to_string(s.inconsistent) +
-                      " edge(s) are traversed in the same direction by both of their faces (inconsistent "
+                  count_of(s.inconsistent, "edge", "edges") + verb_for(s.inconsistent, " is", " are") +
+                      " traversed in the same direction by both of their faces (inconsistent "
                       "orientation), e.g. edge " +
                       edge_name(s.inconsistent_ex));
   }
   if (s.open && !s.options.allow_open) {
-    return s.fail(Error::OpenMesh,
-                  "the mesh is open: " + std::to_string(s.open) + " edge(s) belong to one face only, e.g. edge " +
-                      edge_name(s.open_ex) +
-                      " (Options::weld merges nearly coincident vertices, Options::repair also splits T-junctions; "
-                      "Options::allow_open accepts open meshes)");
+    // What may close it that was not done already (a mesh welded or repaired is not told to be).
+    std::string closers;
+    if (s.options.weld < 0) closers = "Options::weld merges nearly coincident vertices";
+    if (!s.options.repair)
+      closers += closers.empty() ? "Options::repair merges equal positions and splits T-junctions"
+                                 : ", Options::repair also splits T-junctions";
+    return s.fail(Error::OpenMesh, "the mesh is open: " + count_of(s.open, "edge", "edges") +
+                                       verb_for(s.open, " belongs", " belong") + " to one face only, e.g. edge " +
+                                       edge_name(s.open_ex) + " (" + closers + (closers.empty() ? "" : "; ") +
+                                       "Options::allow_open accepts open meshes)");
   }
   s.m.boundary_edges = s.open;
   return true;

@@ -12,6 +12,7 @@
 #include "exact/predicates.h"
 #include "input/prep_state.h"
 #include "util/compiler_hints.h"
+#include "util/plural.h"
 
 namespace kergen::prep {
 
@@ -198,10 +199,12 @@ bool check_split_volume(Prep& s) {
   m.dropped_faces += s.degenerate;
   if (m.dropped_faces)
     m.warnings.push_back({Warning::Kind::DegenerateFacesDropped, m.dropped_faces,
-                          std::to_string(m.dropped_faces) + " zero-area faces were ignored"});
+                          count_of(m.dropped_faces, "zero-area face", "zero-area faces") +
+                              verb_for(m.dropped_faces, " was", " were") + " ignored"});
   if (s.nonplanar)
     m.warnings.push_back({Warning::Kind::NonPlanarFacesSplit, s.nonplanar,
-                          std::to_string(s.nonplanar) + " non-planar polygons were split into triangles"});
+                          count_of(s.nonplanar, "non-planar polygon", "non-planar polygons") +
+                              verb_for(s.nonplanar, " was", " were") + " split into triangles"});
   if (m.rep.empty()) return s.fail(Error::DegenerateInput, "every face has zero area");
   return true;
 }

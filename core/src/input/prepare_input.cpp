@@ -1,6 +1,8 @@
-// The input as the kernel sees it (prepare_input.h): Options::weld and Options::repair run first
-// when the input allows them, then validation (mesh_prep.h), whose verdict is completed here: the
-// pieces of a mesh of several shells judged, and an open mesh's refusal naming open_boundary.
+// The input as the kernel sees it (prepare_input.h): Options::flip_faces, Options::weld and
+// Options::repair run first when the input allows them, then validation (mesh_prep.h), whose
+// verdict is completed here: the pieces of a mesh of several shells judged, and an open mesh's
+// refusal naming open_boundary; an open mesh's volume is that of the surface closed over its
+// holes, and one whose faces point inward is said to (open_orientation.h).
 #include "input/prepare_input.h"
 
 #include <algorithm>
@@ -9,9 +11,11 @@
 #include <string>
 #include <utility>
 
+#include "input/open_orientation.h"
 #include "input/repair.h"
 #include "input/shells.h"
 #include "input/weld.h"
+#include "util/plural.h"
 
 namespace kergen {
 
@@ -37,6 +41,15 @@ bool weldable(const MeshView& m) {
   return true;
 }
 
+// A copy of the arrays `m` views (what Mesh::view would give back).
+Mesh copy_of(const MeshView& m) {
+  Mesh out;
+  out.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
+  out.indices.assign(m.indices, m.indices + m.num_indices);
+  if (m.face_sizes) out.face_sizes.assign(m.face_sizes, m.face_sizes + m.num_faces);
+  return out;
+}
+
 // A closed mesh of several pieces (shells.h): refused when two pieces cross or touch, else
 // prepared with a warning (the kernel is then empty, or the pieces are nested alike: the entry
 // points refuse that once the LP has found a point).
@@ -55,19 +68,36 @@ PreparedMesh judge_shells(PreparedMesh m) {
   return m;
 }
 
-// An open mesh refused: the message also names the other way of accepting it.
-PreparedMesh mention_open_boundary(PreparedMesh m) {
-  if (m.error == Error::OpenMesh)
+// An open mesh (`judged`: the mesh validation judged). Refused: the message also names the other
+// way of accepting it, and says when its faces point inward. Accepted: its volume is that of the
+// surface closed over its holes, and faces pointing inward are a warning.
+PreparedMesh judge_open(PreparedMesh m, const MeshView& judged) {
+  const bool refused = m.error == Error::OpenMesh;
+  if (!refused && (m.error != Error::Ok || m.boundary_edges == 0)) return m;
+  const CappedVolume capped = capped_volume(judged);
+  if (refused) {
+    if (capped.inward) m.message += "; " + faces_point_inward_message(capped);
     m.message += "; Options::open_boundary bounds such a surface's kernel by walls at its boundary edges";
+    return m;
+  }
+  m.volume = std::ldexp(capped.volume, 3 * m.scale_exp);
+  if (capped.inward)
+    m.warnings.push_back({Warning::Kind::FacesPointInward, m.input_faces,
+                          "the surface is open and " + faces_point_inward_message(capped)});
   return m;
 }
 
-// A copy of the arrays `m` views (what Mesh::view would give back).
-Mesh copy_of(const MeshView& m) {
-  Mesh out;
-  out.positions.assign(m.positions, m.positions + 3 * m.num_vertices);
-  out.indices.assign(m.indices, m.indices + m.num_indices);
-  if (m.face_sizes) out.face_sizes.assign(m.face_sizes, m.face_sizes + m.num_faces);
+// `m` with every face's loop reversed (Options::flip_faces); `m` as given when its arrays do not
+// describe faces (validation refuses that as given).
+Mesh flipped(const MeshView& m) {
+  Mesh out = copy_of(m);
+  const size_t nf = m.face_sizes ? m.num_faces : m.num_indices / 3;
+  size_t begin = 0;
+  for (size_t f = 0; f < nf; ++f) {
+    const size_t size = m.face_sizes ? m.face_sizes[f] : 3;
+    std::reverse(out.indices.begin() + long(begin), out.indices.begin() + long(begin + size));
+    begin += size;
+  }
   return out;
 }
 
@@ -78,27 +108,41 @@ std::vector<Warning> weld_and_repair_warnings(const WeldResult& w, const RepairC
   if (w.merged_vertices || w.dropped_faces) {
     char tolerance[32];
     std::snprintf(tolerance, sizeof tolerance, "%.3g", w.tolerance);
-    std::string message = std::to_string(w.merged_vertices) + " vertices were merged into others within " + tolerance;
-    if (w.dropped_faces) message += ", and " + std::to_string(w.dropped_faces) + " faces that collapsed were dropped";
+    std::string message = count_of(w.merged_vertices, "vertex", "vertices") +
+                          verb_for(w.merged_vertices, " was merged into another", " were merged into others") +
+                          " within " + tolerance;
+    if (w.dropped_faces)
+      message += ", and " + count_of(w.dropped_faces, "face", "faces") + " that collapsed " +
+                 verb_for(w.dropped_faces, "was", "were") + " dropped";
     done.push_back({Warning::Kind::VerticesWelded, w.merged_vertices, message});
   }
   if (repaired.duplicate_faces)
     done.push_back({Warning::Kind::DuplicateFacesRemoved, repaired.duplicate_faces,
-                    std::to_string(repaired.duplicate_faces) + " faces repeating another face were removed"});
+                    count_of(repaired.duplicate_faces, "face", "faces") + " repeating another face " +
+                        verb_for(repaired.duplicate_faces, "was", "were") + " removed"});
   if (repaired.cancelling_faces)
     done.push_back({Warning::Kind::CancellingFacesRemoved, repaired.cancelling_faces,
-                    std::to_string(repaired.cancelling_faces) +
-                        " faces were removed in pairs of opposite orientation on the same corners"});
+                    count_of(repaired.cancelling_faces, "face", "faces") + " " +
+                        verb_for(repaired.cancelling_faces, "was", "were") +
+                        " removed in pairs of opposite orientation on the same corners"});
   if (repaired.t_junctions)
     done.push_back({Warning::Kind::TJunctionsSplit, repaired.t_junctions,
-                    std::to_string(repaired.t_junctions) +
-                        " vertices lying on the edge of another face were inserted into it (T-junctions split)"});
+                    count_of(repaired.t_junctions, "vertex", "vertices") + " lying on the edge of another face " +
+                        verb_for(repaired.t_junctions, "was", "were") + " inserted into it (" +
+                        verb_for(repaired.t_junctions, "a T-junction", "T-junctions") + " split)"});
   return done;
 }
 
 }  // namespace
 
 PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* validated, PrepareFor purpose) {
+  if (options.flip_faces) {
+    Options as_given = options;
+    as_given.flip_faces = false;
+    if (!weldable(mesh)) return prepare_input(mesh, as_given, validated, purpose);
+    const Mesh turned = flipped(mesh);
+    return prepare_input(turned.view(), as_given, validated, purpose);
+  }
   if (options.open_boundary == OpenBoundary::Perpendicular && !options.allow_open) {
     Options accepting = options;
     accepting.allow_open = true;
@@ -107,15 +151,15 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* v
   const bool weld = options.weld >= 0;
   if (!weld && !options.repair) {  // (no pass over the input to check what no one asked for)
     if (validated && weldable(mesh)) *validated = copy_of(mesh);
-    return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true, purpose)));
+    return judge_open(judge_shells(prepare_mesh(mesh, options, true, purpose)), mesh);
   }
   const bool can_weld = weldable(mesh);
-  if (!can_weld) return mention_open_boundary(judge_shells(prepare_mesh(mesh, options, true, purpose)));
+  if (!can_weld) return judge_open(judge_shells(prepare_mesh(mesh, options, true, purpose)), mesh);
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
   RepairCounts repaired;
   std::vector<uint32_t> repair_kept;
   if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
-  PreparedMesh m = mention_open_boundary(judge_shells(prepare_mesh(w.mesh.view(), options, true, purpose)));
+  PreparedMesh m = judge_open(judge_shells(prepare_mesh(w.mesh.view(), options, true, purpose)), w.mesh.view());
   // Faces are named by their index in the input (the witness): through the repair, then the weld.
   m.welded_source = std::move(w.source_face);
   if (options.repair) {

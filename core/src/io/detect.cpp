@@ -17,6 +17,7 @@
 #include "io/reader.h"
 #include "io/text_scan.h"
 #include "kergen/io.h"
+#include "util/plural.h"
 
 namespace kergen {
 
@@ -112,8 +113,8 @@ ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
   if (S_ISDIR(info.st_mode)) return io_error("is a directory");
   auto too_large = [&](uint64_t size) {
     result.error = Error::TooLarge;
-    result.message = path + ": file is " + std::to_string(size) + " bytes, more than the limit of " +
-                     std::to_string(max_bytes) + " bytes";
+    result.message = path + ": file is " + count_of(size, "byte", "bytes") + ", more than the limit of " +
+                     count_of(max_bytes, "byte", "bytes");
     return result;
   };
   if (S_ISREG(info.st_mode) && static_cast<uint64_t>(info.st_size) > max_bytes) return too_large(info.st_size);

@@ -12,6 +12,7 @@
 #include "io/reader.h"
 #include "io/text_scan.h"
 #include "kergen/io.h"
+#include "util/plural.h"
 
 namespace kergen {
 
@@ -66,7 +67,7 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
           if (-index > vertices_so_far)
             fail_at_line(name, line_number,
                          "relative vertex index " + std::to_string(index) + " points before the first vertex (" +
-                             std::to_string(vertices_so_far) + " vertices so far)");
+                             count_of(vertices_so_far, "vertex", "vertices") + " so far)");
           resolved = static_cast<uint32_t>(vertices_so_far + index);
         } else {
           if (index > static_cast<long long>(std::numeric_limits<uint32_t>::max()))
@@ -80,7 +81,8 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
         face.push_back(resolved);
       }
       if (face.size() < 3)
-        fail_at_line(name, line_number, "face has " + std::to_string(face.size()) + " vertices (at least 3 needed)");
+        fail_at_line(name, line_number,
+                     "face has " + count_of(face.size(), "vertex", "vertices") + " (at least 3 needed)");
       for (uint32_t v : face) mesh.indices.push_back(v);
       mesh.face_sizes.push_back(static_cast<uint32_t>(face.size()));
     } else if (keyword == "l" || keyword == "p") {
@@ -92,7 +94,7 @@ void parse_obj(std::string_view text, const std::string& name, Mesh& mesh) {
   if (largest_positive_index > vertex_count)
     fail_at_line(name, largest_positive_index_line,
                  "vertex index " + std::to_string(largest_positive_index) + " out of range (the file has " +
-                     std::to_string(vertex_count) + " vertices)");
+                     count_of(vertex_count, "vertex", "vertices") + ")");
   if (mesh.face_sizes.empty()) {
     if (point_and_line_records > 0) fail(Error::EmptyInput, name + ": no faces (only points/lines)");
     fail(Error::EmptyInput, name + (vertex_count == 0 ? ": no vertices and no faces" : ": no faces"));

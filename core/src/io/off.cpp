@@ -9,6 +9,7 @@
 #include "io/reader.h"
 #include "io/text_scan.h"
 #include "kergen/io.h"
+#include "util/plural.h"
 
 namespace kergen {
 
@@ -84,8 +85,9 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
   if (static_cast<uint64_t>(vertex_count) > huge || static_cast<uint64_t>(face_count) > huge ||
       2 * (static_cast<uint64_t>(vertex_count) + static_cast<uint64_t>(face_count)) > available + 1)
     fail_at_line(name, counts_line,
-                 "header declares " + std::to_string(vertex_count) + " vertices and " + std::to_string(face_count) +
-                     " faces but only " + std::to_string(available) + " bytes follow");
+                 "header declares " + count_of(vertex_count, "vertex", "vertices") + " and " +
+                     count_of(face_count, "face", "faces") + " but only " + count_of(available, "byte", "bytes") +
+                     verb_for(available, " follows", " follow"));
   check_vertex_count(static_cast<size_t>(vertex_count), name, counts_line);
   mesh.positions.reserve(3 * static_cast<size_t>(vertex_count));
   mesh.face_sizes.reserve(static_cast<size_t>(face_count));
@@ -93,9 +95,9 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
 
   for (long long v = 0; v < vertex_count; ++v) {
     if (!next_content_line(lines, tokens))
-      fail_at_line(
-          name, lines.line_number(),
-          "unexpected end of file: " + std::to_string(v) + " of " + std::to_string(vertex_count) + " vertices read");
+      fail_at_line(name, lines.line_number(),
+                   "unexpected end of file: " + std::to_string(v) + " of " +
+                       count_of(vertex_count, "vertex", "vertices") + " read");
     double xyz[3];
     read_coordinates(tokens, xyz, name, lines.line_number(), "vertex");
     for (double x : xyz) mesh.positions.push_back(x);
@@ -104,23 +106,24 @@ void parse_off(std::string_view text, const std::string& name, Mesh& mesh) {
     if (!next_content_line(lines, tokens))
       fail_at_line(
           name, lines.line_number(),
-          "unexpected end of file: " + std::to_string(f) + " of " + std::to_string(face_count) + " faces read");
+          "unexpected end of file: " + std::to_string(f) + " of " + count_of(face_count, "face", "faces") + " read");
     const size_t line = lines.line_number();
     std::string_view token;
     tokens.next(token);
     long long size = 0;
     if (!parse_integer(token, size) || size < 0) fail_at_line(name, line, "invalid face size " + quoted(token));
-    if (size < 3) fail_at_line(name, line, "face has " + std::to_string(size) + " vertices (at least 3 needed)");
+    if (size < 3) fail_at_line(name, line, "face has " + count_of(size, "vertex", "vertices") + " (at least 3 needed)");
     for (long long k = 0; k < size; ++k) {
       if (!tokens.next(token))
-        fail_at_line(name, line,
-                     "face declares " + std::to_string(size) + " vertices but the line has only " + std::to_string(k));
+        fail_at_line(
+            name, line,
+            "face declares " + count_of(size, "vertex", "vertices") + " but the line has only " + std::to_string(k));
       long long index = 0;
       if (!parse_integer(token, index)) fail_at_line(name, line, "invalid vertex index " + quoted(token));
       if (index < 0 || index >= vertex_count)
         fail_at_line(name, line,
                      "vertex index " + std::to_string(index) + " out of range (the file has " +
-                         std::to_string(vertex_count) + " vertices)");
+                         count_of(vertex_count, "vertex", "vertices") + ")");
       mesh.indices.push_back(static_cast<uint32_t>(index));
     }
     // A colour may follow the indices; it is ignored.

@@ -14,6 +14,7 @@
 #include "io/reader.h"
 #include "io/text_scan.h"
 #include "kergen/io.h"
+#include "util/plural.h"
 
 namespace kergen {
 
@@ -220,7 +221,7 @@ void check_ply_counts(const PlyHeader& h, uint64_t available, const std::string&
     if (e.count > (uint64_t(1) << 40) || (per_instance > 0 && e.count > room / per_instance))
       fail_at_line(name, e.line,
                    "header declares " + std::to_string(e.count) + " " + ply_plural(e) + " but only " +
-                       std::to_string(available) + " bytes of data follow");
+                       count_of(available, "byte", "bytes") + " of data" + verb_for(available, " follows", " follow"));
     needed += e.count * per_instance;
   }
   if (h.vertex >= 0)
@@ -361,12 +362,12 @@ class PlyBinaryValues {
 
 template <class Values>
 void read_ply_face(Values& values, PlyType index_type, long long size, uint64_t vertex_count, Mesh& mesh) {
-  if (size < 3) values.fail("face has " + std::to_string(size) + " vertices (at least 3 needed)");
+  if (size < 3) values.fail("face has " + count_of(size, "vertex", "vertices") + " (at least 3 needed)");
   for (long long k = 0; k < size; ++k) {
     const long long index = values.integer(index_type, "vertex index");
     if (index < 0 || static_cast<uint64_t>(index) >= vertex_count)
       values.fail("vertex index " + std::to_string(index) + " out of range (the file has " +
-                  std::to_string(vertex_count) + " vertices)");
+                  count_of(vertex_count, "vertex", "vertices") + ")");
     mesh.indices.push_back(static_cast<uint32_t>(index));
   }
   mesh.face_sizes.push_back(static_cast<uint32_t>(size));

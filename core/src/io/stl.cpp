@@ -15,6 +15,7 @@
 #include "io/reader.h"
 #include "io/text_scan.h"
 #include "kergen/io.h"
+#include "util/plural.h"
 #include "util/point_table.h"
 
 namespace kergen {
@@ -199,7 +200,8 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
           corners[corner_count++] = VertexWelder::corner(xyz[0], xyz[1], xyz[2]);
         } else if (equals_ignore_case(keyword, "endloop")) {
           if (corner_count != 3)
-            fail_at_line(name, line_number, "facet has " + std::to_string(corner_count) + " vertices (3 needed)");
+            fail_at_line(name, line_number,
+                         "facet has " + count_of(corner_count, "vertex", "vertices") + " (3 needed)");
           expect_end(tokens, "endloop");
           state = State::AfterLoop;
         } else {
@@ -229,9 +231,10 @@ void parse_ascii_stl(std::string_view text, const std::string& name, Mesh& mesh)
   const uint64_t declared = read_le32(reinterpret_cast<const unsigned char*>(bytes.data()) + 80);
   const uint64_t room = (bytes.size() - 84) / 50;
   fail_at_byte(name, 80,
-               "binary STL header declares " + std::to_string(declared) + " triangles (" +
-                   std::to_string(84 + 50 * declared) + " bytes) but the file has " + std::to_string(bytes.size()) +
-                   " bytes (room for " + std::to_string(room) + " triangles)");
+               "binary STL header declares " + count_of(declared, "triangle", "triangles") + " (" +
+                   count_of(84 + 50 * declared, "byte", "bytes") + ") but the file has " +
+                   count_of(bytes.size(), "byte", "bytes") + " (room for " + count_of(room, "triangle", "triangles") +
+                   ")");
 }
 
 void parse_stl(std::string_view bytes, const std::string& name, Mesh& mesh) {
@@ -256,8 +259,8 @@ void parse_stl(std::string_view bytes, const std::string& name, Mesh& mesh) {
   }
   if (bytes.size() < 84)
     fail_at_byte(name, 0,
-                 "not an STL file: " + std::to_string(bytes.size()) +
-                     " bytes is shorter than a binary STL header (84 bytes) and the text does not start with 'solid'");
+                 "not an STL file: " + count_of(bytes.size(), "byte", "bytes") +
+                     " is shorter than a binary STL header (84 bytes) and the text does not start with 'solid'");
   fail_binary_size(bytes, name);
 }
 

@@ -341,37 +341,18 @@ struct FaceLists {
 
 void face_incidence(const FaceLists& fl, PlaneSet& ps, const std::vector<uint32_t>& face_plane);
 
-// (plane_face_out: see the header; ids in fl's numbering.)
-void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std::vector<uint32_t>& face_plane,
-                  std::vector<uint32_t>* plane_face_out) {
-  const size_t nf = fl.num_faces;
-  const std::array<uint32_t, 3>* rep = fl.rep;
-  // Plane ids index the per-plane arrays below, from the first one added here.
-  const uint32_t first_plane = uint32_t(ps.size());
-  // Loads a few iterations ahead are prefetched: the loops below are bound by cache misses on
-  // keys and table slots of faces spread over the mesh.
-  constexpr size_t kAhead = 8;
-  // The plane arrays outlive everything below: reserved first (at most one plane per face, +16
-  // for the few planes callers add afterwards, such as a bounding box), they sit below this
-  // function's temporaries in the heap, whose space later phases then reuse.
-  ps.reserve(first_plane + nf + 16);
-  // Every face's filtered plane goes to the plane arrays as a candidate (the representatives'
-  // are kept in place at the end instead of being computed again).
-  ps.stage(nf);
-  std::vector<Key> key;
-  key.reserve(nf);
-  for (uint32_t f = 0; f < nf; ++f) {
-    const auto& t = rep[f];
-    const PlaneCoef<Approx> c = approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
-    ps.put(f, c);
-    key.push_back(face_key(m, t, c));
-  }
+// Prefetch distance of build_planes' loops: loads a few iterations ahead are prefetched, as the
+// loops are bound by cache misses on keys and table slots of faces spread over the mesh.
+constexpr size_t kAhead = 8;
 
-  // 1. Edge-adjacent coplanar faces with the same orientation (the usual way faces share a
-  //    plane): one exact orient3d confirms each pair whose keys agree. Pairs whose keys agree
-  //    but which are not coplanar (neighbours a hair apart, as rounded vertices leave refined
-  //    meshes) are kept: their classes are then known to differ without a second exact test.
-  UnionFind uf(nf);
+// Step 1 of build_planes: edge-adjacent coplanar faces with the same orientation (the usual way
+// faces share a plane) are united in `uf`; one exact orient3d confirms each pair whose keys agree.
+// Pairs whose keys agree but which are not coplanar (neighbours a hair apart, as rounded vertices
+// leave refined meshes) are returned, as pairs of their class representatives: their classes are
+// then known to differ without a second exact test.
+U64Set unite_coplanar_neighbours(const PreparedMesh& m, const FaceLists& fl, const std::vector<Key>& key,
+                                 UnionFind& uf) {
+  const std::array<uint32_t, 3>* rep = fl.rep;
   std::vector<std::array<uint32_t, 2>> apart;
   const std::array<uint32_t, 2>* adj = fl.adjacent;
   const size_t num_adj = fl.num_adjacent;
@@ -392,6 +373,35 @@ void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std:
   }
   U64Set distinct(apart.size());  // pairs of class representatives on different planes
   for (const auto& pr : apart) distinct.insert(pair_key(uf.find(pr[0]), uf.find(pr[1])));
+  return distinct;
+}
+
+// (plane_face_out: see the header; ids in fl's numbering.)
+void build_planes(const PreparedMesh& m, const FaceLists& fl, PlaneSet& ps, std::vector<uint32_t>& face_plane,
+                  std::vector<uint32_t>* plane_face_out) {
+  const size_t nf = fl.num_faces;
+  const std::array<uint32_t, 3>* rep = fl.rep;
+  // Plane ids index the per-plane arrays below, from the first one added here.
+  const uint32_t first_plane = uint32_t(ps.size());
+  // The plane arrays outlive everything below: reserved first (at most one plane per face, +16
+  // for the few planes callers add afterwards, such as a bounding box), they sit below this
+  // function's temporaries in the heap, whose space later phases then reuse.
+  ps.reserve(first_plane + nf + 16);
+  // Every face's filtered plane goes to the plane arrays as a candidate (the representatives'
+  // are kept in place at the end instead of being computed again).
+  ps.stage(nf);
+  std::vector<Key> key;
+  key.reserve(nf);
+  for (uint32_t f = 0; f < nf; ++f) {
+    const auto& t = rep[f];
+    const PlaneCoef<Approx> c = approx_plane(P(m, t[0]), P(m, t[1]), P(m, t[2]));
+    ps.put(f, c);
+    key.push_back(face_key(m, t, c));
+  }
+
+  // 1. Edge-adjacent coplanar faces with the same orientation (unite_coplanar_neighbours).
+  UnionFind uf(nf);
+  const U64Set distinct = unite_coplanar_neighbours(m, fl, key, uf);
 
   // 2. Class representatives (the smallest face of each union) in face order, matched through
   //    the cell table; a new plane takes the representative's triangle (the first one met, so

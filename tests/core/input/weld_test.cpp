@@ -111,7 +111,7 @@ TEST(Weld, CollapsedFacesAreDroppedAndCounted) {
   ASSERT_TRUE(k.ok()) << k.message;
   EXPECT_EQ(k.stats.input_faces, 13u);
   EXPECT_EQ(k.stats.dropped_faces, 1u);
-  EXPECT_NE(welded(k)->message.find("1 faces that collapsed were dropped"), std::string::npos) << welded(k)->message;
+  EXPECT_NE(welded(k)->message.find("1 face that collapsed was dropped"), std::string::npos) << welded(k)->message;
 }
 
 TEST(Weld, MalformedInputIsReportedAsGiven) {

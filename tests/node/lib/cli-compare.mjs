@@ -32,11 +32,13 @@ export function runCli(file, args = []) {
 }
 
 // The package's outcome for a file, in the CLI's JSON terms: read with readMesh (named as the CLI
-// names it: the path), then computeKernel.
+// names it: the path), then computeKernel, welded when the CLI welds (a name ending in .stl: its
+// default weld is the package's weld: true).
 export function runPackage(K, file) {
   try {
     const mesh = K.readMeshSync(fs.readFileSync(file), { name: file });
-    const k = K.computeKernelSync(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes ?? undefined });
+    const weld = /\.stl$/i.test(file) ? { weld: true } : {};
+    const k = K.computeKernelSync(mesh.positions, mesh.indices, { faceSizes: mesh.faceSizes ?? undefined, ...weld });
     return { ok: true, error: null, message: '', status: k.status, volume: k.volume };
   } catch (err) {
     if (!(err instanceof K.KergenError)) throw err;
@@ -51,13 +53,15 @@ const cliWords = (m) =>
     .replaceAll('--weld', '<weld>')
     .replaceAll('--allow-open', '<allowOpen>')
     .replaceAll('--repair', '<repair>')
-    .replaceAll('--open perpendicular', '<open>');
+    .replaceAll('--open perpendicular', '<open>')
+    .replaceAll('--flip-faces', '<flipFaces>');
 const jsWords = (m) =>
   m
     .replaceAll('weld: true', '<weld>')
     .replaceAll('allowOpen: true', '<allowOpen>')
     .replaceAll('repair: true', '<repair>')
-    .replaceAll("open: 'perpendicular'", '<open>');
+    .replaceAll("open: 'perpendicular'", '<open>')
+    .replaceAll('flipFaces: true', '<flipFaces>');
 
 // Differences between the CLI's and the package's outcome for one file ('' when they agree).
 export function compareOutcome(K, file) {
