@@ -45,11 +45,11 @@ namespace kergen {
 // polyhedron lists its own faces, so a face shared by two cells is stored twice; each
 // orientation is as written (cells are turned outward for the computation, see cell_surface).
 struct VolumeMesh {
-  std::vector<double> positions;         // xyz, 3 * num_vertices
-  std::vector<uint32_t> face_indices;    // concatenated polygon loops (vertex ids)
-  std::vector<uint32_t> face_offsets;    // num_faces + 1 entries, face_offsets[0] = 0
-  std::vector<uint32_t> cell_faces;      // concatenated face ids of the cells
-  std::vector<uint32_t> cell_offsets;    // num_cells + 1 entries, cell_offsets[0] = 0
+  std::vector<double> positions;       // xyz, 3 * num_vertices
+  std::vector<uint32_t> face_indices;  // concatenated polygon loops (vertex ids)
+  std::vector<uint32_t> face_offsets;  // num_faces + 1 entries, face_offsets[0] = 0
+  std::vector<uint32_t> cell_faces;    // concatenated face ids of the cells
+  std::vector<uint32_t> cell_offsets;  // num_cells + 1 entries, cell_offsets[0] = 0
   size_t num_vertices() const { return positions.size() / 3; }
   size_t num_faces() const { return face_offsets.empty() ? 0 : face_offsets.size() - 1; }
   size_t num_cells() const { return cell_offsets.empty() ? 0 : cell_offsets.size() - 1; }
@@ -125,10 +125,10 @@ struct CellKernel {
   Error error = Error::Ok;
   std::string message;
   KernelType type = KernelType::Empty;  // when error == Ok
-  double kernel_volume = 0;  // Kernel::volume (0 unless Polyhedron)
-  double cell_volume = 0;    // the volume the cell encloses (Kernel::shape_volume; 0 on error)
-  double kernel_ratio = 0;   // kernel_volume / cell_volume (Kernel::volume_ratio; 1 for a convex cell)
-  double diameter = 0;       // h: the largest distance between two of the cell's vertices (also on error)
+  double kernel_volume = 0;             // Kernel::volume (0 unless Polyhedron)
+  double cell_volume = 0;               // the volume the cell encloses (Kernel::shape_volume; 0 on error)
+  double kernel_ratio = 0;              // kernel_volume / cell_volume (Kernel::volume_ratio; 1 for a convex cell)
+  double diameter = 0;                  // h: the largest distance between two of the cell's vertices (also on error)
   // With CellOptions::deepest_point and a full-dimensional kernel: the centre of the largest ball
   // inside the kernel and its radius rho (the cell is star-shaped with respect to that ball).
   bool has_deepest_point = false;
@@ -168,8 +168,9 @@ CellKernels compute_cell_kernels(const VolumeMesh& mesh, const CellOptions& opti
                                  size_t count = SIZE_MAX);
 
 // What a run says about the mesh as a whole. Ratios and rho/h are taken over the cells whose
-// error is Ok (rho/h only when deepest points were computed: has_rho_over_h); the median of an
-// even count is the lower middle value (a value of some cell, not an average).
+// error is Ok (rho/h once any cell has a deepest point: has_rho_over_h; an Ok cell without one,
+// whose kernel is empty or flat, counts as 0); the median of an even count is the lower middle
+// value (a value of some cell, not an average).
 struct CellSummary {
   size_t cells = 0;
   size_t ok_cells = 0;
@@ -186,10 +187,14 @@ struct CellSummary {
 CellSummary summarize_cells(const std::vector<CellKernel>& cells, size_t worst = 10, size_t cell_base = 0);
 
 // ---------------------------------------------------------------------------------------------
-// The mesh as a VTK XML UnstructuredGrid (every cell as VTK_POLYHEDRON, its faces as stored,
-// ascii), with CellData arrays kernel_status (Int32, cell_status_code) and Float64 kernel_volume,
-// cell_volume, kernel_ratio, inscribed_radius, rho_over_h, diameter: for ParaView. `cells` holds
-// one record per cell of the mesh (cells.size() == mesh.num_cells(), else std::invalid_argument).
+// The mesh as a VTK XML UnstructuredGrid for ParaView: every cell a VTK_POLYHEDRON with its faces
+// as stored, arrays appended as raw little-endian binary (header_type UInt64, every double kept
+// exactly), and CellData arrays kernel_status (Int32, cell_status_code) and Float64
+// kernel_volume, cell_volume, kernel_ratio, inscribed_radius, rho_over_h (0 for a cell without a
+// deepest point: no --deepest, or an empty or flat kernel) and diameter. A cell with an error has
+// NaN in the Float64 arrays (diameter too when it could not be measured). `cells` holds one record
+// per cell (cells.size() == mesh.num_cells()); otherwise, or when a cell names a face or vertex
+// that does not exist, std::invalid_argument (the _file form: InvalidArgument with `message`).
 std::string write_vtu_with_cell_data(const VolumeMesh& mesh, const std::vector<CellKernel>& cells);
 Error write_vtu_with_cell_data_file(const std::string& path, const VolumeMesh& mesh,
                                     const std::vector<CellKernel>& cells, std::string* message = nullptr);
