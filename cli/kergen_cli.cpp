@@ -2,6 +2,7 @@
 //
 //   kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open] [--deepest]
 //                  [--open clip|perpendicular] [--write-repaired FILE] [--max-steps N] [--jobs N]
+//   kergen --cells VOLUME_MESH [--json] [--deepest] [--jobs N] [-o OUT.vtu]   (cells.cpp)
 //
 // Exit code: 0 when every mesh was processed (an empty kernel is a result, not an error), 1 when
 // some mesh could not be read or was rejected by validation, 2 for a usage error.
@@ -25,6 +26,8 @@
 #include <utility>
 #include <vector>
 
+#include "cells.h"
+#include "json_out.h"
 #include "kergen/io.h"
 #include "kergen/kergen.h"
 
@@ -37,6 +40,7 @@ const char* const kUsage =
     "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
     "                      [--weld [EPS]] [--weld-relative R] [--no-weld] [--repair]\n"
     "                      [--open clip|perpendicular] [--write-repaired FILE]\n"
+    "       kergen --cells VOLUME_MESH [--json] [--deepest] [--jobs N] [-o OUT.vtu]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -245,38 +249,6 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
 
 // ---------------------------------------------------------------------------------------------
 // Output.
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (unsigned char c : text) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\b': out += "\\b"; break;
-      case '\f': out += "\\f"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20 || c == 0x7f) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += static_cast<char>(c);  // UTF-8 passes through (file names may be non-ASCII)
-        }
-    }
-  }
-  return out + "\"";
-}
-
-// %.17g round-trips; JSON has no NaN or infinity, so those become null.
-std::string json_number(double value) {
-  if (!std::isfinite(value)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", value);
-  return buf;
-}
 
 std::string json_point(bool present, const std::array<double, 3>& p) {
   if (!present) return "null";
@@ -543,6 +515,8 @@ void run_in_order(const std::vector<std::string>& files, const Arguments& args, 
 }  // namespace
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--cells") == 0) return run_cells(argc, argv);
   const Arguments args = parse_arguments(argc, argv);
   std::vector<std::string> problems;
   const std::vector<std::string> files = expand_inputs(args.inputs, problems);

@@ -27,7 +27,8 @@ namespace {
 // Whitespace-separated tokens across lines, comments stripped, with the line of each token.
 class TokenStream {
  public:
-  TokenStream(std::string_view text, const std::string& name) : lines_(text), tokens_(std::string_view{}), name_(name) {}
+  TokenStream(std::string_view text, const std::string& name)
+      : lines_(text), tokens_(std::string_view{}), name_(name) {}
   bool next(std::string_view& token) {
     while (!tokens_.next(token)) {
       std::string_view line;
@@ -92,16 +93,19 @@ long long read_nodes(std::string_view text, const std::string& name, VolumeMesh&
   for (long long v = 0; v < count; ++v) {
     const long long id = in.integer("vertex id");
     if (v == 0) {
-      if (id != 0 && id != 1) fail_at_line(name, in.line(), "the first vertex id must be 0 or 1, not " + std::to_string(id));
+      if (id != 0 && id != 1)
+        fail_at_line(name, in.line(), "the first vertex id must be 0 or 1, not " + std::to_string(id));
       base = id;
     } else if (id != base + v) {
-      fail_at_line(name, in.line(), "vertex id " + std::to_string(id) + " where " + std::to_string(base + v) +
-                                        " was expected (ids are consecutive)");
+      fail_at_line(name, in.line(),
+                   "vertex id " + std::to_string(id) + " where " + std::to_string(base + v) +
+                       " was expected (ids are consecutive)");
     }
     for (int k = 0; k < 3; ++k) mesh.positions.push_back(in.number("a coordinate"));
     for (long long k = 0; k < attributes + markers; ++k) in.number("an attribute");
   }
-  if (!in.at_end()) fail_at_line(name, in.line(), "content after the " + std::to_string(count) + " vertices the header declares");
+  if (!in.at_end())
+    fail_at_line(name, in.line(), "content after the " + std::to_string(count) + " vertices the header declares");
   return base;
 }
 
@@ -132,7 +136,8 @@ void read_cells(std::string_view text, const std::string& name, long long base, 
     }
     builder.end_cell();
   }
-  if (!in.at_end()) fail_at_line(name, in.line(), "content after the " + std::to_string(cells) + " cells the header declares");
+  if (!in.at_end())
+    fail_at_line(name, in.line(), "content after the " + std::to_string(cells) + " cells the header declares");
 }
 
 }  // namespace

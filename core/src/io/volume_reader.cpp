@@ -66,10 +66,8 @@ struct CellShape {
 };
 const CellShape kShapes[] = {
     {kVtkTetra, 4, "tetra", {0, 2, 1, -1, 0, 1, 3, -1, 1, 2, 3, -1, 0, 3, 2, -1}},
-    {kVtkHexahedron,
-     8,
-     "hexahedron",
-     {0, 3, 2, 1, -1, 4, 5, 6, 7, -1, 0, 1, 5, 4, -1, 1, 2, 6, 5, -1, 2, 3, 7, 6, -1, 3, 0, 4, 7, -1}},
+    {kVtkHexahedron, 8, "hexahedron", {0, 3, 2, 1, -1, 4, 5, 6, 7, -1, 0, 1, 5, 4, -1,
+                                       1, 2, 6, 5, -1, 2, 3, 7, 6, -1, 3, 0, 4, 7, -1}},
     {kVtkWedge, 6, "wedge", {0, 1, 2, -1, 3, 5, 4, -1, 0, 3, 4, 1, -1, 1, 4, 5, 2, -1, 2, 5, 3, 0, -1}},
     {kVtkPyramid, 5, "pyramid", {0, 3, 2, 1, -1, 0, 1, 4, -1, 1, 2, 4, -1, 2, 3, 4, -1, 3, 0, 4, -1}},
 };
@@ -94,7 +92,8 @@ std::string append_polyhedron(VolumeBuilder& builder, const int64_t* data, size_
   std::vector<uint32_t> loop;
   std::string why;
   for (int64_t f = 0; f < faces; ++f) {
-    if (at >= size) return "the face stream ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces";
+    if (at >= size)
+      return "the face stream ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces";
     const int64_t n = data[at++];
     if (n < 0 || uint64_t(n) > size - at)
       return "face " + std::to_string(f) + " claims " + std::to_string(n) + " points, more than the stream holds";
@@ -114,8 +113,8 @@ std::string append_polyhedron(VolumeBuilder& builder, const int64_t* data, size_
 
 }  // namespace
 
-std::string append_vtk_cell(VolumeBuilder& builder, int64_t type, const int64_t* data, size_t size,
-                            uint64_t point_base, uint64_t num_points) {
+std::string append_vtk_cell(VolumeBuilder& builder, int64_t type, const int64_t* data, size_t size, uint64_t point_base,
+                            uint64_t num_points) {
   if (type == kVtkPolyhedron) return append_polyhedron(builder, data, size, point_base, num_points);
   for (const CellShape& shape : kShapes) {
     if (shape.type != type) continue;

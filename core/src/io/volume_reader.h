@@ -42,8 +42,8 @@ constexpr int64_t kVtkTetra = 10, kVtkHexahedron = 12, kVtkWedge = 13, kVtkPyram
 // [nfaces, (npts, id...) per face]. Ids are offset by `point_base` and must be below
 // `num_points` (before the offset). Returns "" or why the cell is refused (the caller names
 // where).
-std::string append_vtk_cell(VolumeBuilder& builder, int64_t type, const int64_t* data, size_t size,
-                            uint64_t point_base, uint64_t num_points);
+std::string append_vtk_cell(VolumeBuilder& builder, int64_t type, const int64_t* data, size_t size, uint64_t point_base,
+                            uint64_t num_points);
 
 // Standard base64 (RFC 4648, '+' '/' and '=' padding); whitespace is skipped. Appends the decoded
 // bytes to `out`; returns false on a character outside the alphabet or misplaced padding, with

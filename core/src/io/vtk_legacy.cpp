@@ -97,7 +97,8 @@ Cells read_cells(Words& in, const std::string& name, bool version5) {
   if (in.word("OFFSETS") != "OFFSETS") fail_at_line(name, in.line(), "expected OFFSETS after CELLS (version 5 layout)");
   in.word("the OFFSETS type");
   read_integers(in, first, cells.offsets, "offset");
-  if (in.word("CONNECTIVITY") != "CONNECTIVITY") fail_at_line(name, in.line(), "expected CONNECTIVITY after the offsets");
+  if (in.word("CONNECTIVITY") != "CONNECTIVITY")
+    fail_at_line(name, in.line(), "expected CONNECTIVITY after the offsets");
   in.word("the CONNECTIVITY type");
   read_integers(in, second, cells.values, "connectivity value");
   if (cells.offsets.empty() || cells.offsets[0] != 0) fail_at_line(name, in.line(), "OFFSETS must start with 0");
@@ -144,8 +145,7 @@ void parse_vtk(std::string_view text, const std::string& name, VolumeMesh& mesh)
       // INFORMATION / NAME / DATA lines up to a blank line.
       std::string_view l;
       in.skip_line();
-      while (in.raw_line(l) && !Tokens(l).at_end()) {
-      }
+      while (in.raw_line(l) && !Tokens(l).at_end()) {}
     } else if (keyword == "POINT_DATA" || keyword == "CELL_DATA" || keyword == "FIELD") {
       break;
     } else {

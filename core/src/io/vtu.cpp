@@ -130,7 +130,8 @@ uint64_t attr_count(const Tag& tag, std::string_view key, std::string_view text,
   bool found = false;
   const std::string_view value = tag.attr(key, &found);
   long long n = 0;
-  if (!found) fail_at_line(name, line_at(text, tag.begin), "<" + std::string(tag.name) + "> without " + std::string(key));
+  if (!found)
+    fail_at_line(name, line_at(text, tag.begin), "<" + std::string(tag.name) + "> without " + std::string(key));
   if (!parse_integer(value, n) || n < 0)
     fail_at_line(name, line_at(text, tag.begin), "invalid " + std::string(key) + " " + quoted(value));
   return uint64_t(n);
@@ -161,10 +162,10 @@ ArraySpec array_spec(const Tag& tag, std::string_view text, const std::string& n
 
 void record_cells_array(PieceSpec& piece, const Tag& tag, std::string_view text, const std::string& name) {
   const std::string_view array = tag.attr("Name");
-  ArraySpec* slot = array == "connectivity" ? &piece.connectivity
-                    : array == "offsets"    ? &piece.offsets
-                    : array == "types"      ? &piece.types
-                    : array == "faces"      ? &piece.faces
+  ArraySpec* slot = array == "connectivity"  ? &piece.connectivity
+                    : array == "offsets"     ? &piece.offsets
+                    : array == "types"       ? &piece.types
+                    : array == "faces"       ? &piece.faces
                     : array == "faceoffsets" ? &piece.faceoffsets
                                              : nullptr;
   if (array == "face_connectivity" || array == "polyhedron_to_faces")
@@ -283,8 +284,8 @@ VolumeReadResult read_vtu(std::string_view bytes, const std::string& name) {
   return run_volume_reader([&](VolumeMesh& mesh) {
     if (only_blank(bytes)) fail(Error::EmptyInput, name + ": empty file");
     const FileSpec file = scan_structure(bytes, name);
-    Decoder decoder(bytes, name, file.big_endian, file.header64, file.compressor, file.appended,
-                    file.appended_raw, file.appended_begin);
+    Decoder decoder(bytes, name, file.big_endian, file.header64, file.compressor, file.appended, file.appended_raw,
+                    file.appended_begin);
     VolumeBuilder builder(mesh);
     for (const PieceSpec& piece : file.pieces) read_piece(piece, decoder, builder, name, bytes);
   });

@@ -21,7 +21,7 @@ struct ElementType {
   Kind kind;
 };
 constexpr ElementType kTypes[] = {
-    {"Int8", 1, Kind::Signed},    {"UInt8", 1, Kind::Unsigned},  {"Int16", 2, Kind::Signed},
+    {"Int8", 1, Kind::Signed},     {"UInt8", 1, Kind::Unsigned},  {"Int16", 2, Kind::Signed},
     {"UInt16", 2, Kind::Unsigned}, {"Int32", 4, Kind::Signed},    {"UInt32", 4, Kind::Unsigned},
     {"Int64", 8, Kind::Signed},    {"UInt64", 8, Kind::Unsigned}, {"Float32", 4, Kind::Float},
     {"Float64", 8, Kind::Float},
@@ -64,6 +64,24 @@ double as_double(uint64_t bits, const ElementType& t) {
 
 size_t base64_chars(uint64_t bytes) { return size_t((bytes + 2) / 3 * 4); }
 
+// Whitespace-separated values of an ascii DataArray (across lines, unlike text_scan's Tokens).
+class AsciiValues {
+ public:
+  explicit AsciiValues(std::string_view text) : text_(text) {}
+  bool next(std::string_view& token) {
+    while (pos_ < text_.size() && (is_blank(text_[pos_]) || text_[pos_] == '\n')) ++pos_;
+    if (pos_ >= text_.size()) return false;
+    const size_t start = pos_;
+    while (pos_ < text_.size() && !is_blank(text_[pos_]) && text_[pos_] != '\n') ++pos_;
+    token = text_.substr(start, pos_ - start);
+    return true;
+  }
+
+ private:
+  std::string_view text_;
+  size_t pos_ = 0;
+};
+
 }  // namespace
 
 size_t line_at(std::string_view text, size_t offset) {
@@ -98,11 +116,14 @@ std::string Decoder::base64_payload(const ArraySpec& array, std::string_view enc
   if (encoded.size() < header_chars || !base64_decode(encoded.substr(0, header_chars), decoded, bad_at, true))
     fail_at_byte(name_, where, "invalid or truncated base64 data header");
   const uint64_t count = header_value(decoded);
-  if (count > encoded.size()) fail_at_byte(name_, where, "base64 data header claims " + std::to_string(count) + " bytes, more than the file holds");
+  if (count > encoded.size())
+    fail_at_byte(name_, where,
+                 "base64 data header claims " + std::to_string(count) + " bytes, more than the file holds");
   // Separately encoded header: its last quantum is padded. Else one stream.
   const bool separate = encoded[header_chars - 1] == '=';
   const size_t total = separate ? header_chars + base64_chars(count) : base64_chars(header + count);
-  if (total > encoded.size()) fail_at_byte(name_, where, "base64 data ends before its " + std::to_string(count) + " bytes");
+  if (total > encoded.size())
+    fail_at_byte(name_, where, "base64 data ends before its " + std::to_string(count) + " bytes");
   decoded.clear();
   if (!base64_decode(encoded.substr(0, total), decoded, bad_at))
     fail_at_byte(name_, where + bad_at, "invalid base64 character");
@@ -137,8 +158,9 @@ std::string Decoder::payload(const ArraySpec& array) const {
   if (text_.size() - at < header) fail_at_byte(name_, at, "appended data truncated in its header");
   const uint64_t count = load(reinterpret_cast<const unsigned char*>(text_.data() + at), header, big_endian_);
   if (count > text_.size() - at - header)
-    fail_at_byte(name_, at, "appended data header claims " + std::to_string(count) + " bytes, the file holds " +
-                                std::to_string(text_.size() - at - header));
+    fail_at_byte(name_, at,
+                 "appended data header claims " + std::to_string(count) + " bytes, the file holds " +
+                     std::to_string(text_.size() - at - header));
   return std::string(text_.substr(at + header, size_t(count)));
 }
 
@@ -146,7 +168,7 @@ void Decoder::doubles(const ArraySpec& array, uint64_t expected, std::vector<dou
   const ElementType* type = element_type(array.type);
   if (!type) fail_array(array, "unsupported type " + quoted(array.type));
   if (array.format == "ascii") {
-    Tokens tokens(text_.substr(array.text_begin, array.text_end - array.text_begin));
+    AsciiValues tokens(text_.substr(array.text_begin, array.text_end - array.text_begin));
     std::string_view token;
     uint64_t n = 0;
     while (tokens.next(token)) {
@@ -162,7 +184,8 @@ void Decoder::doubles(const ArraySpec& array, uint64_t expected, std::vector<dou
       fail_array(array, std::to_string(n) + " values, expected " + std::to_string(expected));
     return;
   }
-  if (array.format != "binary" && array.format != "appended") fail_array(array, "unsupported format " + quoted(array.format));
+  if (array.format != "binary" && array.format != "appended")
+    fail_array(array, "unsupported format " + quoted(array.format));
   const std::string bytes = payload(array);
   if (bytes.size() % type->size != 0) fail_array(array, "byte count not a multiple of the value size");
   const uint64_t n = bytes.size() / type->size;
@@ -181,7 +204,7 @@ void Decoder::integers(const ArraySpec& array, uint64_t expected, std::vector<in
   if (!type || type->kind == Kind::Float) fail_array(array, "needs an integer type, not " + quoted(array.type));
   out.clear();
   if (array.format == "ascii") {
-    Tokens tokens(text_.substr(array.text_begin, array.text_end - array.text_begin));
+    AsciiValues tokens(text_.substr(array.text_begin, array.text_end - array.text_begin));
     std::string_view token;
     while (tokens.next(token)) {
       long long v = 0;
@@ -207,7 +230,8 @@ void Decoder::integers(const ArraySpec& array, uint64_t expected, std::vector<in
       if (type->kind == Kind::Signed) {
         out[i] = int64_t(bits << shift) >> shift;
       } else {
-        if (bits > uint64_t(std::numeric_limits<int64_t>::max())) fail_array(array, "value too large at index " + std::to_string(i));
+        if (bits > uint64_t(std::numeric_limits<int64_t>::max()))
+          fail_array(array, "value too large at index " + std::to_string(i));
         out[i] = int64_t(bits);
       }
     }

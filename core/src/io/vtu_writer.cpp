@@ -121,20 +121,25 @@ std::string write_vtu_with_cell_data(const VolumeMesh& mesh, const std::vector<C
   xml += "      </Points>\n      <Cells>\n";
   add_u64s(arrays, xml, "connectivity", connectivity);
   add_u64s(arrays, xml, "offsets", offsets);
-  arrays.add(xml, "UInt8", "types", 1, mesh.num_cells(), 1, [&](std::string& b) { b.append(mesh.num_cells(), char(42)); });
+  arrays.add(xml, "UInt8", "types", 1, mesh.num_cells(), 1,
+             [&](std::string& b) { b.append(mesh.num_cells(), char(42)); });
   add_u64s(arrays, xml, "faces", faces);
   add_u64s(arrays, xml, "faceoffsets", faceoffsets);
   xml += "      </Cells>\n      <CellData Scalars=\"kernel_status\">\n";
   arrays.add(xml, "Int32", "kernel_status", 1, cells.size(), 4, [&](std::string& b) {
     for (const CellKernel& c : cells) put_le(b, uint32_t(cell_status_code(c)), 4);
   });
-  add_cell_doubles(arrays, xml, "kernel_volume", cells, [](const CellKernel& c) { return c.ok() ? c.kernel_volume : kNaN; });
-  add_cell_doubles(arrays, xml, "cell_volume", cells, [](const CellKernel& c) { return c.ok() ? c.cell_volume : kNaN; });
-  add_cell_doubles(arrays, xml, "kernel_ratio", cells, [](const CellKernel& c) { return c.ok() ? c.kernel_ratio : kNaN; });
+  add_cell_doubles(arrays, xml, "kernel_volume", cells,
+                   [](const CellKernel& c) { return c.ok() ? c.kernel_volume : kNaN; });
+  add_cell_doubles(arrays, xml, "cell_volume", cells,
+                   [](const CellKernel& c) { return c.ok() ? c.cell_volume : kNaN; });
+  add_cell_doubles(arrays, xml, "kernel_ratio", cells,
+                   [](const CellKernel& c) { return c.ok() ? c.kernel_ratio : kNaN; });
   add_cell_doubles(arrays, xml, "inscribed_radius", cells,
                    [](const CellKernel& c) { return c.ok() ? c.inscribed_radius : kNaN; });
   add_cell_doubles(arrays, xml, "rho_over_h", cells, [](const CellKernel& c) { return c.ok() ? c.rho_over_h : kNaN; });
-  add_cell_doubles(arrays, xml, "diameter", cells, [](const CellKernel& c) { return c.diameter > 0 ? c.diameter : kNaN; });
+  add_cell_doubles(arrays, xml, "diameter", cells,
+                   [](const CellKernel& c) { return c.diameter > 0 ? c.diameter : kNaN; });
   xml += "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
   xml += arrays.block();
   xml += "\n  </AppendedData>\n</VTKFile>\n";

@@ -95,7 +95,8 @@ CellKernels compute_cell_kernels(const VolumeMesh& mesh, const CellOptions& opti
   const size_t cells = mesh.num_cells();
   if (first_cell > cells) {
     out.error = Error::InvalidArgument;
-    out.message = "first cell " + std::to_string(first_cell) + " is past the mesh's " + std::to_string(cells) + " cells";
+    out.message =
+        "first cell " + std::to_string(first_cell) + " is past the mesh's " + std::to_string(cells) + " cells";
     return out;
   }
   count = std::min(count, cells - first_cell);

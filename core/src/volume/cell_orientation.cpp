@@ -10,9 +10,9 @@ namespace kergen::volume {
 namespace {
 
 struct EdgeUse {
-  uint64_t key;   // (low << 32) | high vertex id
+  uint64_t key;  // (low << 32) | high vertex id
   uint32_t face;
-  bool forward;   // the face runs from low to high
+  bool forward;  // the face runs from low to high
   bool operator<(const EdgeUse& o) const { return key < o.key || (key == o.key && face < o.face); }
 };
 
@@ -67,7 +67,8 @@ double six_volume(const Mesh& cell, const std::vector<uint32_t>& starts) {
       const double* p2 = &cell.positions[3 * size_t(loop[i + 1])];
       const double b[3] = {p1[0] - o[0], p1[1] - o[1], p1[2] - o[2]};
       const double c[3] = {p2[0] - o[0], p2[1] - o[1], p2[2] - o[2]};
-      sum += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+      sum +=
+          a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
     }
   }
   return sum;
