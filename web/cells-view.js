@@ -9,50 +9,12 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { NON_STAR_COLOR } from './cells-colors.js';
+import { cellTopology, boundaryFaces } from './cells-geometry.js';
 
 const PENDING_COLOR = [0.8, 0.81, 0.84]; // a cell without a result yet
 const KERNEL_BLUE = 0x1e6fff;
 const CELL_AMBER = 0xf0a020;
 const BALL_GREEN = 0x20b060;
-
-// For each face incidence i (an entry of cellFaces), the cell on the other side of that face,
-// or -1 on the mesh's boundary. Faces are matched by their three smallest vertex ids.
-function neighbours(mesh, cellOfIncidence) {
-  const { faceIndices, faceOffsets, cellFaces } = mesh;
-  const other = new Int32Array(cellFaces.length).fill(-1);
-  const seen = new Map(); // a * 2^26 + b → [c, incidence, c, incidence, ...]
-  const big = mesh.positions.length / 3 >= 2 ** 26;
-  for (let i = 0; i < cellFaces.length; i++) {
-    const f = cellFaces[i];
-    let a = Infinity,
-      b = Infinity,
-      c = Infinity;
-    for (let k = faceOffsets[f]; k < faceOffsets[f + 1]; k++) {
-      const v = faceIndices[k];
-      if (v < a) [a, b, c] = [v, a, b];
-      else if (v < b) [b, c] = [v, b];
-      else if (v < c) c = v;
-    }
-    const key = big ? `${a},${b}` : a * 2 ** 26 + b;
-    const list = seen.get(key);
-    if (!list) {
-      seen.set(key, [c, i]);
-      continue;
-    }
-    let matched = false;
-    for (let j = 0; j < list.length; j += 2) {
-      const first = list[j + 1];
-      if (list[j] === c && other[first] === -1 && cellOfIncidence[first] !== cellOfIncidence[i]) {
-        other[first] = cellOfIncidence[i];
-        other[i] = cellOfIncidence[first];
-        matched = true;
-        break;
-      }
-    }
-    if (!matched) list.push(c, i);
-  }
-  return other;
-}
 
 function isSoftwareGL(renderer) {
   const gl = renderer.getContext();
@@ -121,36 +83,15 @@ export class CellsView {
   /** A new mesh (readVolumeMesh's arrays): every cell pending until setColors. */
   setMesh(mesh) {
     this.clearCell();
-    const numCells = mesh.cellOffsets.length ? mesh.cellOffsets.length - 1 : 0;
-    const cellOf = new Int32Array(mesh.cellFaces.length);
-    const centres = new Float64Array(3 * numCells);
-    const p = mesh.positions;
-    for (let c = 0; c < numCells; c++) {
-      let n = 0;
-      for (let i = mesh.cellOffsets[c]; i < mesh.cellOffsets[c + 1]; i++) {
-        cellOf[i] = c;
-        const f = mesh.cellFaces[i];
-        for (let k = mesh.faceOffsets[f]; k < mesh.faceOffsets[f + 1]; k++) {
-          const v = 3 * mesh.faceIndices[k];
-          centres[3 * c] += p[v];
-          centres[3 * c + 1] += p[v + 1];
-          centres[3 * c + 2] += p[v + 2];
-          n++;
-        }
-      }
-      for (let k = 0; k < 3; k++) centres[3 * c + k] /= Math.max(n, 1);
-    }
-    const box = new THREE.Box3().setFromArray(p);
     this.mesh = mesh;
-    this.numCells = numCells;
-    this.cellOf = cellOf;
-    this.other = neighbours(mesh, cellOf);
-    this.centres = centres;
-    this.box = box;
-    this.origin = box.getCenter(new THREE.Vector3()); // drawn in float32 around the centre
-    this.colors = new Float32Array(3 * numCells);
-    for (let c = 0; c < numCells; c++) this.colors.set(PENDING_COLOR, 3 * c);
-    this.status = null;
+    this.topology = cellTopology(mesh);
+    this.numCells = this.topology.numCells;
+    this.centres = this.topology.centres;
+    this.box = new THREE.Box3().setFromArray(mesh.positions);
+    this.origin = this.box.getCenter(new THREE.Vector3()); // drawn in float32 around the centre
+    this.colors = new Float32Array(3 * this.numCells);
+    for (let c = 0; c < this.numCells; c++) this.colors.set(PENDING_COLOR, 3 * c);
+    this.isNonStar = null;
     this.rebuild();
     this.fit();
   }
@@ -184,39 +125,21 @@ export class CellsView {
   // The geometry of the faces between a shown cell and a hidden one (or the outside).
   rebuild() {
     if (!this.mesh) return;
-    const { faceIndices, faceOffsets, cellFaces, positions: p } = this.mesh;
-    const shown = this.shownCells();
-    const pos = [],
-      col = [],
-      triCell = [],
-      lines = [];
     const o = this.origin;
-    const at = (v) => [p[3 * v] - o.x, p[3 * v + 1] - o.y, p[3 * v + 2] - o.z];
-    for (let i = 0; i < cellFaces.length; i++) {
-      const c = this.cellOf[i];
-      if (!shown[c] || (this.other[i] >= 0 && shown[this.other[i]])) continue;
-      const f = cellFaces[i];
-      const first = faceOffsets[f],
-        end = faceOffsets[f + 1];
-      const rgb = this.colors.subarray(3 * c, 3 * c + 3);
-      const a = at(faceIndices[first]);
-      for (let k = first + 1; k + 1 < end; k++) {
-        pos.push(...a, ...at(faceIndices[k]), ...at(faceIndices[k + 1]));
-        col.push(...rgb, ...rgb, ...rgb);
-        triCell.push(c);
-      }
-      for (let k = first; k < end; k++)
-        lines.push(...at(faceIndices[k]), ...at(faceIndices[k + 1 < end ? k + 1 : first]));
-    }
+    const { positions, colors, triCell, lines } = boundaryFaces(this.mesh, this.topology, this.shownCells(), this.colors, [
+      o.x,
+      o.y,
+      o.z,
+    ]);
     const g = new THREE.BufferGeometry();
-    g.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
-    g.setAttribute('color', new THREE.Float32BufferAttribute(col, 3));
+    g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    g.setAttribute('color', new THREE.BufferAttribute(colors, 3));
     g.computeVertexNormals();
     this.cells.geometry.dispose();
     this.cells.geometry = g;
-    this.triCell = Int32Array.from(triCell);
+    this.triCell = triCell;
     const e = new THREE.BufferGeometry();
-    e.setAttribute('position', new THREE.Float32BufferAttribute(lines, 3));
+    e.setAttribute('position', new THREE.BufferAttribute(lines, 3));
     this.edges.geometry.dispose();
     this.edges.geometry = e;
     this.drawnTriangles = triCell.length;
