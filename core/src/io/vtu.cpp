@@ -178,9 +178,15 @@ void record_cells_array(PieceSpec& piece, const Tag& tag, std::string_view text,
 // Reads the tags up to <AppendedData> or the end: the file's settings and each piece's arrays.
 FileSpec scan_structure(std::string_view text, const std::string& name) {
   FileSpec file;
+  // A cut file would otherwise show as a missing or short array somewhere.
+  size_t last = text.size();
+  while (last > 0 && (Tag::is_blank_xml(text[last - 1]) || text[last - 1] == '\0')) --last;
+  if (last < 10 || text.substr(last - 10, 10) != "</VTKFile>")
+    fail_at_byte(name, text.size(), "the file does not end with </VTKFile> (truncated?)");
   XmlScanner xml(text, name);
   Tag tag;
-  if (!xml.next(tag) || tag.name != "VTKFile") fail_at_line(name, 1, "not a VTK XML file (no <VTKFile> element first)");
+  if (!xml.next(tag) || tag.name != "VTKFile" || tag.closing)
+    fail_at_line(name, 1, "not a VTK XML file (no <VTKFile> element first)");
   const std::string_view type = tag.attr("type");
   if (type != "UnstructuredGrid")
     fail_at_line(name, line_at(text, tag.begin),
