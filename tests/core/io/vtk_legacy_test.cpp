@@ -31,8 +31,8 @@ std::string legacy(const LinearCells& c, bool version5) {
   if (version5) {
     std::vector<long long> offsets{0}, conn;
     for (auto& v : values) conn.insert(conn.end(), v.begin(), v.end()), offsets.push_back((long long)conn.size());
-    s += "CELLS " + std::to_string(offsets.size()) + " " + std::to_string(conn.size()) +
-         "\nOFFSETS vtktypeint64\n" + join(offsets) + "\nCONNECTIVITY vtktypeint64\n" + join(conn) + "\n";
+    s += "CELLS " + std::to_string(offsets.size()) + " " + std::to_string(conn.size()) + "\nOFFSETS vtktypeint64\n" +
+         join(offsets) + "\nCONNECTIVITY vtktypeint64\n" + join(conn) + "\n";
   } else {
     size_t size = 0;
     for (auto& v : values) size += v.size() + 1;

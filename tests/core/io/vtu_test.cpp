@@ -42,8 +42,8 @@ std::string vtu_binary(const LinearCells& c, const std::string& mode, bool heade
     bytes = swap(bytes, size);
     std::string a = "<DataArray " + attrs;
     if (mode == "together" || mode == "apart") {
-      const std::string text = mode == "together" ? base64(header(bytes.size()) + bytes)
-                                                  : base64(header(bytes.size())) + base64(bytes);
+      const std::string text =
+          mode == "together" ? base64(header(bytes.size()) + bytes) : base64(header(bytes.size())) + base64(bytes);
       return a + " format=\"binary\">\n  " + text + "\n</DataArray>\n";
     }
     a += " format=\"appended\" offset=\"" + std::to_string(appended.size()) + "\"/>\n";

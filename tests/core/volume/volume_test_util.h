@@ -66,8 +66,8 @@ struct LinearCells {
     // The polyhedron: the hexahedron's points, its faces listed explicitly.
     const long long hex = 4;
     faces = {6};
-    for (std::vector<long long> f : {std::vector<long long>{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5},
-                                     {2, 3, 7, 6}, {3, 0, 4, 7}}) {
+    for (std::vector<long long> f :
+         {std::vector<long long>{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}) {
       faces.push_back(4);
       for (long long v : f) faces.push_back(hex + v);
     }
