@@ -37,4 +37,3 @@ inline std::string json_number(double value) {
   std::snprintf(buf, sizeof buf, "%.17g", value);
   return buf;
 }
-

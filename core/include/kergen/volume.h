@@ -121,7 +121,8 @@ struct CellKernel {
   // Ok, or why this cell has no kernel: the error compute_kernel gives for its surface (OpenMesh
   // for a cell whose faces do not close, NonManifoldEdge, InconsistentOrientation when its faces
   // cannot be oriented, DegenerateInput, ...), or cell_surface's IndexOutOfRange. The message
-  // starts with "cell <index>: ".
+  // starts with "cell <index>: " and is compute_kernel's without its advice about Options fields
+  // (vertex ids in it are the cell's local ids, cell_surface's numbering).
   Error error = Error::Ok;
   std::string message;
   KernelType type = KernelType::Empty;  // when error == Ok

@@ -178,9 +178,15 @@ void record_cells_array(PieceSpec& piece, const Tag& tag, std::string_view text,
 // Reads the tags up to <AppendedData> or the end: the file's settings and each piece's arrays.
 FileSpec scan_structure(std::string_view text, const std::string& name) {
   FileSpec file;
+  // A cut file would otherwise show as a missing or short array somewhere.
+  size_t last = text.size();
+  while (last > 0 && (Tag::is_blank_xml(text[last - 1]) || text[last - 1] == '\0')) --last;
+  if (last < 10 || text.substr(last - 10, 10) != "</VTKFile>")
+    fail_at_byte(name, text.size(), "the file does not end with </VTKFile> (truncated?)");
   XmlScanner xml(text, name);
   Tag tag;
-  if (!xml.next(tag) || tag.name != "VTKFile") fail_at_line(name, 1, "not a VTK XML file (no <VTKFile> element first)");
+  if (!xml.next(tag) || tag.name != "VTKFile" || tag.closing)
+    fail_at_line(name, 1, "not a VTK XML file (no <VTKFile> element first)");
   const std::string_view type = tag.attr("type");
   if (type != "UnstructuredGrid")
     fail_at_line(name, line_at(text, tag.begin),
@@ -255,24 +261,25 @@ void read_piece(const PieceSpec& piece, Decoder& decoder, VolumeBuilder& builder
   int64_t begin = 0, face_cursor = 0;
   for (size_t c = 0; c < piece.cells; ++c) {
     const int64_t end = offsets[c];
-    const size_t line = line_at(text, piece.offsets.tag_at);
-    const std::string where = "cell " + std::to_string(c) + ": ";
+    // Messages (and their line numbers, a scan of the text) are made only on failure.
+    auto where = [c] { return "cell " + std::to_string(c) + ": "; };
     if (end < begin || uint64_t(end) > connectivity.size())
-      fail_at_line(name, line, where + "offset " + std::to_string(end) + " outside the connectivity array");
+      fail_at_line(name, line_at(text, piece.offsets.tag_at),
+                   where() + "offset " + std::to_string(end) + " outside the connectivity array");
     std::string why;
     if (types[c] == kVtkPolyhedron) {
       const int64_t face_end = faceoffsets[c];
       if (face_end < face_cursor || uint64_t(face_end) > faces.size())
         fail_at_line(name, line_at(text, piece.faceoffsets.tag_at),
-                     where + "faceoffset " + std::to_string(face_end) + " outside the faces array");
+                     where() + "faceoffset " + std::to_string(face_end) + " outside the faces array");
       why = append_vtk_cell(builder, kVtkPolyhedron, faces.data() + face_cursor, size_t(face_end - face_cursor),
                             point_base, piece.points);
-      if (!why.empty()) fail_at_line(name, line_at(text, piece.faces.tag_at), where + why);
+      if (!why.empty()) fail_at_line(name, line_at(text, piece.faces.tag_at), where() + why);
       face_cursor = face_end;
     } else {
       why = append_vtk_cell(builder, types[c], connectivity.data() + begin, size_t(end - begin), point_base,
                             piece.points);
-      if (!why.empty()) fail_at_line(name, line_at(text, piece.types.tag_at), where + why);
+      if (!why.empty()) fail_at_line(name, line_at(text, piece.types.tag_at), where() + why);
     }
     begin = end;
   }

@@ -37,6 +37,18 @@ bool offsets_ok(const std::vector<uint32_t>& offsets, size_t target_size, const 
   return true;
 }
 
+// compute_kernel's message without its closing advice about Options fields (weld, repair,
+// allow_open, ...), which compute_cell_kernels does not take.
+std::string without_option_advice(const std::string& message) {
+  const size_t at = message.find("Options::");
+  if (at == std::string::npos) return message;
+  const size_t paren = message.rfind(" (", at), semicolon = message.rfind("; ", at);
+  size_t cut = std::string::npos;
+  if (paren != std::string::npos) cut = paren;
+  if (semicolon != std::string::npos && (cut == std::string::npos || semicolon > cut)) cut = semicolon;
+  return cut == std::string::npos ? message : message.substr(0, cut);
+}
+
 CellKernel one_cell(const VolumeMesh& mesh, size_t cell, const Options& kernel_options) {
   CellKernel out;
   CellSurface surface = cell_surface(mesh, cell);
@@ -56,7 +68,7 @@ CellKernel one_cell(const VolumeMesh& mesh, size_t cell, const Options& kernel_o
   }
   if (!k.ok()) {
     out.error = k.error;
-    out.message = "cell " + std::to_string(cell) + ": " + k.message;
+    out.message = "cell " + std::to_string(cell) + ": " + without_option_advice(k.message);
     return out;
   }
   out.type = k.type;
