@@ -126,11 +126,13 @@ export class CellsView {
   rebuild() {
     if (!this.mesh) return;
     const o = this.origin;
-    const { positions, colors, triCell, lines } = boundaryFaces(this.mesh, this.topology, this.shownCells(), this.colors, [
-      o.x,
-      o.y,
-      o.z,
-    ]);
+    const { positions, colors, triCell, lines } = boundaryFaces(
+      this.mesh,
+      this.topology,
+      this.shownCells(),
+      this.colors,
+      [o.x, o.y, o.z],
+    );
     const g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
     g.setAttribute('color', new THREE.BufferAttribute(colors, 3));
@@ -250,14 +252,20 @@ export class CellsView {
       kg.setAttribute('position', new THREE.Float32BufferAttribute(shift(kernel.vertices), 3));
       kg.setIndex(new THREE.Uint32BufferAttribute(kernel.triangles, 1));
       kg.computeVertexNormals();
-      this.selection.add(
-        new THREE.Mesh(kg, new THREE.MeshLambertMaterial({ color: KERNEL_BLUE, side: THREE.DoubleSide })),
-      );
+      // Translucent, so that the inscribed ball inside it shows through.
+      const material = new THREE.MeshLambertMaterial({
+        color: KERNEL_BLUE,
+        side: THREE.DoubleSide,
+        transparent: true,
+        opacity: 0.6,
+        depthWrite: false,
+      });
+      this.selection.add(new THREE.Mesh(kg, material));
     }
     if (kernel.deepestPoint && kernel.inscribedRadius > 0) {
       const ball = new THREE.Mesh(
         new THREE.SphereGeometry(kernel.inscribedRadius, 24, 16),
-        new THREE.MeshLambertMaterial({ color: BALL_GREEN, transparent: true, opacity: 0.55 }),
+        new THREE.MeshLambertMaterial({ color: BALL_GREEN }),
       );
       ball.position.set(kernel.deepestPoint[0] - o.x, kernel.deepestPoint[1] - o.y, kernel.deepestPoint[2] - o.z);
       this.selection.add(ball);
