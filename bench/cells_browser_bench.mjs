@@ -25,7 +25,7 @@ const deepestModes = { on: [true], off: [false], both: [false, true] }[opt('--de
 
 async function dropAndTime(page, deepest) {
   await page.evaluate((deepest) => {
-    document.getElementById('cells-deepest').checked = deepest;
+    document.getElementById('cells-deepest').value = deepest ? 'always' : 'never';
     const status = document.getElementById('cells-status');
     status.dataset.state = 'bench-pending';
     window.__bench = { tasks: [], progress: new Set(), meshAt: null, doneAt: null };

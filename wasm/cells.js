@@ -378,8 +378,8 @@ function joinWarnings(ranges) {
   return [...byKind.values()];
 }
 
-function readSummary(m, L, volume, worst) {
-  const b = readBlock(m, L, m.volumeSummary(volume, worst));
+function readSummary(m, L, block) {
+  const b = readBlock(m, L, block);
   const v = b.f64.summary;
   const S = L.summary;
   const byType = {};
@@ -438,7 +438,7 @@ function* cellRun(fn, meshOrBytes, options) {
     const result = joinRanges(ranges, first, total);
     for (const e of result.errors) e.code = L.statusNames[result.status[e.cell - first]];
     result.warnings = joinWarnings(ranges);
-    result.summary = callWasm(fn, () => readSummary(m, L, volume, opts.worst));
+    result.summary = callWasm(fn, () => readSummary(m, L, m.volumeSummary(volume, opts.worst)));
     result.statusNames = { ...L.statusNames };
     if (mesh) result.mesh = mesh;
     return result;
@@ -499,4 +499,76 @@ export async function computeCellKernels(meshOrBytes, options = {}) {
       throw cancelled();
     }
   }
+}
+
+// ---- joining parts ---------------------------------------------------------------------------
+
+/**
+ * One result of results computed in parts (consecutive cell ranges, by several workers, say):
+ * the arrays concatenated, the witness offsets shifted, and the summary of all the cells computed
+ * again by the core (summarize_cells). Synchronous (init() must have finished). See index.d.ts.
+ */
+export function joinCellKernelsSync(parts, options = {}) {
+  const fn = 'joinCellKernels';
+  const m = requireModule(fn);
+  const L = layout(m);
+  if (!Array.isArray(parts) || parts.length === 0) throw invalid(fn, 'parts must be a non-empty array of results');
+  const sorted = [...parts].sort((a, b) => a.firstCell - b.firstCell);
+  for (let i = 1; i < sorted.length; i++) {
+    if (sorted[i].firstCell !== sorted[i - 1].firstCell + sorted[i - 1].numCells)
+      throw invalid(
+        fn,
+        `the parts are not consecutive: cells from ${sorted[i].firstCell} follow a part ending at ${sorted[i - 1].firstCell + sorted[i - 1].numCells}`,
+      );
+  }
+  const worst = options && options.worst != null ? options.worst : DEFAULT_WORST;
+  if (!Number.isSafeInteger(worst) || worst < 0) throw invalid(fn, 'options.worst must be a non-negative integer');
+  const cat = (Type, key) => {
+    const out = new Type(sorted.reduce((s, p) => s + p[key].length, 0));
+    let at = 0;
+    for (const p of sorted) {
+      out.set(p[key], at);
+      at += p[key].length;
+    }
+    return out;
+  };
+  const result = { firstCell: sorted[0].firstCell, numCells: sorted.reduce((s, p) => s + p.numCells, 0) };
+  result.status = cat(Int32Array, 'status');
+  for (const key of F64_OUT) result[key] = cat(Float64Array, key);
+  result.reoriented = cat(Uint8Array, 'reoriented');
+  result.witnessFaces = cat(Uint32Array, 'witnessFaces');
+  result.witnessGlobalFaces = cat(Uint32Array, 'witnessGlobalFaces');
+  result.witnessOffsets = new Uint32Array(result.numCells + 1);
+  let cell = 0,
+    base = 0;
+  for (const p of sorted) {
+    for (let i = 1; i <= p.numCells; i++) result.witnessOffsets[++cell] = base + p.witnessOffsets[i];
+    base += p.witnessFaces.length;
+  }
+  result.errors = sorted.flatMap((p) => p.errors);
+  result.warnings = joinWarnings(sorted);
+  result.statusNames = { ...L.statusNames };
+  const n = result.numCells;
+  result.summary = callWasm(fn, () => {
+    const ptr = m._malloc(Math.max(1, 32 * n));
+    if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
+    try {
+      const f64 = ptr / 8;
+      m.HEAPF64.set(result.kernelRatio, f64);
+      m.HEAPF64.set(result.rhoOverH, f64 + n);
+      for (let i = 0; i < n; i++) m.HEAPF64[f64 + 2 * n + i] = result.deepestPoints[3 * i];
+      new Int32Array(m.HEAPU8.buffer, ptr + 24 * n, n).set(result.status);
+      m.HEAPU32.set(result.reoriented, ptr / 4 + 7 * n);
+      return readSummary(m, L, m.cellSummaryOf(ptr, n, result.firstCell, worst));
+    } finally {
+      m._free(ptr);
+    }
+  });
+  return result;
+}
+
+/** Async variant of joinCellKernelsSync (loads the module on first use). */
+export async function joinCellKernels(parts, options = {}) {
+  await init();
+  return joinCellKernelsSync(parts, options);
 }

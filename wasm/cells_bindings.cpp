@@ -272,34 +272,65 @@ uintptr_t volume_cells(uintptr_t volume_address, double first_cell, double count
   });
 }
 
-// volumeSummary(volume, worst) → block with the summary of every cell volumeCells computed on this
-// volume (kergen::summarize_cells): f64 `summary` (KERGEN_CELL_SUMMARY), u32 `summaryErrors`
-// (error code, count pairs) and `worstCells`.
+// The summary's block (KERGEN_CELL_SUMMARY in f64 `summary`, `summaryErrors`, `worstCells`).
+uintptr_t summary_block(const kergen::CellSummary& s) {
+  CellOut o;
+  o.head[kHead_ok] = 1;
+  std::vector<double>& v = o.f64[kF64_summary];
+  v.assign(kSummaryValues, 0);
+  v[kSum_cells] = static_cast<double>(s.cells);
+  v[kSum_okCells] = static_cast<double>(s.ok_cells);
+  for (size_t t = 0; t < s.by_type.size(); ++t) v[kSum_byType + t] = static_cast<double>(s.by_type[t]);
+  v[kSum_reorientedCells] = static_cast<double>(s.reoriented_cells);
+  v[kSum_minRatio] = s.min_ratio;
+  v[kSum_medianRatio] = s.median_ratio;
+  v[kSum_maxRatio] = s.max_ratio;
+  v[kSum_hasRhoOverH] = s.has_rho_over_h ? 1 : 0;
+  v[kSum_minRhoOverH] = s.min_rho_over_h;
+  v[kSum_medianRhoOverH] = s.median_rho_over_h;
+  v[kSum_maxRhoOverH] = s.max_rho_over_h;
+  for (const auto& [error, n] : s.by_error) {
+    o.u32[kU32_summaryErrors].push_back(static_cast<uint32_t>(error));
+    o.u32[kU32_summaryErrors].push_back(static_cast<uint32_t>(n));
+  }
+  for (size_t c : s.worst_cells) o.u32[kU32_worstCells].push_back(static_cast<uint32_t>(c));
+  return pack(o);
+}
+
+// volumeSummary(volume, worst) → the summary block of every cell volumeCells computed on this
+// volume (kergen::summarize_cells).
 uintptr_t volume_summary(uintptr_t volume_address, uint32_t worst) {
   return guarded([&]() -> uintptr_t {
     const Volume* volume = reinterpret_cast<const Volume*>(volume_address);
-    const kergen::CellSummary s = kergen::summarize_cells(volume->records, worst, volume->first_cell);
-    CellOut o;
-    o.head[kHead_ok] = 1;
-    std::vector<double>& v = o.f64[kF64_summary];
-    v.assign(kSummaryValues, 0);
-    v[kSum_cells] = static_cast<double>(s.cells);
-    v[kSum_okCells] = static_cast<double>(s.ok_cells);
-    for (size_t t = 0; t < s.by_type.size(); ++t) v[kSum_byType + t] = static_cast<double>(s.by_type[t]);
-    v[kSum_reorientedCells] = static_cast<double>(s.reoriented_cells);
-    v[kSum_minRatio] = s.min_ratio;
-    v[kSum_medianRatio] = s.median_ratio;
-    v[kSum_maxRatio] = s.max_ratio;
-    v[kSum_hasRhoOverH] = s.has_rho_over_h ? 1 : 0;
-    v[kSum_minRhoOverH] = s.min_rho_over_h;
-    v[kSum_medianRhoOverH] = s.median_rho_over_h;
-    v[kSum_maxRhoOverH] = s.max_rho_over_h;
-    for (const auto& [error, n] : s.by_error) {
-      o.u32[kU32_summaryErrors].push_back(static_cast<uint32_t>(error));
-      o.u32[kU32_summaryErrors].push_back(static_cast<uint32_t>(n));
+    return summary_block(kergen::summarize_cells(volume->records, worst, volume->first_cell));
+  });
+}
+
+// cellSummaryOf(request, numCells, firstCell, worst) → the summary block of records given as
+// arrays (cells computed in parts, by several workers, joined): the request holds f64
+// kernelRatio[n], rhoOverH[n], the deepest points' x[n] (NaN: none), then i32 status[n] and u32
+// reoriented[n]: the fields kergen::summarize_cells reads, each record rebuilt from them.
+uintptr_t cell_summary_of(uintptr_t request, uint32_t num_cells, double first_cell, uint32_t worst) {
+  return guarded([&]() -> uintptr_t {
+    const double* ratio = reinterpret_cast<const double*>(request);
+    const double* rho_over_h = ratio + num_cells;
+    const double* deepest_x = rho_over_h + num_cells;
+    const int32_t* status = reinterpret_cast<const int32_t*>(deepest_x + num_cells);
+    const uint32_t* reoriented = reinterpret_cast<const uint32_t*>(status + num_cells);
+    std::vector<kergen::CellKernel> records(num_cells);
+    for (uint32_t i = 0; i < num_cells; ++i) {
+      kergen::CellKernel& c = records[i];
+      // cell_status_code: the KernelType value, or minus the Error value.
+      if (status[i] >= 0)
+        c.type = static_cast<kergen::KernelType>(status[i]);
+      else
+        c.error = static_cast<kergen::Error>(-status[i]);
+      c.kernel_ratio = ratio[i];
+      c.rho_over_h = rho_over_h[i];
+      c.has_deepest_point = !std::isnan(deepest_x[i]);
+      c.reoriented = reoriented[i] != 0;
     }
-    for (size_t c : s.worst_cells) o.u32[kU32_worstCells].push_back(static_cast<uint32_t>(c));
-    return pack(o);
+    return summary_block(kergen::summarize_cells(records, worst, static_cast<size_t>(first_cell)));
   });
 }
 
@@ -368,6 +399,7 @@ EMSCRIPTEN_BINDINGS(kergen_cells) {
   emscripten::function("volumeFromArrays", &volume_from_arrays);
   emscripten::function("volumeCells", &volume_cells);
   emscripten::function("volumeSummary", &volume_summary);
+  emscripten::function("cellSummaryOf", &cell_summary_of);
   emscripten::function("volumeCellSurface", &volume_cell_surface);
   emscripten::function("volumeClose", &volume_close);
   emscripten::function("cellWireFormat", &cell_wire_format);

@@ -29,6 +29,8 @@ export {
   cellSurface,
   computeCellKernelsSync,
   computeCellKernels,
+  joinCellKernelsSync,
+  joinCellKernels,
 } from './cells.js';
 
 // ---- public API -----------------------------------------------------------------------------

@@ -5,10 +5,11 @@
 // Protocol (main → worker):  { type: 'readVolumeMesh', id, input, readOptions }
 //                            { type: 'computeCellKernels', id, mesh | input, readOptions?, cellOptions, wantMesh }
 //                            { type: 'cellSurface', id, mesh, cell }
+//                            { type: 'joinCellKernels', id, parts, worst? }
 // Protocol (worker → main):  { type: 'progress', id, phase, steps: 0, count?, total? }
 //                            { type: 'mesh', id, mesh }   (computeCellKernels of a file with wantMesh)
 //                            { type: 'result', id, result } | { type: 'error', id, code, message }
-import { readVolumeMeshSync, computeCellKernelsSync, cellSurfaceSync } from './cells.js';
+import { readVolumeMeshSync, computeCellKernelsSync, cellSurfaceSync, joinCellKernelsSync } from './cells.js';
 
 const buffersOf = (object) => [
   ...new Set(
@@ -54,6 +55,14 @@ export function cellHandlers(ensureInit) {
         ...buffersOf(result.summary),
       ];
       self.postMessage({ type: 'result', id, result }, [...new Set(transfer)]);
+    },
+
+    async joinCellKernels(msg) {
+      await ensureInit(msg.wasmUrl);
+      const result = joinCellKernelsSync(msg.parts, msg.worst != null ? { worst: msg.worst } : {});
+      self.postMessage({ type: 'result', id: msg.id, result }, [
+        ...new Set([...buffersOf(result), ...buffersOf(result.summary)]),
+      ]);
     },
 
     async cellSurface(msg) {

@@ -85,6 +85,17 @@ export function installCellMethods(KernelWorker, { toTransferable, wantsTransfer
     );
   };
 
+  /**
+   * Results of consecutive cell ranges (computed by several workers, say) joined into one, with
+   * the summary of all the cells (the package's joinCellKernels), in the worker; the parts are copied.
+   */
+  proto.joinCellKernels = function joinCellKernels(parts, options = {}) {
+    const worst = options && options.worst;
+    // Only the arrays and numbers the join reads (a part's mesh is not sent).
+    const plain = Array.isArray(parts) ? parts.map(({ mesh: _mesh, ...rest }) => rest) : parts;
+    return this._submit('joinCellKernels', 'joinCellKernels', {}, () => ({ parts: plain, worst }), { rawResult: true });
+  };
+
   /** One cell of a volume mesh as a surface (the package's cellSurface), in the worker. */
   proto.cellSurface = function cellSurface(mesh, cell) {
     const fn = 'cellSurface';

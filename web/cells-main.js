@@ -89,8 +89,30 @@ function openSample() {
   open({ input: bytes, name: 'agglomerated-grid.vtu', label: 'agglomerated box grid (sample)' }, started);
 }
 
+// The workers computing the cells: one per core (at most 4), each on its own range of cells;
+// the first also reads the files, joins the parts and computes a clicked cell.
+const pool = [kw];
+const poolSize = Math.max(1, Math.min(4, navigator.hardwareConcurrency || 2));
+const PARALLEL_FROM_CELLS = 2000; // fewer cells: one worker (the others would cost more to start)
+const DEEPEST_AUTO_CELLS = 20000; // "auto": inscribed balls up to this many cells (they cost ~5x)
+
+function cancelAll() {
+  for (const w of pool) w.cancel();
+}
+
+// Cells first .. first + count - 1 in `parts` consecutive ranges of nearly equal size.
+function split(count, parts) {
+  const out = [];
+  for (let i = 0, first = 0; i < parts; i++) {
+    const n = Math.floor(count / parts) + (i < count % parts ? 1 : 0);
+    out.push({ firstCell: first, count: n });
+    first += n;
+  }
+  return out;
+}
+
 async function open({ input, name, eleName, label }, started) {
-  if (state.busy) kw.cancel();
+  if (state.busy) cancelAll();
   const run = ++state.run;
   state.busy = true;
   state.mesh = null;
@@ -106,31 +128,55 @@ async function open({ input, name, eleName, label }, started) {
   setProgress(0, 0);
   setStatus('reading', `Reading ${label}…`);
   try {
-    const result = await kw.computeCellKernels(input, {
-      name,
-      eleName,
-      transfer: true,
-      deepestPoint: $('cells-deepest').checked,
-      onMesh: (mesh) => {
-        if (run !== state.run) return;
-        state.mesh = mesh;
-        view.setMesh(mesh);
-        setText('sum-cells', count(mesh.cellOffsets.length - 1), mesh.cellOffsets.length - 1);
-        setStatus('computing', 'Computing the kernels of the cells…');
-      },
-      onProgress: ({ phase, count: done, total }) => {
-        if (run === state.run && phase === 'cells') setProgress(done, total);
-      },
-    });
+    const mesh = await kw.readVolumeMesh(input, { name, eleName, transfer: true });
+    if (run !== state.run) return;
+    state.mesh = mesh;
+    const numCells = mesh.cellOffsets.length ? mesh.cellOffsets.length - 1 : 0;
+    setText('sum-cells', count(numCells), numCells);
+    const mode = $('cells-deepest').value;
+    const deepestPoint = mode === 'always' || (mode === 'auto' && numCells <= DEEPEST_AUTO_CELLS);
+    setStatus(
+      'computing',
+      `Computing the kernels of ${count(numCells)} cells${deepestPoint ? ' and their inscribed balls' : ''}…`,
+    );
+    const workers = numCells < PARALLEL_FROM_CELLS ? 1 : poolSize;
+    while (pool.length < workers) pool.push(new KernelWorker());
+    const done = new Array(workers).fill(0);
+    const jobs = split(numCells, workers).map(({ firstCell, count: n }, i) =>
+      pool[i].computeCellKernels(mesh, {
+        firstCell,
+        count: n,
+        deepestPoint,
+        rangeSize: 500,
+        onProgress: ({ phase, count: cells }) => {
+          if (run !== state.run || phase !== 'cells') return;
+          done[i] = cells;
+          setProgress(
+            done.reduce((a, b) => a + b, 0),
+            numCells,
+          );
+        },
+      }),
+    );
+    // Drawn while the workers compute (the mesh was copied to them as the jobs were posted).
+    await new Promise((r) => requestAnimationFrame(r));
+    if (run === state.run) view.setMesh(mesh);
+    const parts = await Promise.all(jobs);
+    if (run !== state.run) return;
+    const result = parts.length === 1 ? parts[0] : await kw.joinCellKernels(parts);
     if (run !== state.run) return;
     state.result = result;
     const ms = performance.now() - started;
     setText('sum-time', ms >= 1000 ? `${(ms / 1000).toFixed(2)} s` : `${ms.toFixed(0)} ms`, ms.toFixed(0));
+    setText('sum-workers', `${parts.length} worker${parts.length > 1 ? 's' : ''}`, parts.length);
     showSummary(result);
     applyColors();
     setStatus('done', `${count(result.numCells)} cells computed.`);
   } catch (err) {
-    if (run === state.run) fail(err);
+    if (run === state.run) {
+      cancelAll();
+      fail(err);
+    }
   } finally {
     if (run === state.run) {
       state.busy = false;
@@ -275,7 +321,7 @@ $('cells-cancel').addEventListener('click', () => {
   state.run++;
   state.busy = false;
   $('cells-cancel').disabled = true;
-  kw.cancel();
+  cancelAll();
   setStatus('cancelled', 'Cancelled.');
 });
 $('cells-colour-by').addEventListener('change', applyColors);

@@ -266,7 +266,7 @@ export async function cellsPageTests(context, base, tmp, { test, assert, assertC
     const file = path.join(tmp, 'grid-3k.vtu');
     fs.writeFileSync(file, volumeMeshToVtu(agglomeratedGrid(24, 24, 9)));
     await page.evaluate(() => {
-      document.getElementById('cells-deepest').checked = false;
+      document.getElementById('cells-deepest').value = 'never';
       window.__progress = new Set();
       new MutationObserver(() => window.__progress.add(document.getElementById('cells-progress').value)).observe(
         document.getElementById('cells-progress-text'),
@@ -278,9 +278,11 @@ export async function cellsPageTests(context, base, tmp, { test, assert, assertC
     const end = await waitDone(page, 300000);
     assert(end.state === 'done', `ended in ${end.state}: ${end.message}`);
     const values = await page.evaluate(() => [...window.__progress].filter((v) => v > 0));
+    const workers = await page.evaluate(() => document.getElementById('sum-workers').dataset.value);
+    console.log(`     ${values.length} progress values over ${workers} worker(s)`);
     assert(values.length >= 3, `progress values seen: ${values.join(', ')}`);
     // Cancel: with inscribed balls the same mesh takes seconds.
-    await page.evaluate(() => (document.getElementById('cells-deepest').checked = true));
+    await page.evaluate(() => (document.getElementById('cells-deepest').value = 'always'));
     await markPending(page);
     await page.setInputFiles('#cells-file', [file]);
     await page.waitForFunction(() => document.getElementById('cells-progress').value > 0, null, { timeout: 120000 });

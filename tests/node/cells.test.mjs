@@ -279,3 +279,35 @@ test('nothing stays in the wasm heap after the calls', () => {
   assert.equal(K.memoryStats().heapUsed, before);
   assert.equal(K.memoryStats().jsHandles, 0);
 });
+
+test('joinCellKernels: ranges computed apart join to the whole, summary included', () => {
+  const grid = agglomeratedGrid(...GRID);
+  const mesh = K.readVolumeMeshSync(enc(volumeMeshToVtu(grid)));
+  const cells = grid.cells.length;
+  const whole = K.computeCellKernelsSync(mesh, { deepestPoint: true });
+  const cut = [0, 37, 61, cells];
+  const parts = [2, 0, 1].map((i) =>
+    K.computeCellKernelsSync(mesh, { deepestPoint: true, firstCell: cut[i], count: cut[i + 1] - cut[i] }),
+  );
+  const joined = K.joinCellKernelsSync(parts);
+  assert.equal(joined.firstCell, 0);
+  assert.equal(joined.numCells, cells);
+  for (const key of [
+    'status',
+    'kernelVolume',
+    'kernelRatio',
+    'rhoOverH',
+    'deepestPoints',
+    'witnessOffsets',
+    'witnessGlobalFaces',
+  ])
+    assert.deepEqual([...joined[key]], [...whole[key]], key);
+  assert.deepEqual(joined.summary, whole.summary);
+  const noBalls = K.joinCellKernelsSync([
+    K.computeCellKernelsSync(mesh, { count: 20 }),
+    K.computeCellKernelsSync(mesh, { firstCell: 20 }),
+  ]);
+  assert.deepEqual(noBalls.summary, K.computeCellKernelsSync(mesh).summary);
+  assert.throws(() => K.joinCellKernelsSync([parts[0], parts[1]]), { code: 'INVALID_ARGUMENT' });
+  assert.throws(() => K.joinCellKernelsSync([]), { code: 'INVALID_ARGUMENT' });
+});
