@@ -621,3 +621,19 @@ export function computeCellKernelsSync(
   meshOrBytes: VolumeMeshInput | VolumeMeshBytes,
   options?: Omit<CellKernelOptions, 'signal'>,
 ): CellKernelsResult;
+
+/**
+ * One result of results computed in parts (consecutive cell ranges, e.g. by several
+ * KernelWorkers, each on its own `firstCell` / `count`): the arrays concatenated in cell order,
+ * the witness offsets shifted, and the summary of all the cells computed again by the core.
+ * Rejects with 'INVALID_ARGUMENT' when the parts are not consecutive.
+ */
+export function joinCellKernels(
+  parts: readonly CellKernelsResult[],
+  options?: { worst?: number },
+): Promise<CellKernelsResult>;
+/** Synchronous joinCellKernels; requires a finished init(). */
+export function joinCellKernelsSync(
+  parts: readonly CellKernelsResult[],
+  options?: { worst?: number },
+): CellKernelsResult;

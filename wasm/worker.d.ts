@@ -129,6 +129,8 @@ export class KernelWorker {
     meshOrBytes: VolumeMeshInput | VolumeMeshBytes,
     options?: WorkerCellKernelOptions,
   ): Promise<CellKernelsResult>;
+  /** Results of consecutive cell ranges joined into one (joinCellKernels), in the worker (the parts are copied). */
+  joinCellKernels(parts: readonly CellKernelsResult[], options?: { worst?: number }): Promise<CellKernelsResult>;
   /** One cell of a volume mesh as a surface (cellSurface), in the worker (the mesh is copied). */
   cellSurface(mesh: VolumeMeshInput, cell: number): Promise<CellSurface>;
   /** Writes a mesh or kernel result as file bytes in the worker (arrays are copied). */
