@@ -30,7 +30,7 @@ async function dropAndTime(page, deepest) {
     status.dataset.state = 'bench-pending';
     window.__bench = { tasks: [], progress: new Set(), meshAt: null, doneAt: null };
     new PerformanceObserver((list) => {
-      for (const e of list.getEntries()) window.__bench.tasks.push(e.duration);
+      for (const e of list.getEntries()) window.__bench.tasks.push([e.startTime - window.__bench.t0, e.duration]);
     }).observe({ type: 'longtask' });
     new MutationObserver(() => {
       window.__bench.progress.add(document.getElementById('cells-progress-text').textContent);
@@ -67,8 +67,15 @@ async function dropAndTime(page, deepest) {
       meshMs: b.meshAt - b.t0,
       doneMs: b.doneAt - b.t0,
       progressUpdates: b.progress.size,
-      longest: Math.max(0, ...b.tasks),
+      longest: Math.max(0, ...b.tasks.map((t) => t[1])),
+      top: b.tasks
+        .sort((x, y) => y[1] - x[1])
+        .slice(0, 3)
+        .map(([at, d]) => `${d.toFixed(0)} ms at +${(at / 1000).toFixed(2)} s`),
       longTasks: b.tasks.length,
+      timings: window.kergenCells.state.timings,
+      workers: document.getElementById('sum-workers').textContent,
+      frame: `rebuild ${window.kergenCells.view.rebuildMs.toFixed(0)} ms, last frame ${window.kergenCells.view.renderMs.toFixed(0)} ms`,
     };
   });
 }
@@ -84,7 +91,11 @@ const server = await serve(path.join(repo, 'web/dist'), new Map([['/__files/mesh
 const base = `http://127.0.0.1:${server.address().port}/`;
 const { page, close } = await launch();
 try {
-  await page.goto(`${base}cells.html?sample=none`, { waitUntil: 'load' });
+  // As a visitor finds it: the page with its sample computed and drawn (shaders compiled) first.
+  await page.goto(`${base}cells.html`, { waitUntil: 'load' });
+  await page.waitForFunction(() => document.getElementById('cells-status').dataset.state === 'done', null, {
+    timeout: 120000,
+  });
   await page.evaluate(async (name) => {
     const blob = await (await fetch('/__files/mesh.vtu')).blob();
     window.__file = new File([blob], name);
@@ -96,6 +107,7 @@ try {
     '| deepest | cells | not star | drop → mesh drawn | drop → all kernels | page "Time" | progress updates | longest task |',
   );
   console.log('|---|---|---|---|---|---|---|---|');
+  const stages = [];
   for (const deepest of deepestModes) {
     for (let r = 0; r < runs; r++) {
       const m = await dropAndTime(page, deepest);
@@ -103,8 +115,15 @@ try {
       console.log(
         `| ${deepest ? 'yes' : 'no'} | ${m.cells} | ${m.nonStar} | ${(m.meshMs / 1000).toFixed(2)} s | ${(m.doneMs / 1000).toFixed(2)} s | ${(m.pageMs / 1000).toFixed(2)} s | ${m.progressUpdates} | ${m.longest.toFixed(0)} ms (${m.longTasks} over 50 ms) |`,
       );
+      stages.push(
+        `${deepest ? 'deepest' : 'kernels'}, ${m.workers}: ${Object.entries(m.timings)
+          .map(([k, v]) => `${k} ${(v / 1000).toFixed(2)} s`)
+          .join(', ')}; longest tasks ${m.top.join(', ')}; ${m.frame}`,
+      );
     }
   }
+  console.log("\nStages (ms from the drop, the page's own marks):");
+  for (const line of stages) console.log(`- ${line}`);
 } finally {
   await close();
   server.close();

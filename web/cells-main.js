@@ -11,7 +11,8 @@ import { sampleVolumeMesh, volumeMeshToVtu } from './cells-sample.js';
 const $ = (id) => document.getElementById(id);
 const view = new CellsView($('viewport'));
 const kw = new KernelWorker();
-const state = { mesh: null, result: null, name: '', run: 0, busy: false, selected: -1 };
+// timings: ms from the drop or click to each stage of the last run (for the benchmark).
+const state = { mesh: null, result: null, name: '', run: 0, busy: false, selected: -1, timings: {} };
 // For the browser tests: the view and the page's state, read-only by convention.
 window.kergenCells = { view, state };
 
@@ -100,6 +101,21 @@ function cancelAll() {
   for (const w of pool) w.cancel();
 }
 
+// The mesh's topology (cells-geometry.js), from a worker of its own: a second or more for 100k
+// cells, which the page's thread would otherwise spend in one task.
+let topologyWorker = null;
+let topologyJobs = 0;
+function topologyOf(mesh) {
+  if (!topologyWorker)
+    topologyWorker = new Worker(new URL('./cells-topology-worker.js', import.meta.url), { type: 'module' });
+  const id = ++topologyJobs;
+  return new Promise((resolve, reject) => {
+    topologyWorker.onmessage = (e) => e.data.id === id && resolve(e.data.topology);
+    topologyWorker.onerror = (e) => reject(new Error(`the topology worker failed: ${e.message}`));
+    topologyWorker.postMessage({ id, mesh });
+  });
+}
+
 // Cells first .. first + count - 1 in `parts` consecutive ranges of nearly equal size.
 function split(count, parts) {
   const out = [];
@@ -128,8 +144,11 @@ async function open({ input, name, eleName, label }, started) {
   setProgress(0, 0);
   setStatus('reading', `Reading ${label}…`);
   try {
+    const mark = (what) => (state.timings[what] = Math.round(performance.now() - started));
+    state.timings = {};
     const mesh = await kw.readVolumeMesh(input, { name, eleName, transfer: true });
     if (run !== state.run) return;
+    mark('read');
     state.mesh = mesh;
     const numCells = mesh.cellOffsets.length ? mesh.cellOffsets.length - 1 : 0;
     setText('sum-cells', count(numCells), numCells);
@@ -159,18 +178,24 @@ async function open({ input, name, eleName, label }, started) {
       }),
     );
     // Drawn while the workers compute (the mesh was copied to them as the jobs were posted).
-    await new Promise((r) => requestAnimationFrame(r));
-    if (run === state.run) view.setMesh(mesh);
+    mark('posted');
+    const topology = await topologyOf(mesh);
+    mark('topology');
+    if (run === state.run) view.setMesh(mesh, topology);
+    mark('drawn');
     const parts = await Promise.all(jobs);
     if (run !== state.run) return;
+    mark('cells');
     const result = parts.length === 1 ? parts[0] : await kw.joinCellKernels(parts);
     if (run !== state.run) return;
+    mark('joined');
     state.result = result;
     const ms = performance.now() - started;
     setText('sum-time', ms >= 1000 ? `${(ms / 1000).toFixed(2)} s` : `${ms.toFixed(0)} ms`, ms.toFixed(0));
     setText('sum-workers', `${parts.length} worker${parts.length > 1 ? 's' : ''}`, parts.length);
     showSummary(result);
     applyColors();
+    mark('coloured');
     setStatus('done', `${count(result.numCells)} cells computed.`);
   } catch (err) {
     if (run === state.run) {

@@ -76,15 +76,20 @@ export class CellsView {
     if (this.frame) return;
     this.frame = requestAnimationFrame(() => {
       this.frame = 0;
+      const t0 = performance.now();
       this.renderer.render(this.scene, this.camera);
+      this.renderMs = performance.now() - t0; // the last frame's submit time (for the benchmark)
     });
   }
 
-  /** A new mesh (readVolumeMesh's arrays): every cell pending until setColors. */
-  setMesh(mesh) {
+  /**
+   * A new mesh (readVolumeMesh's arrays) with its cellTopology (computed here when not given):
+   * every cell pending until setColors.
+   */
+  setMesh(mesh, topology = cellTopology(mesh)) {
     this.clearCell();
     this.mesh = mesh;
-    this.topology = cellTopology(mesh);
+    this.topology = topology;
     this.numCells = this.topology.numCells;
     this.centres = this.topology.centres;
     this.box = new THREE.Box3().setFromArray(mesh.positions);
@@ -125,6 +130,7 @@ export class CellsView {
   // The geometry of the faces between a shown cell and a hidden one (or the outside).
   rebuild() {
     if (!this.mesh) return;
+    const t0 = performance.now();
     const o = this.origin;
     const { positions, colors, triCell, lines } = boundaryFaces(
       this.mesh,
@@ -145,6 +151,7 @@ export class CellsView {
     this.edges.geometry.dispose();
     this.edges.geometry = e;
     this.drawnTriangles = triCell.length;
+    this.rebuildMs = performance.now() - t0; // (for the benchmark)
     this.requestRender();
   }
 
