@@ -287,7 +287,7 @@ inline void shuffle(Mesh& m, Bytes& in, bool rotate) {
 
 // One decoded input: the mesh, the options, and the bytes that chose them.
 struct DecodedInput {
-  Mesh mesh;
+  kergen::Mesh mesh;
   kergen::Options options;
   uint8_t which = 0, flags = 0;  // the base mesh, the option bits
   bool stop_early = false;       // options.max_steps is set
@@ -301,7 +301,7 @@ inline DecodedInput decode_kernel_input(kernel_input::Bytes& in) {
   const uint8_t which = in.u8(), flags = in.u8(), sb = in.u8(), tb = in.u8();
   d.which = which;
   d.flags = flags;
-  Mesh& m = d.mesh;
+  kergen::Mesh& m = d.mesh;
   m = base_mesh(in, which);
   const bool scale_first = !(flags & 0x80);
   if (scale_first) scale_translate(m, sb, tb);
@@ -329,7 +329,7 @@ inline DecodedInput decode_kernel_input(kernel_input::Bytes& in) {
 inline void run_kernel_input(const uint8_t* data, size_t size) {
   kernel_input::Bytes in{data, size};
   DecodedInput d = decode_kernel_input(in);
-  const Mesh& m = d.mesh;
+  const kergen::Mesh& m = d.mesh;
   const kergen::Options& o = d.options;
   const uint8_t which = d.which;
   const bool stop_early = d.stop_early;
