@@ -28,6 +28,7 @@
 
 #include "cells.h"
 #include "json_out.h"
+#include "kergen/batch.h"
 #include "kergen/io.h"
 #include "kergen/kergen.h"
 
@@ -381,7 +382,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-MeshOutcome process(const std::string& file, const Arguments& args) {
+MeshOutcome process(const std::string& file, const Arguments& args, kergen::KernelBatch& batch) {
   MeshOutcome m;
   m.file = file;
   const auto start = std::chrono::steady_clock::now();
@@ -401,7 +402,7 @@ MeshOutcome process(const std::string& file, const Arguments& args) {
     options.weld = kDefaultRelativeWeld;
     options.weld_relative = true;
   }
-  m.kernel = kergen::compute_kernel(read.mesh.view(), options);
+  batch.compute(read.mesh.view(), options, m.kernel);
   m.ms_total = milliseconds_since(start);
   m.error = m.kernel.error;
   m.message = in_cli_words(m.kernel.message);
@@ -436,8 +437,8 @@ struct MeshReport {
   std::string count_as;  // kernel type when ok, else error name (for the batch summary)
 };
 
-MeshReport report(const std::string& file, const Arguments& args) {
-  const MeshOutcome m = process(file, args);
+MeshReport report(const std::string& file, const Arguments& args, kergen::KernelBatch& batch) {
+  const MeshOutcome m = process(file, args, batch);
   MeshReport r;
   r.ok = m.ok();
   r.count_as = r.ok ? kergen::kernel_type_name(m.kernel.type) : kergen::error_name(m.error);
@@ -457,14 +458,16 @@ MeshReport report(const std::string& file, const Arguments& args) {
 // and hands them to `emit` in input order as soon as each one and all before it are done;
 // `wait(i)` is called before mesh i is awaited (one thread: before it is computed). An exception
 // thrown for a mesh (out of memory) is rethrown in order, as one thread would throw it.
-// compute_kernel is reentrant: the core has no mutable state outside each call.
+// Each thread computes with its own KernelBatch (batch.h), which keeps its working memory from one
+// mesh to the next; the core has no mutable state outside a call and its batch.
 template <class Wait, class Emit>
 void run_in_order(const std::vector<std::string>& files, const Arguments& args, unsigned threads, Wait wait,
                   Emit emit) {
   if (threads <= 1) {
+    kergen::KernelBatch batch;
     for (size_t i = 0; i < files.size(); ++i) {
       wait(i);
-      emit(i, report(files[i], args));
+      emit(i, report(files[i], args, batch));
     }
     return;
   }
@@ -475,11 +478,12 @@ void run_in_order(const std::vector<std::string>& files, const Arguments& args, 
   std::mutex mutex;
   std::condition_variable finished;
   auto work = [&] {
+    kergen::KernelBatch batch;
     for (size_t i; (i = next.fetch_add(1)) < files.size();) {
       MeshReport r;
       std::exception_ptr failure;
       try {
-        r = report(files[i], args);
+        r = report(files[i], args, batch);
       } catch (...) { failure = std::current_exception(); }
       std::lock_guard<std::mutex> lock(mutex);
       reports[i] = std::move(r);

@@ -17,7 +17,8 @@ namespace kfuzz {
 inline void check_offsets(const std::vector<uint32_t>& offsets, size_t target, const char* what) {
   if (offsets.empty()) return;
   KFUZZ_CHECK(offsets[0] == 0, std::string(what) + " do not start at 0");
-  for (size_t i = 1; i < offsets.size(); ++i) KFUZZ_CHECK(offsets[i] >= offsets[i - 1], std::string(what) + " decrease");
+  for (size_t i = 1; i < offsets.size(); ++i)
+    KFUZZ_CHECK(offsets[i] >= offsets[i - 1], std::string(what) + " decrease");
   KFUZZ_CHECK(offsets.back() == target, std::string(what) + " do not end at the array's size");
 }
 

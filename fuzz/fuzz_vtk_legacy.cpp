@@ -2,7 +2,6 @@
 #include "fuzz_volume.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  kfuzz::fuzz_volume(
-      kergen::read_vtk_legacy(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.vtk"));
+  kfuzz::fuzz_volume(kergen::read_vtk_legacy(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.vtk"));
   return 0;
 }

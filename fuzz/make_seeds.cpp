@@ -167,8 +167,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out = argv[1];
-  const char* dirs[] = {"fuzz_off",    "fuzz_obj", "fuzz_stl_ascii",  "fuzz_stl_binary", "fuzz_ply",
-                        "fuzz_kernel", "fuzz_vtu", "fuzz_vtk_legacy", "fuzz_node_ele"};
+  const char* dirs[] = {"fuzz_off",    "fuzz_obj",   "fuzz_stl_ascii", "fuzz_stl_binary", "fuzz_ply",
+                        "fuzz_kernel", "fuzz_batch", "fuzz_vtu",       "fuzz_vtk_legacy", "fuzz_node_ele"};
   mkdir(out.c_str(), 0755);
   for (const char* d : dirs) mkdir((out + "/" + d).c_str(), 0755);
   int written = 0;
@@ -209,6 +209,19 @@ int main(int argc, char** argv) {
       s += char(sb);
       s += char(0);
       put(out + "/fuzz_kernel/base-" + std::to_string(which) + "-" + std::to_string(sb), s);
+    }
+  // fuzz_batch: pairs and quadruples of base meshes (a large one next to small ones, star and
+  // not, open and closed), each part 8 bytes.
+  for (int first = 0; first < 24; ++first)
+    for (int count : {2, 4}) {
+      std::string s(1, char(count - 1));
+      for (int i = 0; i < count; ++i) {
+        std::string part(8, '\0');
+        part[0] = char((first + 7 * i) % 24);
+        part[1] = char(i == 1 ? 8 : 0);  // allow_open for the second
+        s += part;
+      }
+      put(out + "/fuzz_batch/seq-" + std::to_string(first) + "-" + std::to_string(count), s);
     }
   std::printf("make_seeds: %d meshes converted into %s\n", written, out.c_str());
   return 0;

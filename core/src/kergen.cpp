@@ -80,7 +80,9 @@ bool assemble(const Setup& s, const Options& options, int unscale_exp, const Tra
   };
   double scaled_volume = 0;
   std::vector<uint32_t> face_planes;
-  if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume, &face_planes)) {
+  // With steps, the output keeps the replay's numbering, which the events used.
+  const VertexOrder order = options.on_step || options.max_steps ? VertexOrder::Trace : VertexOrder::Canonical;
+  if (!assemble_polytope(*s.planes, tr, unscale_exp, out, emit_face, scaled_volume, &face_planes, order)) {
     out.error = Error::Internal;
     out.message = "internal error: traced kernel edges do not close into a polytope (please report this mesh)";
     return false;

@@ -186,7 +186,8 @@ struct Options {
   uint64_t max_steps = 0;         // stop after this many events (0 = no limit)
   bool allow_open = false;        // accept meshes with holes: result may be Unbounded
   bool deepest_point = false;     // also compute the centre of the largest inscribed ball
-  uint64_t seed = 0x4b6572476e;   // LP constraint order (results do not depend on it)
+  uint64_t seed = 0x4b6572476e;   // LP constraint order (the kernel does not depend on it; an
+                                  // empty kernel's witness_faces, one minimal set, may)
   size_t max_faces = 20'000'000;  // larger inputs get Error::TooLarge instead of exhausting memory
   size_t max_vertices = 20'000'000;
   // Large closed meshes: drop the faces whose planes cannot reach the kernel (they hold the
@@ -301,6 +302,21 @@ std::array<StatsField, 14> stats_fields(const Stats& s);
 constexpr int32_t kFaceSourceBox = -1;
 constexpr int32_t kFaceSourceWall = -2;
 
+// The result arrays come in one canonical order, so that the same mesh gives the same arrays
+// whatever order the computation found the kernel in (a different seed, culling on or off,
+// Options::from, another algorithm or version):
+//   vertices: in lexicographic order of their coordinates (x, then y, then z; vertices that
+//     round to the same doubles in the order of their exact coordinates);
+//   edges: (low, high) vertex id pairs, in increasing order;
+//   faces: each loop starts at its lowest vertex id (and runs CCW from outside), the loops in
+//     increasing lexicographic order of their vertex ids; triangles: each face's fan from its
+//     first corner, in face order; face_sources follows the faces;
+//   volume and area: summed in that order, so equal to the last bit.
+// With Options::on_step or max_steps, vertices and edges instead keep the numbering and
+// orientation of the step events (the order the trace discovered them); the faces are still
+// sorted as above, by the vertices' canonical order, and volume and area are the same as without
+// steps. kernel_point (an LP vertex) and stats are not part of this order and may change; so may
+// an empty kernel's witness_faces with Options::seed (any minimal set; the same for the same seed).
 struct Kernel {
   Error error = Error::Ok;
   std::string message;  // human-readable reason when error != Ok

@@ -29,12 +29,47 @@ struct VertexCoordinates {
   double *hi, *lo, *local, *local_lo;
 };
 
-// Fills `c` and the output vertices (rounded once, to nearest).
-void round_vertices(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, VertexCoordinates& c, Kernel& out) {
+// The output position of each traced vertex: its id in the output (`rank`) and the traced
+// vertex at each output id (`order`).
+struct VertexNumbering {
+  std::vector<uint32_t> rank, order;
+};
+
+// Numbers the vertices canonically, in lexicographic order of their coordinates (the exact ones
+// to ~1e-30, so equal rounded coordinates are still told apart; exactly equal ones keep their
+// traced order, which the tracer never produces: a vertex is found once), and fills `c` in that
+// order: area and volume are summed in it, whatever the output numbering. Fills the output
+// vertices (rounded once, to nearest), with `canonical` in that order, else in traced order.
+void round_vertices(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, bool canonical, VertexCoordinates& c,
+                    VertexNumbering& numbering, Kernel& out) {
   const size_t V = trace.vertices.size();
-  for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &c.hi[3 * i], &c.lo[3 * i]);
+  std::vector<double> traced(6 * V);  // hi[3], lo[3] per traced vertex
+  for (size_t i = 0; i < V; ++i) precise_coordinates(ps, trace.vertices[i].geom, &traced[6 * i], &traced[6 * i + 3]);
+  // A zero's sign depends on the planes that happened to define the vertex: +0 always (x + 0 is
+  // +0 for x = -0 and x otherwise).
+  for (double& x : traced) x += 0.0;
+  numbering.order.resize(V);
+  numbering.rank.resize(V);
+  for (uint32_t i = 0; i < V; ++i) numbering.order[i] = i;
+  const double* t = traced.data();
+  std::stable_sort(numbering.order.begin(), numbering.order.end(), [t](uint32_t a, uint32_t b) {
+    for (int k = 0; k < 6; ++k)  // hi, then lo
+      if (t[6 * a + k] != t[6 * b + k]) return t[6 * a + k] < t[6 * b + k];
+    return false;
+  });
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t from = numbering.order[i];
+    numbering.rank[from] = i;
+    for (int k = 0; k < 3; ++k) {
+      c.hi[3 * i + k] = traced[6 * from + k];
+      c.lo[3 * i + k] = traced[6 * from + 3 + k];
+    }
+  }
   out.vertices.resize(3 * V);
-  for (size_t i = 0; i < 3 * V; ++i) out.vertices[i] = std::ldexp(c.hi[i], unscale_exp);
+  for (size_t i = 0; i < V; ++i) {
+    const size_t at = canonical ? i : numbering.rank[i];
+    for (int k = 0; k < 3; ++k) out.vertices[3 * i + k] = std::ldexp(c.hi[3 * at + k], unscale_exp);
+  }
   for (size_t i = 0; i < V; ++i)
     for (int k = 0; k < 3; ++k) {
       // Knuth's two-sum of a = hi_i and b = -hi_0: s + err == a + b exactly.
@@ -46,6 +81,30 @@ void round_vertices(const PlaneSet& ps, const TraceResult& trace, int unscale_ex
       c.local[3 * i + k] = s + tail;
       c.local_lo[3 * i + k] = tail - (c.local[3 * i + k] - s);
     }
+}
+
+// The output edges: with `canonical`, (low, high) canonical id pairs in increasing order; else in
+// traced order, numbering and orientation (the step events').
+void number_edges(const TraceResult& trace, const VertexNumbering& numbering, bool canonical, Kernel& out) {
+  const size_t E = trace.edges.size();
+  out.edges.resize(2 * E);
+  if (!canonical) {
+    for (size_t i = 0; i < E; ++i) {
+      out.edges[2 * i] = trace.edges[i].a;
+      out.edges[2 * i + 1] = trace.edges[i].b;
+    }
+    return;
+  }
+  std::vector<uint64_t> keys(E);
+  for (size_t i = 0; i < E; ++i) {
+    const uint64_t a = numbering.rank[trace.edges[i].a], b = numbering.rank[trace.edges[i].b];
+    keys[i] = a < b ? (a << 32 | b) : (b << 32 | a);
+  }
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < E; ++i) {
+    out.edges[2 * i] = uint32_t(keys[i] >> 32);
+    out.edges[2 * i + 1] = uint32_t(keys[i]);
+  }
 }
 
 // Flat: some opposite pair is tight at a vertex (then it is tight everywhere); the lower of the
@@ -116,16 +175,57 @@ std::vector<std::pair<uint32_t, uint32_t>> facet_ranges(const std::vector<PlaneE
   return facets;
 }
 
-// Each facet's edges oriented exactly and walked into one CCW loop, appended to the output faces
-// and triangles (and announced while `emit_face` wants more). False when a complete trace leaves
-// a facet that is not one closed loop (a stopped run leaves facets open). Each face's plane goes
-// to `face_planes` when given.
+// One facet's loop, in output ids, started at its lowest vertex: [begin, begin + size) of the
+// collected corners, on plane h.
+struct FacetLoop {
+  uint32_t begin, size, h;
+};
+
+// The facets' loops (canonical ids, each started at its lowest vertex) sorted in increasing
+// order of their vertex sequences (two facets never share one), appended to the output faces
+// and triangles (each face's fan from its first corner) in output ids (`output_id` of a canonical
+// id, or the canonical id itself when null) and announced in that order while `emit_face` wants
+// more. Each face's plane goes to `face_planes` when given.
+void emit_sorted_facets(std::vector<FacetLoop>& loops, std::vector<uint32_t>& corners, const uint32_t* output_id,
+                        const std::function<bool(const StepEvent&)>& emit_face, Kernel& out,
+                        std::vector<uint32_t>* face_planes) {
+  const uint32_t* cs = corners.data();
+  std::sort(loops.begin(), loops.end(), [cs](const FacetLoop& x, const FacetLoop& y) {
+    return std::lexicographical_compare(cs + x.begin, cs + x.begin + x.size, cs + y.begin, cs + y.begin + y.size);
+  });
+  if (output_id)
+    for (uint32_t& v : corners) v = output_id[v];
+  bool announce = true;
+  for (const FacetLoop& f : loops) {
+    const uint32_t* loop = cs + f.begin;
+    const uint32_t fid = uint32_t(out.face_sizes.size());
+    if (face_planes) face_planes->push_back(f.h);
+    out.face_sizes.push_back(f.size);
+    out.face_indices.insert(out.face_indices.end(), loop, loop + f.size);
+    for (size_t i = 1; i + 1 < f.size; ++i) {
+      out.triangles.push_back(loop[0]);
+      out.triangles.push_back(loop[i]);
+      out.triangles.push_back(loop[i + 1]);
+    }
+    if (announce && emit_face) {
+      StepEvent ev;
+      ev.kind = StepEvent::Kind::Face;
+      ev.id = fid;
+      ev.loop = out.face_indices.data() + (out.face_indices.size() - f.size);
+      ev.loop_size = f.size;
+      announce = emit_face(ev);
+    }
+  }
+}
+
+// Each facet's edges oriented exactly and walked into one CCW loop, its vertices renumbered by
+// `rank` and started at the lowest, collected in `loops` / `corners`. False when a complete
+// trace leaves a facet that is not one closed loop (a stopped run leaves facets open).
 bool walk_facets(const PlaneSet& ps, const TraceResult& trace, const std::vector<PlaneEdge>& grouped,
-                 const std::vector<std::pair<uint32_t, uint32_t>>& facets,
-                 const std::function<bool(const StepEvent&)>& emit_face, Kernel& out,
-                 std::vector<uint32_t>* face_planes) {
+                 const std::vector<std::pair<uint32_t, uint32_t>>& facets, const std::vector<uint32_t>& rank,
+                 std::vector<FacetLoop>& loops, std::vector<uint32_t>& corners) {
   const size_t V = trace.vertices.size();
-  bool announce = true, ok = true;
+  bool ok = true;
   // Per vertex: the next one along the facet being walked; the facet's tails (at most V) and
   // its loop (at most V + 1: a walk that misses its start stops one step past the tails), in
   // one allocation.
@@ -164,23 +264,14 @@ bool walk_facets(const PlaneSet& ps, const TraceResult& trace, const std::vector
       if (trace.complete) ok = false;
       continue;
     }
-    uint32_t fid = uint32_t(out.face_sizes.size());
-    if (face_planes) face_planes->push_back(h);
-    out.face_sizes.push_back(uint32_t(loop_size));
-    out.face_indices.insert(out.face_indices.end(), loop, loop + loop_size);
-    for (size_t i = 1; i + 1 < loop_size; ++i) {
-      out.triangles.push_back(loop[0]);
-      out.triangles.push_back(loop[i]);
-      out.triangles.push_back(loop[i + 1]);
+    size_t first = 0;
+    for (size_t i = 0; i < loop_size; ++i) {
+      loop[i] = rank[loop[i]];
+      if (loop[i] < loop[first]) first = i;
     }
-    if (announce && emit_face) {
-      StepEvent ev;
-      ev.kind = StepEvent::Kind::Face;
-      ev.id = fid;
-      ev.loop = out.face_indices.data() + (out.face_indices.size() - loop_size);
-      ev.loop_size = uint32_t(loop_size);
-      announce = emit_face(ev);
-    }
+    loops.push_back({uint32_t(corners.size()), uint32_t(loop_size), h});
+    corners.insert(corners.end(), loop + first, loop + loop_size);
+    corners.insert(corners.end(), loop, loop + first);
   }
   return ok;
 }
@@ -258,16 +349,14 @@ void area_and_vol6(const VertexCoordinates& c, size_t V, const std::vector<uint3
 
 bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, Kernel& out,
                        const std::function<bool(const StepEvent&)>& emit_face, double& scaled_volume,
-                       std::vector<uint32_t>* face_planes) {
+                       std::vector<uint32_t>* face_planes, VertexOrder vertex_order) {
   scaled_volume = 0;
   const size_t V = trace.vertices.size(), E = trace.edges.size();
+  const bool canonical = vertex_order == VertexOrder::Canonical;
   VertexCoordinates coords(V);
-  round_vertices(ps, trace, unscale_exp, coords, out);
-  out.edges.resize(2 * E);
-  for (size_t i = 0; i < E; ++i) {
-    out.edges[2 * i] = trace.edges[i].a;
-    out.edges[2 * i + 1] = trace.edges[i].b;
-  }
+  VertexNumbering numbering;
+  round_vertices(ps, trace, unscale_exp, canonical, coords, numbering, out);
+  number_edges(trace, numbering, canonical, out);
   if (V == 0) {
     out.type = KernelType::Empty;
     return true;
@@ -284,16 +373,27 @@ bool assemble_polytope(const PlaneSet& ps, const TraceResult& trace, int unscale
   out.type = flat_plane != kNoPlane ? KernelType::Polygon : KernelType::Polyhedron;
 
   const std::vector<PlaneEdge> grouped = plane_edges_by_plane(ps, trace);
-  size_t corners = 0;
-  const auto facets = facet_ranges(grouped, flat_plane, corners);
-  out.face_sizes.reserve(facets.size());
-  out.face_indices.reserve(corners);
-  out.triangles.reserve(3 * (corners - std::min(corners, 2 * facets.size())));
-  if (face_planes) face_planes->reserve(facets.size());
-  bool ok = walk_facets(ps, trace, grouped, facets, emit_face, out, face_planes);
+  size_t num_corners = 0;
+  const auto facets = facet_ranges(grouped, flat_plane, num_corners);
+  std::vector<FacetLoop> loops;
+  std::vector<uint32_t> corners;
+  loops.reserve(facets.size());
+  corners.reserve(num_corners);
+  bool ok = walk_facets(ps, trace, grouped, facets, numbering.rank, loops, corners);
+  out.face_sizes.reserve(loops.size());
+  out.face_indices.reserve(corners.size());
+  out.triangles.reserve(3 * (corners.size() - std::min(corners.size(), 2 * loops.size())));
+  if (face_planes) face_planes->reserve(loops.size());
+  emit_sorted_facets(loops, corners, canonical ? nullptr : numbering.order.data(), emit_face, out, face_planes);
 
+  // Area and volume from the canonical numbering, whatever the output's.
+  std::vector<uint32_t> canonical_triangles;
+  if (!canonical) {
+    canonical_triangles.reserve(out.triangles.size());
+    for (uint32_t v : out.triangles) canonical_triangles.push_back(numbering.rank[v]);
+  }
   double area = 0, vol6 = 0;
-  area_and_vol6(coords, V, out.triangles, area, vol6);
+  area_and_vol6(coords, V, canonical ? out.triangles : canonical_triangles, area, vol6);
   scaled_volume = (out.type == KernelType::Polyhedron && trace.complete) ? vol6 / 6 : 0;
   out.area = std::ldexp(area, 2 * unscale_exp);
   out.volume = std::ldexp(scaled_volume, 3 * unscale_exp);

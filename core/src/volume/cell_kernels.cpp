@@ -1,12 +1,14 @@
 // cell_kernels.cpp — the kernel of each cell of a volume mesh (volume.h: compute_cell_kernels,
-// cell_status_code): each cell's surface (cell_surface) through compute_kernel, one cell at a
-// time, with the cell's diameter and the numbers derived from the kernel.
+// cell_status_code): each cell's surface (cell_surface) through one KernelBatch (batch.h: the
+// results of compute_kernel, without each call's set-up), one cell at a time, with the cell's
+// diameter and the numbers derived from the kernel.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "kergen/batch.h"
 #include "kergen/volume.h"
 
 namespace kergen {
@@ -49,7 +51,8 @@ std::string without_option_advice(const std::string& message) {
   return cut == std::string::npos ? message : message.substr(0, cut);
 }
 
-CellKernel one_cell(const VolumeMesh& mesh, size_t cell, const Options& kernel_options) {
+// `k` is the batch's reused result (its arrays keep their capacity from cell to cell).
+CellKernel one_cell(const VolumeMesh& mesh, size_t cell, const Options& kernel_options, KernelBatch& batch, Kernel& k) {
   CellKernel out;
   CellSurface surface = cell_surface(mesh, cell);
   if (!surface.ok()) {
@@ -58,7 +61,7 @@ CellKernel one_cell(const VolumeMesh& mesh, size_t cell, const Options& kernel_o
     return out;
   }
   out.diameter = diameter(surface.mesh);
-  Kernel k = compute_kernel(surface.mesh.view(), kernel_options);
+  batch.compute(surface.mesh.view(), kernel_options, k);
   out.reoriented = surface.reoriented;
   for (Warning& w : k.warnings) {
     if (w.kind == Warning::Kind::OrientationFlipped)
@@ -115,10 +118,12 @@ CellKernels compute_cell_kernels(const VolumeMesh& mesh, const CellOptions& opti
   Options kernel_options;
   kernel_options.deepest_point = options.deepest_point;
   out.cells.reserve(count);
+  KernelBatch batch;
+  Kernel kernel;
   size_t reoriented = 0;
   const size_t every = std::max<size_t>(options.progress_every, 1);
   for (size_t i = 0; i < count; ++i) {
-    out.cells.push_back(one_cell(mesh, first_cell + i, kernel_options));
+    out.cells.push_back(one_cell(mesh, first_cell + i, kernel_options, batch, kernel));
     reoriented += out.cells.back().reoriented;
     if (options.on_progress && ((i + 1) % every == 0 || i + 1 == count)) options.on_progress(i + 1, count);
   }

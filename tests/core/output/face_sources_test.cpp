@@ -52,7 +52,8 @@ Loops loops_of(const Mesh& m) {
   return l;
 }
 
-// The kernel as compute_kernel traces it (its phases, setup.h), kept for its exact vertices, with
+// The kernel as compute_kernel traces it (its phases, setup.h), kept for its exact vertices (in the
+// result's canonical order), with
 // exact plane tests on the input's points: their scaled copies in the plane set, checked to be the
 // input's times a power of two.
 class ExactKernel {
@@ -65,14 +66,23 @@ class ExactKernel {
     for (size_t v = 0; v < m.num_vertices(); ++v)
       for (int c = 0; c < 3; ++c)
         if (s_.mesh.to_input(s_.mesh.point(uint32_t(v))[c]) != m.positions[3 * v + c]) return;
-    const auto& tv = ct_.trace.vertices;
+    // The traced vertices in the result's order (kergen.h: by coordinates, hi then lo, zeros +0).
+    auto& tv = ct_.trace.vertices;
     if (tv.size() != k.num_vertices()) return;
+    std::vector<std::array<double, 6>> coords(tv.size());
     for (size_t i = 0; i < tv.size(); ++i) {
-      double hi[3], lo[3];
-      kergen::precise_coordinates(*s_.planes, tv[i].geom, hi, lo);
-      for (int c = 0; c < 3; ++c)
-        if (std::ldexp(hi[c], -s_.mesh.scale_exp) != k.vertices[3 * i + c]) return;
+      kergen::precise_coordinates(*s_.planes, tv[i].geom, &coords[i][0], &coords[i][3]);
+      for (double& x : coords[i]) x += 0.0;
     }
+    std::vector<size_t> order(tv.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return coords[a] < coords[b]; });
+    std::vector<kergen::TracedVertex> sorted;
+    for (size_t i : order) sorted.push_back(tv[i]);
+    tv = sorted;
+    for (size_t i = 0; i < tv.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        if (std::ldexp(coords[order[i]][c], -s_.mesh.scale_exp) != k.vertices[3 * i + c]) return;
     for (const kergen::Warning& w : s_.mesh.warnings) flipped_ |= w.kind == kergen::Warning::Kind::OrientationFlipped;
     ok_ = true;
   }
