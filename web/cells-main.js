@@ -298,6 +298,7 @@ async function select(c) {
   const r = state.result;
   const i = c - r.firstCell;
   panel.hidden = false;
+  panel.scrollIntoView({ block: 'nearest' }); // the numbers in sight, on a phone too
   $('sel-cell').textContent = String(c);
   const status = r.statusNames[r.status[i]];
   setText('sel-status', status, status);
