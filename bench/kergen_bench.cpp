@@ -25,6 +25,8 @@
 //                             (default 20000)
 //     --streaming-cap-ms T    the callback stops a run with on_step after T (default 120000): the
 //                             row then gives a lower bound
+//     --cells [DIR...]        only the cell rows: cells per second of whole folders of small meshes
+//                             (default: the four polyhedra sets), single calls and a KernelBatch
 #include <CGAL/Convex_hull_3/dual/halfspace_intersection_3.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -51,6 +53,7 @@
 #include <vector>
 
 #include "bench_util.h"
+#include "cell_rows.h"
 #include "fixtures.h"  // tests/core: the sphere generators of the dense rows
 #include "kergen/io.h"
 #include "kergen/kergen.h"
@@ -73,7 +76,8 @@ using kergen_bench::now_ms;
 
 struct Args {
   int runs = 5;
-  bool json = false, quick = false, epeck = true, epick = true, qhull = true, cgal62 = true, streaming = false;
+  bool json = false, quick = false, epeck = true, epick = true, qhull = true, cgal62 = true, streaming = false,
+       cells = false;
   int cgal62_timeout_s = 60;
   size_t epeck_max_faces = std::numeric_limits<size_t>::max();
   size_t epick_max_faces = std::numeric_limits<size_t>::max();
@@ -534,7 +538,8 @@ const char* const kUsage =
     "                    [--epeck-max-faces N] [--epick-max-faces N] [--qhull-max-faces N]\n"
     "                    [--baseline-budget-ms T] [--no-cgal62] [--cgal62-timeout-s T]\n"
     "                    [--meshes DIR] [--family DIR]... [--families]\n"
-    "                    [--streaming [--streaming-budget-ms T] [--streaming-cap-ms T]] [mesh files...]\n";
+    "                    [--streaming [--streaming-budget-ms T] [--streaming-cap-ms T]] [--cells [DIR...]]\n"
+    "                    [mesh files...]\n";
 
 // Exits with 2 on a usage error. `families_default`: --families was given.
 Args parse_args(int argc, char** argv, bool& families_default) {
@@ -575,6 +580,8 @@ Args parse_args(int argc, char** argv, bool& families_default) {
       args.baseline_budget_ms = std::atof(next().c_str());
     else if (a == "--streaming")
       args.streaming = true;
+    else if (a == "--cells")
+      args.cells = true;
     else if (a == "--streaming-budget-ms")
       args.streaming_budget_ms = std::atof(next().c_str());
     else if (a == "--streaming-cap-ms")
@@ -793,6 +800,11 @@ int main(int argc, char** argv) {
         compiler.c_str(), CGAL_VERSION_STR, kergen_bench::qhull_version().c_str(), cgal62_version().c_str(),
         cpu_string().c_str(), std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs);
     std::fflush(stdout);
+  }
+  if (args.cells) {
+    const std::string context =
+        "\"compiler\":\"" + json_escape(compiler) + "\",\"loadavg_at_start\":\"" + load_at_start + "\"";
+    return kergen_bench::run_cell_rows(args.meshes, args.files, args.runs, args.json, context);
   }
   if (args.streaming) {
     const std::string context =

@@ -3,6 +3,7 @@
 //   kergen MESH... [-o OUT.{obj,off,stl}] [--json] [--from x,y,z] [--allow-open] [--deepest]
 //                  [--open clip|perpendicular] [--flip-faces] [--write-repaired FILE] [--max-steps N]
 //                  [--jobs N]
+//   kergen --cells VOLUME_MESH [--json] [--deepest] [--jobs N] [-o OUT.vtu]   (cells.cpp)
 //
 // Exit code: 0 when every mesh was processed (an empty kernel is a result, not an error), 1 when
 // some mesh could not be read or was rejected by validation, 2 for a usage error.
@@ -26,6 +27,9 @@
 #include <utility>
 #include <vector>
 
+#include "cells.h"
+#include "json_out.h"
+#include "kergen/batch.h"
 #include "kergen/io.h"
 #include "kergen/kergen.h"
 
@@ -38,6 +42,7 @@ const char* const kUsage =
     "                      [--deepest] [--max-steps N] [--jobs N] [--no-cull-faces] [--seed N]\n"
     "                      [--weld [EPS]] [--weld-relative R] [--no-weld] [--repair]\n"
     "                      [--open clip|perpendicular] [--flip-faces] [--write-repaired FILE]\n"
+    "       kergen --cells VOLUME_MESH [--json] [--deepest] [--jobs N] [-o OUT.vtu]\n"
     "\n"
     "Computes the kernel (the region that sees the whole shape) of closed polygon meshes.\n"
     "  MESH            a .off, .obj, .stl or .ply file (any other name: the format is told by\n"
@@ -251,38 +256,6 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, s
 // ---------------------------------------------------------------------------------------------
 // Output.
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (unsigned char c : text) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\b': out += "\\b"; break;
-      case '\f': out += "\\f"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20 || c == 0x7f) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += static_cast<char>(c);  // UTF-8 passes through (file names may be non-ASCII)
-        }
-    }
-  }
-  return out + "\"";
-}
-
-// %.17g round-trips; JSON has no NaN or infinity, so those become null.
-std::string json_number(double value) {
-  if (!std::isfinite(value)) return "null";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", value);
-  return buf;
-}
-
 std::string json_point(bool present, const std::array<double, 3>& p) {
   if (!present) return "null";
   return "[" + json_number(p[0]) + "," + json_number(p[1]) + "," + json_number(p[2]) + "]";
@@ -420,7 +393,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-MeshOutcome process(const std::string& file, const Arguments& args) {
+MeshOutcome process(const std::string& file, const Arguments& args, kergen::KernelBatch& batch) {
   MeshOutcome m;
   m.file = file;
   const auto start = std::chrono::steady_clock::now();
@@ -440,7 +413,7 @@ MeshOutcome process(const std::string& file, const Arguments& args) {
     options.weld = kDefaultRelativeWeld;
     options.weld_relative = true;
   }
-  m.kernel = kergen::compute_kernel(read.mesh.view(), options);
+  batch.compute(read.mesh.view(), options, m.kernel);
   m.ms_total = milliseconds_since(start);
   m.error = m.kernel.error;
   m.message = in_cli_words(m.kernel.message);
@@ -475,8 +448,8 @@ struct MeshReport {
   std::string count_as;  // kernel type when ok, else error name (for the batch summary)
 };
 
-MeshReport report(const std::string& file, const Arguments& args) {
-  const MeshOutcome m = process(file, args);
+MeshReport report(const std::string& file, const Arguments& args, kergen::KernelBatch& batch) {
+  const MeshOutcome m = process(file, args, batch);
   MeshReport r;
   r.ok = m.ok();
   r.count_as = r.ok ? kergen::kernel_type_name(m.kernel.type) : kergen::error_name(m.error);
@@ -496,14 +469,16 @@ MeshReport report(const std::string& file, const Arguments& args) {
 // and hands them to `emit` in input order as soon as each one and all before it are done;
 // `wait(i)` is called before mesh i is awaited (one thread: before it is computed). An exception
 // thrown for a mesh (out of memory) is rethrown in order, as one thread would throw it.
-// compute_kernel is reentrant: the core has no mutable state outside each call.
+// Each thread computes with its own KernelBatch (batch.h), which keeps its working memory from one
+// mesh to the next; the core has no mutable state outside a call and its batch.
 template <class Wait, class Emit>
 void run_in_order(const std::vector<std::string>& files, const Arguments& args, unsigned threads, Wait wait,
                   Emit emit) {
   if (threads <= 1) {
+    kergen::KernelBatch batch;
     for (size_t i = 0; i < files.size(); ++i) {
       wait(i);
-      emit(i, report(files[i], args));
+      emit(i, report(files[i], args, batch));
     }
     return;
   }
@@ -514,11 +489,12 @@ void run_in_order(const std::vector<std::string>& files, const Arguments& args, 
   std::mutex mutex;
   std::condition_variable finished;
   auto work = [&] {
+    kergen::KernelBatch batch;
     for (size_t i; (i = next.fetch_add(1)) < files.size();) {
       MeshReport r;
       std::exception_ptr failure;
       try {
-        r = report(files[i], args);
+        r = report(files[i], args, batch);
       } catch (...) { failure = std::current_exception(); }
       std::lock_guard<std::mutex> lock(mutex);
       reports[i] = std::move(r);
@@ -554,6 +530,8 @@ void run_in_order(const std::vector<std::string>& files, const Arguments& args, 
 }  // namespace
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--cells") == 0) return run_cells(argc, argv);
   const Arguments args = parse_arguments(argc, argv);
   std::vector<std::string> problems;
   const std::vector<std::string> files = expand_inputs(args.inputs, problems);

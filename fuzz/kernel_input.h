@@ -285,13 +285,24 @@ inline void shuffle(Mesh& m, Bytes& in, bool rotate) {
 
 }  // namespace kernel_input
 
-// Decodes one fuzz input, computes its kernel and checks every invariant (see the top of
-// fuzz/fuzz_kernel.cpp for the byte layout). Violations go to kfuzz::violated.
-inline void run_kernel_input(const uint8_t* data, size_t size) {
+// One decoded input: the mesh, the options, and the bytes that chose them.
+struct DecodedInput {
+  kergen::Mesh mesh;
+  kergen::Options options;
+  uint8_t which = 0, flags = 0;  // the base mesh, the option bits
+  bool stop_early = false;       // options.max_steps is set
+};
+
+// Decodes the mesh and options of one input from `in` (see the top of fuzz/fuzz_kernel.cpp for
+// the byte layout), consuming the bytes it reads.
+inline DecodedInput decode_kernel_input(kernel_input::Bytes& in) {
   using namespace kernel_input;
-  Bytes in{data, size};
+  DecodedInput d;
   const uint8_t which = in.u8(), flags = in.u8(), sb = in.u8(), tb = in.u8();
-  Mesh m = base_mesh(in, which);
+  d.which = which;
+  d.flags = flags;
+  kergen::Mesh& m = d.mesh;
+  m = base_mesh(in, which);
   const bool scale_first = !(flags & 0x80);
   if (scale_first) scale_translate(m, sb, tb);
   perturb(m, in, 24);
@@ -299,7 +310,7 @@ inline void run_kernel_input(const uint8_t* data, size_t size) {
   if (flags & 1) flip_all(m);
   if (flags & 2) shuffle(m, in, flags & 4);
 
-  kergen::Options o;
+  kergen::Options& o = d.options;
   o.max_faces = 5000;
   o.allow_open = flags & 8;
   o.deepest_point = flags & 16;
@@ -308,8 +319,21 @@ inline void run_kernel_input(const uint8_t* data, size_t size) {
     const size_t v = in.u8() % m.num_vertices();
     for (int c = 0; c < 3; ++c) o.from[c] = m.positions[3 * v + c] * 2;
   }
-  const bool stop_early = flags & 64;
-  if (stop_early) o.max_steps = 1 + in.u8() % 16;
+  d.stop_early = flags & 64;
+  if (d.stop_early) o.max_steps = 1 + in.u8() % 16;
+  return d;
+}
+
+// Decodes one fuzz input, computes its kernel and checks every invariant (see the top of
+// fuzz/fuzz_kernel.cpp for the byte layout). Violations go to kfuzz::violated.
+inline void run_kernel_input(const uint8_t* data, size_t size) {
+  kernel_input::Bytes in{data, size};
+  DecodedInput d = decode_kernel_input(in);
+  const kergen::Mesh& m = d.mesh;
+  const kergen::Options& o = d.options;
+  const uint8_t which = d.which;
+  const bool stop_early = d.stop_early;
+  const uint8_t flags = d.flags;
 
   if (std::getenv("KFUZZ_DUMP")) {  // KFUZZ_DUMP=1 build-fuzz/fuzz/fuzz_kernel FILE: the decoded input as OFF
     std::fprintf(stderr, "# flags %d allow_open %d deepest %d from %d max_steps %llu\n%s", flags, o.allow_open,

@@ -4,7 +4,8 @@
 // binary little- and big-endian) into OUT_DIR/{fuzz_off,fuzz_obj,fuzz_stl_ascii,fuzz_stl_binary,
 // fuzz_ply}/, copies the original file into
 // the directory of its own format as it is (so format quirks are kept), and writes one seed per
-// generated base mesh for fuzz_kernel.
+// generated base mesh for fuzz_kernel, and volume seeds (each small mesh as one cell) for fuzz_vtu,
+// fuzz_vtk_legacy and fuzz_node_ele.
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "kergen/io.h"
+#include "kergen/volume.h"
 
 namespace {
 
@@ -95,13 +97,78 @@ std::string base(const std::string& path) {
 
 }  // namespace
 
+// Volume seeds from a surface mesh taken as one cell (fuzz_vtu: the VTU writer's file and an
+// ascii one; fuzz_vtk_legacy: version 4 CELLS with a polyhedron; fuzz_node_ele: the pair).
+void put_volume_seeds(const std::string& out, const std::string& name, const kergen::Mesh& m) {
+  kergen::VolumeMesh v;
+  v.positions = m.positions;
+  v.face_indices = m.indices;
+  v.face_offsets = {0};
+  for (size_t f = 0, at = 0; f < m.num_faces(); ++f) {
+    at += m.face_sizes.empty() ? 3 : m.face_sizes[f];
+    v.face_offsets.push_back(uint32_t(at));
+    v.cell_faces.push_back(uint32_t(f));
+  }
+  v.cell_offsets = {0, uint32_t(m.num_faces())};
+  put(out + "/fuzz_vtu/" + name + ".vtu", kergen::write_vtu_with_cell_data(v, kergen::compute_cell_kernels(v).cells));
+  std::string points, stream = std::to_string(m.num_faces()), conn, node,
+                      ele = "1 0\n0 " + std::to_string(m.num_faces()) + "\n";
+  char buf[100];
+  for (size_t i = 0; i < m.num_vertices(); ++i) {
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g", m.positions[3 * i], m.positions[3 * i + 1],
+                  m.positions[3 * i + 2]);
+    points += std::string(buf) + "\n";
+    node += std::to_string(i) + " " + buf + "\n";
+    conn += (i ? " " : "") + std::to_string(i);
+  }
+  size_t values = 1;
+  for (size_t f = 0; f < m.num_faces(); ++f) {
+    const uint32_t b = v.face_offsets[f], e = v.face_offsets[f + 1];
+    stream += " " + std::to_string(e - b);
+    ele += std::to_string(f) + " " + std::to_string(e - b);
+    for (uint32_t k = b; k < e; ++k)
+      stream += " " + std::to_string(m.indices[k]), ele += " " + std::to_string(m.indices[k]);
+    ele += "\n";
+    values += 1 + e - b;
+  }
+  put(out + "/fuzz_vtk_legacy/" + name + ".vtk",
+      "# vtk DataFile Version 4.2\nseed\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS " + std::to_string(m.num_vertices()) +
+          " double\n" + points + "CELLS 1 " + std::to_string(values + 1) + "\n" + std::to_string(values) + " " +
+          stream + "\nCELL_TYPES 1\n42\n");
+  put(out + "/fuzz_vtu/" + name + ".ascii.vtu",
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n<UnstructuredGrid><Piece "
+      "NumberOfPoints=\"" +
+          std::to_string(m.num_vertices()) +
+          "\" NumberOfCells=\"1\">\n<Points><DataArray "
+          "type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n" +
+          points +
+          "</DataArray></Points>\n<Cells>\n"
+          "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" +
+          conn +
+          "</DataArray>\n"
+          "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" +
+          std::to_string(m.num_vertices()) +
+          "</DataArray>\n"
+          "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">42</DataArray>\n"
+          "<DataArray type=\"Int64\" Name=\"faces\" format=\"ascii\">" +
+          stream +
+          "</DataArray>\n"
+          "<DataArray type=\"Int64\" Name=\"faceoffsets\" format=\"ascii\">" +
+          std::to_string(values) +
+          "</DataArray>\n"
+          "</Cells></Piece></UnstructuredGrid></VTKFile>\n");
+  put(out + "/fuzz_node_ele/" + name + ".txt",
+      "# seed\n" + std::to_string(m.num_vertices()) + " 3 0 0\n" + node + "\n=====\n" + ele);
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "usage: make_seeds OUT_DIR MESH...\n");
     return 2;
   }
   const std::string out = argv[1];
-  const char* dirs[] = {"fuzz_off", "fuzz_obj", "fuzz_stl_ascii", "fuzz_stl_binary", "fuzz_ply", "fuzz_kernel"};
+  const char* dirs[] = {"fuzz_off",    "fuzz_obj",   "fuzz_stl_ascii", "fuzz_stl_binary", "fuzz_ply",
+                        "fuzz_kernel", "fuzz_batch", "fuzz_vtu",       "fuzz_vtk_legacy", "fuzz_node_ele"};
   mkdir(out.c_str(), 0755);
   for (const char* d : dirs) mkdir((out + "/" + d).c_str(), 0755);
   int written = 0;
@@ -130,6 +197,7 @@ int main(int argc, char** argv) {
       put(out + "/fuzz_stl_ascii/" + name + ".stl", ascii_stl(r.mesh));
       put(out + "/fuzz_stl_binary/" + name + ".stl", std::string(1, '\1') + kergen::write_stl_binary(r.mesh));
     }
+    if (r.mesh.num_faces() <= 200) put_volume_seeds(out, name, r.mesh);
     ++written;
   }
   // fuzz_kernel: one seed per base mesh, plain and at the extreme scales.
@@ -141,6 +209,19 @@ int main(int argc, char** argv) {
       s += char(sb);
       s += char(0);
       put(out + "/fuzz_kernel/base-" + std::to_string(which) + "-" + std::to_string(sb), s);
+    }
+  // fuzz_batch: pairs and quadruples of base meshes (a large one next to small ones, star and
+  // not, open and closed), each part 8 bytes.
+  for (int first = 0; first < 24; ++first)
+    for (int count : {2, 4}) {
+      std::string s(1, char(count - 1));
+      for (int i = 0; i < count; ++i) {
+        std::string part(8, '\0');
+        part[0] = char((first + 7 * i) % 24);
+        part[1] = char(i == 1 ? 8 : 0);  // allow_open for the second
+        s += part;
+      }
+      put(out + "/fuzz_batch/seq-" + std::to_string(first) + "-" + std::to_string(count), s);
     }
   std::printf("make_seeds: %d meshes converted into %s\n", written, out.c_str());
   return 0;

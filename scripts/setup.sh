@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 need=()
 for p in build-essential cmake clang libgtest-dev libbenchmark-dev libcgal-dev libgmp-dev libmpfr-dev libqhull-dev \
-         emscripten chromium valgrind clang-format; do
+         emscripten chromium valgrind clang-format voro++ tetgen python3-meshio python3-vtk9; do
   dpkg -s "$p" >/dev/null 2>&1 || need+=("$p")
 done
 # Node may come from Debian (nodejs + npm packages) or from elsewhere (a nodejs package that

@@ -10,8 +10,8 @@ const FORMATS = ['', 'off', 'obj', 'stl', 'ply'];
 const WRITE_FORMATS = ['obj', 'off', 'stl'];
 const textEncoder = new TextEncoder();
 
-// A Uint8Array over the caller's bytes (never copied, detached or modified here).
-function bytesView(fn, bytes) {
+// A Uint8Array over the caller's bytes (never copied, detached or modified here; cells.js too).
+export function bytesView(fn, bytes) {
   let view = null;
   try {
     if (bytes instanceof Uint8Array) view = bytes;

@@ -458,3 +458,196 @@ export function repairMeshSync(
 
 /** Wasm heap figures (requires a finished init()). */
 export function memoryStats(): MemoryStats;
+
+// ---- polyhedral volume meshes ------------------------------------------------------------------
+
+/**
+ * A polyhedral volume mesh (the core's `kergen::VolumeMesh`), CSR style: face `f`'s loop is
+ * `faceIndices[faceOffsets[f] .. faceOffsets[f + 1])`, cell `c`'s faces are
+ * `cellFaces[cellOffsets[c] .. cellOffsets[c + 1])`. Faces are kept as the file lists them (a
+ * `.vtu` polyhedron lists its own faces, so a face shared by two cells is there twice), each
+ * orientation as written: every cell is turned outward for the computation.
+ */
+export interface VolumeMesh {
+  positions: Float64Array;
+  faceIndices: Uint32Array;
+  faceOffsets: Uint32Array;
+  cellFaces: Uint32Array;
+  cellOffsets: Uint32Array;
+}
+
+/** What computeCellKernels and cellSurface accept as a mesh: readVolumeMesh's, or the caller's arrays. */
+export interface VolumeMeshInput {
+  positions: Float64Array | Float32Array | readonly number[];
+  faceIndices: Uint32Array | readonly number[];
+  faceOffsets: Uint32Array | readonly number[];
+  cellFaces: Uint32Array | readonly number[];
+  cellOffsets: Uint32Array | readonly number[];
+}
+
+/** Volume mesh formats: VTK XML `.vtu`, legacy VTK `.vtk`, the `.node` + `.ele` pair. */
+export type VolumeMeshFormat = 'vtu' | 'vtk' | 'node-ele';
+
+/** One volume-mesh file's bytes, or the `.node` and `.ele` files of the pair. */
+export type VolumeMeshBytes = MeshBytes | { node: MeshBytes; ele: MeshBytes };
+
+export interface ReadVolumeMeshOptions {
+  /** Default: from the content (`.vtu`, `.vtk`); the pair is recognised by `{ node, ele }`. */
+  format?: VolumeMeshFormat;
+  /** The file's name in messages (the `.node` file's for the pair). Default `'<memory>'`. */
+  name?: string;
+  /** The `.ele` file's name in messages. */
+  eleName?: string;
+}
+
+/**
+ * Reads a volume mesh with the core's readers (the CLI's `--cells`): `.vtu` (VTK_POLYHEDRON and
+ * linear cells; ascii, base64 or raw appended data), legacy `.vtk`, or `{ node, ele }`.
+ * Malformed files reject with 'PARSE_ERROR' naming the file and the line or byte offset.
+ */
+export function readVolumeMesh(input: VolumeMeshBytes, options?: ReadVolumeMeshOptions): Promise<VolumeMesh>;
+/** Synchronous readVolumeMesh; requires a finished init(). */
+export function readVolumeMeshSync(input: VolumeMeshBytes, options?: ReadVolumeMeshOptions): VolumeMesh;
+
+/** One cell as a surface mesh (the core's `cell_surface`), ready for computeKernel. */
+export interface CellSurface {
+  /** The cell's vertices only, in increasing global id. */
+  positions: Float64Array;
+  /** The cell's faces in the cell's order, turned outward (counter-clockwise seen from outside). */
+  indices: Uint32Array;
+  faceSizes: Uint32Array;
+  /** `globalVertices[i]`: the mesh's id of local vertex `i`. */
+  globalVertices: Uint32Array;
+  /** Whether any face was reversed to turn the cell outward. */
+  reoriented: boolean;
+}
+
+/**
+ * Cell `cell` of a volume mesh as a surface: `computeKernel(s.positions, s.indices,
+ * { faceSizes: s.faceSizes })` gives exactly that cell's computeCellKernels record.
+ * Rejects with 'INDEX_OUT_OF_RANGE' when the cell names a face or vertex that does not exist,
+ * 'INVALID_ARGUMENT' when the cell is out of range or the offsets are malformed.
+ */
+export function cellSurface(mesh: VolumeMeshInput, cell: number): Promise<CellSurface>;
+/** Synchronous cellSurface; requires a finished init(). */
+export function cellSurfaceSync(mesh: VolumeMeshInput, cell: number): CellSurface;
+
+/** Progress of computeCellKernels: after every range of cells. */
+export interface CellProgress {
+  phase: 'cells';
+  /** Cells done so far. */
+  count: number;
+  /** Cells to compute. */
+  total: number;
+}
+
+export interface CellKernelOptions extends ReadVolumeMeshOptions {
+  /** Also the inscribed ball of each kernel (its radius ρ and ρ / h). Several times slower. */
+  deepestPoint?: boolean;
+  /** The first cell to compute (default 0). */
+  firstCell?: number;
+  /** How many cells (default: all from firstCell on; clipped to the mesh). */
+  count?: number;
+  /** Cells per range: onProgress is called, and the async variant yields, after each (default 1000). */
+  rangeSize?: number;
+  /** How many cells `summary.worstCells` lists (default 10). */
+  worst?: number;
+  onProgress?: (progress: CellProgress) => void;
+  /** computeCellKernels (async) only: cancels between ranges (rejects with 'CANCELLED'). */
+  signal?: AbortSignal;
+}
+
+/** What a run says about the cells as a whole (the core's `summarize_cells`). */
+export interface CellSummary {
+  cells: number;
+  /** Cells with a kernel (no error). */
+  okCells: number;
+  /** Cells with a kernel, by its status ('EMPTY' = not star-shaped). */
+  byType: Record<KernelStatus, number>;
+  /** Cells without a kernel, by error code. */
+  byError: Partial<Record<CoreErrorCode, number>>;
+  reorientedCells: number;
+  /** Over the cells with a kernel; the median of an even count is the lower middle value. */
+  minRatio: number;
+  medianRatio: number;
+  maxRatio: number;
+  /** True when deepest points were computed (then the ρ / h figures are numbers). */
+  hasRhoOverH: boolean;
+  minRhoOverH: number | null;
+  medianRhoOverH: number | null;
+  maxRhoOverH: number | null;
+  /** The cells with the smallest ρ / h (the smallest ratio without deepest points), worst first. */
+  worstCells: Uint32Array;
+}
+
+/**
+ * The kernel of every computed cell; arrays hold one value per cell (cell `firstCell + i` at `i`),
+ * each exactly what computeKernel gives for that cell's surface (cellSurface).
+ */
+export interface CellKernelsResult {
+  firstCell: number;
+  numCells: number;
+  /** The kernel status's value (0 EMPTY ... 5 UNBOUNDED), or minus the error's value; names in `statusNames`. */
+  status: Int32Array;
+  /** The name of every status code: `statusNames[status[i]]` is 'POLYHEDRON', 'EMPTY', 'OPEN_MESH', ... */
+  statusNames: Record<number, string>;
+  kernelVolume: Float64Array;
+  cellVolume: Float64Array;
+  /** kernelVolume / cellVolume (1 for a convex cell). */
+  kernelRatio: Float64Array;
+  /** h: the largest distance between two of the cell's vertices. */
+  diameter: Float64Array;
+  /** ρ: the radius of the largest ball in the kernel (deepestPoint; 0 without a full-dimensional kernel). */
+  inscribedRadius: Float64Array;
+  /** ρ / h. */
+  rhoOverH: Float64Array;
+  /** The ball's centre, 3 values per cell (NaN without one). */
+  deepestPoints: Float64Array;
+  /** 1 where the cell's faces were turned outward. */
+  reoriented: Uint8Array;
+  /** Cell i's witness faces (an EMPTY kernel's) are witnessFaces[witnessOffsets[i] .. witnessOffsets[i + 1]). */
+  witnessOffsets: Uint32Array;
+  /** Indices into the cell's faces (cellSurface's order). */
+  witnessFaces: Uint32Array;
+  /** The same faces as face ids of the mesh. */
+  witnessGlobalFaces: Uint32Array;
+  /** The cells without a kernel: their error code and message ("cell N: ..."). */
+  errors: { cell: number; code: string; message: string }[];
+  /** ORIENTATION_FLIPPED with the number of cells turned outward, when there are any. */
+  warnings: KernelWarning[];
+  summary: CellSummary;
+  /** The mesh read, when a file's bytes were given. */
+  mesh?: VolumeMesh;
+}
+
+/**
+ * The kernel of every cell of a volume mesh (or of a range of cells), computed range by range:
+ * `meshOrBytes` is a mesh (readVolumeMesh's or the caller's arrays), a file's bytes or
+ * `{ node, ele }`. One bad cell never stops the others: it gets its error in `status` and
+ * `errors`. Yields to the event loop between ranges; `signal` cancels.
+ */
+export function computeCellKernels(
+  meshOrBytes: VolumeMeshInput | VolumeMeshBytes,
+  options?: CellKernelOptions,
+): Promise<CellKernelsResult>;
+/** Synchronous computeCellKernels (onProgress still runs between ranges); requires a finished init(). */
+export function computeCellKernelsSync(
+  meshOrBytes: VolumeMeshInput | VolumeMeshBytes,
+  options?: Omit<CellKernelOptions, 'signal'>,
+): CellKernelsResult;
+
+/**
+ * One result of results computed in parts (consecutive cell ranges, e.g. by several
+ * KernelWorkers, each on its own `firstCell` / `count`): the arrays concatenated in cell order,
+ * the witness offsets shifted, and the summary of all the cells computed again by the core.
+ * Rejects with 'INVALID_ARGUMENT' when the parts are not consecutive.
+ */
+export function joinCellKernels(
+  parts: readonly CellKernelsResult[],
+  options?: { worst?: number },
+): Promise<CellKernelsResult>;
+/** Synchronous joinCellKernels; requires a finished init(). */
+export function joinCellKernelsSync(
+  parts: readonly CellKernelsResult[],
+  options?: { worst?: number },
+): CellKernelsResult;

@@ -22,6 +22,16 @@ export { KergenError };
 export { FACE_SOURCE_BOX, FACE_SOURCE_WALL };
 export { init, isInitialized, checkWireFormat } from './load.js';
 export { readMeshSync, readMesh, writeMesh } from './files.js';
+export {
+  readVolumeMeshSync,
+  readVolumeMesh,
+  cellSurfaceSync,
+  cellSurface,
+  computeCellKernelsSync,
+  computeCellKernels,
+  joinCellKernelsSync,
+  joinCellKernels,
+} from './cells.js';
 
 // ---- public API -----------------------------------------------------------------------------
 

@@ -17,6 +17,7 @@
 //                            { type: 'result', id, result, mesh? }  |  { type: 'error', id, code, message }
 import * as kergen from './index.js';
 import { StepBatchWriter, batchBuffers } from './step-batch.js';
+import { cellHandlers } from './kergen-worker-cells.js';
 
 const { init, computeKernelSync, KergenError } = kergen;
 
@@ -155,6 +156,7 @@ const HANDLERS = {
   computeFile: handleComputeFile,
   writeMesh: handleWriteMesh,
   repairMesh: handleRepairMesh,
+  ...cellHandlers(ensureInit), // volume meshes: kergen-worker-cells.js
 };
 
 self.onmessage = (e) => {

@@ -14,6 +14,13 @@ import type {
   PositionsInput,
   RepairedMesh,
   RepairMeshOptions,
+  VolumeMesh,
+  VolumeMeshBytes,
+  VolumeMeshInput,
+  ReadVolumeMeshOptions,
+  CellKernelOptions,
+  CellKernelsResult,
+  CellSurface,
 } from './index.js';
 
 export { KergenError, FACE_SOURCE_BOX, FACE_SOURCE_WALL } from './index.js';
@@ -41,6 +48,23 @@ export interface ProgressEvent {
   count?: number;
   /** 'reading': the file's size in bytes. */
   bytes?: number;
+  /** computeCellKernels, phase 'cells': the number of cells to compute (`count` are done). */
+  total?: number;
+}
+
+/** computeCellKernels in the worker: its options, and the worker's progress and mesh events. */
+export interface WorkerCellKernelOptions extends Omit<CellKernelOptions, 'onProgress' | 'signal'> {
+  /** 'loading', 'reading' (a file), then 'cells' after every range (`count` of `total`), then 'done'. */
+  onProgress?: (progress: {
+    phase: 'loading' | 'reading' | 'cells' | 'done';
+    steps: number;
+    count?: number;
+    total?: number;
+  }) => void;
+  /** Called with the mesh read from a file (its own copy) before the cells are computed. */
+  onMesh?: (mesh: VolumeMesh) => void;
+  /** Transfer the input's buffers instead of copying them (detached here afterwards). */
+  transfer?: boolean;
 }
 
 export interface WorkerComputeFileOptions extends WorkerComputeOptions {
@@ -95,6 +119,20 @@ export class KernelWorker {
     indices: IndicesInput,
     options?: RepairMeshOptions & { transfer?: boolean },
   ): Promise<RepairedMesh>;
+  /** Reads a volume mesh (readVolumeMesh) in the worker; the bytes are copied, or transferred with `transfer: true`. */
+  readVolumeMesh(input: VolumeMeshBytes, options?: ReadVolumeMeshOptions & { transfer?: boolean }): Promise<VolumeMesh>;
+  /**
+   * The kernel of every cell (computeCellKernels) in the worker, with progress after every range;
+   * cancel() stops it. A file's mesh comes back in `result.mesh` unless onMesh received it.
+   */
+  computeCellKernels(
+    meshOrBytes: VolumeMeshInput | VolumeMeshBytes,
+    options?: WorkerCellKernelOptions,
+  ): Promise<CellKernelsResult>;
+  /** Results of consecutive cell ranges joined into one (joinCellKernels), in the worker (the parts are copied). */
+  joinCellKernels(parts: readonly CellKernelsResult[], options?: { worst?: number }): Promise<CellKernelsResult>;
+  /** One cell of a volume mesh as a surface (cellSurface), in the worker (the mesh is copied). */
+  cellSurface(mesh: VolumeMeshInput, cell: number): Promise<CellSurface>;
   /** Writes a mesh or kernel result as file bytes in the worker (arrays are copied). */
   writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Promise<Uint8Array>;
   /**

@@ -16,6 +16,7 @@
 import { KergenError } from './errors.js';
 import { forEachStep } from './step-batch.js';
 import { OPTION_NAMES } from './option-names.js';
+import { installCellMethods } from './worker-cells.js';
 
 // The marks of result.faceSources (as the package's main entry exports them), for pages that use
 // only the worker.
@@ -146,6 +147,7 @@ export class KernelWorker {
           const progress = { phase: msg.phase, steps: msg.steps };
           if (msg.count !== undefined) progress.count = msg.count;
           if (msg.bytes !== undefined) progress.bytes = msg.bytes;
+          if (msg.total !== undefined) progress.total = msg.total;
           this._callBack(job, job.onProgress, progress);
         }
         break;
@@ -154,7 +156,7 @@ export class KernelWorker {
         break;
       case 'result':
         this._jobs.delete(job.id);
-        if (job.kind === 'writeMesh' || job.kind === 'repairMesh') job.resolve(msg.result);
+        if (job.kind === 'writeMesh' || job.kind === 'repairMesh' || job.rawResult) job.resolve(msg.result);
         else if (job.kind === 'computeFile') job.resolve({ mesh: msg.mesh, result: rebuildResult(msg.result) });
         else job.resolve(rebuildResult(msg.result));
         break;
@@ -357,5 +359,8 @@ export class KernelWorker {
     this._worker = null;
   }
 }
+
+// Volume meshes: readVolumeMesh, computeCellKernels, cellSurface (worker-cells.js).
+installCellMethods(KernelWorker, { toTransferable, wantsTransfer });
 
 export { KergenError };

@@ -45,6 +45,8 @@ export default defineConfig({
     outDir: path.join(webDir, 'dist'),
     emptyOutDir: true,
     chunkSizeWarningLimit: 2000,
+    // Two pages: the surface demo and the volume-mesh page (cells.html).
+    rollupOptions: { input: { main: path.join(webDir, 'index.html'), cells: path.join(webDir, 'cells.html') } },
   },
   worker: { format: 'es' },
   resolve: {

@@ -20,6 +20,7 @@
 
 #include "kergen/io.h"
 #include "kergen/kergen.h"
+#include "kergen/volume.h"
 
 #ifndef KERGEN_SHARED_MESHES
 #define KERGEN_SHARED_MESHES "../shared/meshes"
@@ -231,11 +232,73 @@ kergen::MeshFormat format_of(const std::string& f) {
   return kergen::MeshFormat::Unknown;
 }
 
+// Volume rows: the reader's error ('native'), or each listed cell's outcome ('cells').
+void expect_cells(const Json& row, const kergen::VolumeMesh& mesh) {
+  const kergen::CellKernels run = kergen::compute_cell_kernels(mesh);
+  ASSERT_TRUE(run.ok()) << run.message;
+  for (const Json& c : row["cells"].arr) {
+    const size_t index = size_t(c["cell"].num);
+    ASSERT_LT(index, run.cells.size());
+    const kergen::CellKernel& cell = run.cells[index];
+    SCOPED_TRACE("cell " + std::to_string(index));
+    const std::string got = cell.ok() ? "OK" : kergen::error_name(cell.error);
+    ASSERT_EQ(got, c["code"].str) << cell.message;
+    EXPECT_NE(cell.error, kergen::Error::Internal);
+    if (!cell.ok()) {
+      EXPECT_NE(cell.message.find(c["message"].str), std::string::npos) << cell.message;
+      continue;
+    }
+    if (c.has("status")) EXPECT_STREQ(kergen::kernel_type_name(cell.type), c["status"].str.c_str());
+    if (c.has("volume")) EXPECT_NEAR(cell.kernel_volume, c["volume"].num, 1e-12 * c["volume"].num);
+    EXPECT_EQ(cell.reoriented, c.has("reoriented") && c["reoriented"].b);
+  }
+}
+
+void volume_row(const Json& row) {
+  if (row.has("volume_mesh")) {
+    const Json& m = row["volume_mesh"];
+    kergen::VolumeMesh mesh;
+    for (const Json& v : m["positions"].arr) mesh.positions.push_back(number(v));
+    mesh.face_offsets.push_back(0);
+    for (const Json& f : m["faces"].arr) {
+      for (const Json& v : f.arr) mesh.face_indices.push_back(uint32_t(v.num));
+      mesh.face_offsets.push_back(uint32_t(mesh.face_indices.size()));
+    }
+    mesh.cell_offsets.push_back(0);
+    for (const Json& c : m["cells"].arr) {
+      for (const Json& f : c.arr) mesh.cell_faces.push_back(uint32_t(f.num));
+      mesh.cell_offsets.push_back(uint32_t(mesh.cell_faces.size()));
+    }
+    expect_cells(row, mesh);
+    return;
+  }
+  const Json& file = row["volume_file"];
+  const std::string format = file["format"].str, name = row["name"].str;
+  const kergen::VolumeReadResult r =
+      format == "node_ele"
+          ? kergen::read_node_ele(file["node"].str, file["ele"].str, name + ".node", name + ".ele")
+          : kergen::read_volume_mesh(file["text"].str,
+                                     format == "vtu" ? kergen::VolumeFormat::Vtu : kergen::VolumeFormat::VtkLegacy,
+                                     name + "." + format);
+  if (std::getenv("KERGEN_PRINT_MESSAGES")) std::printf("ROW %s: %s\n", name.c_str(), r.message.c_str());
+  if (row.has("native")) {
+    EXPECT_NE(r.message.find(name), std::string::npos) << r.message;  // names the file
+    expect_outcome(row["native"], r.error, r.message, nullptr);
+    return;
+  }
+  ASSERT_TRUE(r.ok()) << r.message;
+  expect_cells(row, r.mesh);
+}
+
 class BadInput : public ::testing::TestWithParam<size_t> {};
 
 TEST_P(BadInput, Row) {
   const Json& row = table()["rows"].arr.at(GetParam());
   SCOPED_TRACE(row["name"].str + ": " + row["what"].str);
+  if (row.has("volume_file") || row.has("volume_mesh")) {
+    volume_row(row);
+    return;
+  }
   if (row.has("file")) {
     const Json& file = row["file"];
     std::string bytes, name = row["name"].str + "." + file["format"].str;

@@ -15,7 +15,8 @@
 // the summary); the tests live beside it: harness.mjs (test/skip/assert, E2E_ONLY, shared paths),
 // page-state.mjs, mesh-files.mjs and demo-view-tools.mjs (helpers), gallery-and-files.mjs,
 // progress-and-messages.mjs, export-and-cancel.mjs, demo-states.mjs, demo-features.mjs,
-// demo-refusals.mjs, first-visit.mjs, big-meshes.mjs, three-app-test.mjs, examples.mjs.
+// demo-refusals.mjs, first-visit.mjs, big-meshes.mjs, three-app-test.mjs, examples.mjs, cells-page.mjs
+// (the volume-mesh page, cells.html).
 // Environment: CHROMIUM (default /usr/bin/chromium), KERGEN_CLI (default build/kergen),
 // E2E_HEADFUL=1, E2E_ONLY=<substring of test names>.
 
@@ -50,6 +51,7 @@ import { progressAndControls, realMeshesAndMessages } from './progress-and-messa
 import { exportAndDrop, cancelTest } from './export-and-cancel.mjs';
 import { themeAndBigFile, bigKernelTest } from './big-meshes.mjs';
 import { threeAppTest } from './three-app-test.mjs';
+import { cellsPageTests } from './cells-page.mjs';
 
 // ---------------------------------------------------------------------------------------------
 // Build and serve
@@ -163,6 +165,7 @@ async function main() {
     await bigKernelTest(page, tmp);
     await threeAppTest(context, tmp);
     await examplesTests(context, tmp, { test, assert, artifacts });
+    await cellsPageTests(context, base, tmp, { test, assert, assertClose, artifacts });
 
     await test('no uncaught errors or console errors in the page', async () => {
       assert(pageErrors.length === 0, pageErrors.slice(0, 5).join(' | '));

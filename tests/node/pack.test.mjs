@@ -14,7 +14,10 @@ import { extractTarball, npmEnv, packTarball } from './lib/pack.mjs';
 let tmp;
 let packInfo;
 
-const SIZE_BUDGET = 350000; // bytes, packed (npm's "package size"; 350 kB)
+// bytes, packed (npm's "package size"): 350 kB, plus 30 kB for volume meshes (the .vtu / .vtk /
+// .node + .ele readers and the per-cell kernels: kergen.wasm 699,808 -> 810,689 B raw, 266,860 -> 304,300 B gzip;
+// 828,987 B raw, 310,773 B gzip with KernelBatch: 378,657 B packed)
+const SIZE_BUDGET = 380000;
 let readmeBefore;
 
 before(() => {

@@ -1,6 +1,7 @@
 // detect.cpp — which reader a file goes to: the format from the name's extension (format_from_path)
 // or from the content (detect_format), and the public entry points that dispatch on them,
-// read_mesh (bytes in memory) and read_mesh_file (a file, with a size limit).
+// read_mesh (bytes in memory) and read_mesh_file (a file, with a size limit, read by read_file_bytes,
+// which the volume readers share).
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -100,28 +101,36 @@ ReadResult read_mesh(std::string_view bytes, MeshFormat format, const std::strin
 }
 
 ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
+  std::string bytes;
+  ReadResult result;
+  if (!read_file_bytes(path, max_bytes, bytes, result.error, result.message)) return result;
+  return read_mesh(bytes, MeshFormat::Unknown, path);
+}
+
+namespace io {
+
+bool read_file_bytes(const std::string& path, size_t max_bytes, std::string& bytes, Error& error,
+                     std::string& message) {
   // 0, like the default SIZE_MAX, means no limit beyond what the address space allows.
   if (max_bytes == 0) max_bytes = std::numeric_limits<size_t>::max();
-  ReadResult result;
   auto io_error = [&](const std::string& reason) {
-    result.error = Error::IoError;
-    result.message = path + ": " + reason;
-    return result;
+    error = Error::IoError;
+    message = path + ": " + reason;
+    return false;
   };
   struct stat info;
   if (::stat(path.c_str(), &info) != 0) return io_error(std::strerror(errno));
   if (S_ISDIR(info.st_mode)) return io_error("is a directory");
   auto too_large = [&](uint64_t size) {
-    result.error = Error::TooLarge;
-    result.message = path + ": file is " + count_of(size, "byte", "bytes") + ", more than the limit of " +
-                     count_of(max_bytes, "byte", "bytes");
-    return result;
+    error = Error::TooLarge;
+    message = path + ": file is " + count_of(size, "byte", "bytes") + ", more than the limit of " +
+              count_of(max_bytes, "byte", "bytes");
+    return false;
   };
   if (S_ISREG(info.st_mode) && static_cast<uint64_t>(info.st_size) > max_bytes) return too_large(info.st_size);
 
   FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) return io_error(std::strerror(errno));
-  std::string bytes;
   try {
     if (S_ISREG(info.st_mode)) bytes.reserve(static_cast<size_t>(info.st_size));
     char buffer[1 << 16];
@@ -135,14 +144,16 @@ ReadResult read_mesh_file(const std::string& path, size_t max_bytes) {
     }
   } catch (const std::bad_alloc&) {
     std::fclose(file);
-    result.error = Error::TooLarge;
-    result.message = path + ": out of memory while reading the file";
-    return result;
+    error = Error::TooLarge;
+    message = path + ": out of memory while reading the file";
+    return false;
   }
   const bool read_failed = std::ferror(file) != 0;
   std::fclose(file);
   if (read_failed) return io_error("read error");
-  return read_mesh(bytes, MeshFormat::Unknown, path);
+  return true;
 }
+
+}  // namespace io
 
 }  // namespace kergen

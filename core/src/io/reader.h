@@ -38,6 +38,13 @@ std::string quoted(std::string_view token);
 // Runs one reader's body: a ReadFailure, or running out of memory, becomes the result's error.
 ReadResult run_reader(const std::function<void(ReadResult&)>& body);
 
+// A whole file's bytes (detect.cpp; the volume readers use it too): false with `error` (IoError,
+// TooLarge) and `message` naming the path. max_bytes 0 or SIZE_MAX: no limit.
+bool read_file_bytes(const std::string& path, size_t max_bytes, std::string& bytes, Error& error, std::string& message);
+
+// Writes bytes to a file (writers.cpp; the VTU writer uses it too): Ok, or IoError with `message`.
+Error write_file_bytes(const std::string& path, const std::string& bytes, std::string* message);
+
 // Text formats: refuses UTF-16 (a common export option of Windows tools) with a clear reason instead
 // of a confusing "invalid number" on line 1, and drops a UTF-8 byte order mark.
 std::string_view prepare_text(std::string_view text, const std::string& name);

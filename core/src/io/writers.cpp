@@ -1,6 +1,6 @@
 // writers.cpp — mesh files out: the OBJ, OFF and binary STL writers (every coordinate bit kept in
-// the text formats), write_mesh and write_mesh_file; and the two conversions between Mesh and the
-// core's types, Mesh::view and kernel_mesh.
+// the text formats), write_mesh and write_mesh_file (and write_file_bytes, which the VTU writer shares); and the two
+// conversions between Mesh and the core's types, Mesh::view and kernel_mesh.
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -13,6 +13,7 @@
 #include <string>
 
 #include "io/numbers.h"  // KERGEN_FROM_CHARS_DOUBLE
+#include "io/reader.h"   // write_file_bytes
 #include "kergen/io.h"
 
 namespace kergen {
@@ -190,6 +191,16 @@ Error write_mesh_file(const std::string& path, const Mesh& mesh, std::string* me
   try {
     bytes = write_mesh(mesh, format);
   } catch (const std::bad_alloc&) { return failed("out of memory while formatting the mesh"); }
+  return io::write_file_bytes(path, bytes, message);
+}
+
+namespace io {
+
+Error write_file_bytes(const std::string& path, const std::string& bytes, std::string* message) {
+  auto failed = [&](const std::string& reason) {
+    if (message) *message = path + ": " + reason;
+    return Error::IoError;
+  };
   FILE* file = std::fopen(path.c_str(), "wb");
   if (!file) return failed(std::string("cannot open for writing: ") + std::strerror(errno));
   const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
@@ -200,6 +211,8 @@ Error write_mesh_file(const std::string& path, const Mesh& mesh, std::string* me
   if (message) message->clear();
   return Error::Ok;
 }
+
+}  // namespace io
 
 Mesh kernel_mesh(const Kernel& kernel) {
   Mesh mesh;
