@@ -1,5 +1,5 @@
-// KernelBatch and compute_kernels (batch.h): compute_kernel's pipeline with working memory kept
-// between calls.
+// KernelBatch and compute_kernels (batch.h): compute_kernel's pipeline, called from a per-thread
+// object that later versions can keep working memory in (none is kept yet: see batch.h).
 #include "kergen/batch.h"
 
 #include <utility>

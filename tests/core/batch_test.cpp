@@ -106,7 +106,7 @@ std::vector<Case> cases() {
 TEST(KernelBatch, SameAsComputeKernelInAnyOrder) {
   const std::vector<Case> all = cases();
   KernelBatch batch;
-  Kernel reused;  // one result object for every call: its capacity is carried over
+  Kernel reused;  // one result object for every call: nothing of an earlier result may remain
   for (int round = 0; round < 2; ++round) {
     for (size_t j = 0; j < all.size(); ++j) {
       const Case& c = all[round == 0 ? j : all.size() - 1 - j];
