@@ -154,6 +154,7 @@ bool is_space(unsigned char c) { return c == ' ' || c == '\n' || c == '\r' || c 
 }  // namespace
 
 bool base64_decode(std::string_view text, std::string& out, size_t& bad_at, bool stop_at_padding, size_t* consumed) {
+  out.reserve(out.size() + text.size() / 4 * 3 + 3);
   uint32_t quantum = 0;
   int have = 0, padding = 0;
   size_t i = 0;
