@@ -530,3 +530,70 @@ TEST_F(CliTest, InsideOutOpenSurfaceIsSaidAndFlippedOnRequest) {
 }
 
 }  // namespace
+
+namespace {
+
+// Two boxes as VTK hexahedra (an ascii .vtu written here), the second with a point named twice
+// so that it is not closed.
+std::string two_hexahedra_vtu(bool second_broken) {
+  std::string points;
+  for (int c = 0; c < 2; ++c)
+    for (int i = 0; i < 8; ++i) {
+      const int x = (i == 1 || i == 2 || i == 5 || i == 6), y = (i == 2 || i == 3 || i == 6 || i == 7), z = i >= 4;
+      points += std::to_string(x + 2 * c) + " " + std::to_string(2 * y) + " " + std::to_string(3 * z) + " ";
+    }
+  const std::string second = second_broken ? "8 9 10 11 12 13 14 8" : "8 9 10 11 12 13 14 15";
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\">\n<UnstructuredGrid><Piece NumberOfPoints=\"16\" "
+         "NumberOfCells=\"2\">\n<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">" +
+         points +
+         "</DataArray></Points>\n<Cells><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2 3 4 5 6 "
+         "7 " +
+         second +
+         "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">8 16</DataArray>\n"
+         "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">12 12</DataArray></Cells></Piece>"
+         "</UnstructuredGrid></VTKFile>\n";
+}
+
+}  // namespace
+
+TEST_F(CliTest, CellsJsonSummaryJobsAndOutput) {
+  const std::string path = (dir_ / "boxes.vtu").string();
+  std::ofstream(path) << two_hexahedra_vtu(false);
+  CliRun r = run("--cells " + shell_quote(path) + " --json --deepest --jobs 1");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  EXPECT_EQ(json_raw(lines[1], "cell"), "1");
+  EXPECT_EQ(json_raw(lines[1], "status"), "POLYHEDRON");
+  EXPECT_EQ(json_number(lines[1], "kernel_volume"), 6);
+  EXPECT_EQ(json_number(lines[1], "diameter"), std::sqrt(1 + 4 + 9.0));
+  EXPECT_NEAR(json_number(lines[1], "inscribed_radius"), 0.5, 1e-9);
+  EXPECT_TRUE(has(lines[2], "{\"summary\":{\"cells\":2,\"ok\":2,\"by_status\":{\"POLYHEDRON\":2}")) << lines[2];
+  EXPECT_EQ(run("--cells " + shell_quote(path) + " --json --deepest --jobs 2").out, r.out);
+
+  const std::string out = (dir_ / "out.vtu").string();
+  r = run("--cells " + shell_quote(path) + " -o " + shell_quote(out));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "2 cells, 2 ok, POLYHEDRON 2")) << r.out;
+  EXPECT_EQ(run("--cells " + shell_quote(out) + " --json").out, run("--cells " + shell_quote(path) + " --json").out);
+}
+
+TEST_F(CliTest, CellsOneBadCellAndUsage) {
+  const std::string path = (dir_ / "broken.vtu").string();
+  std::ofstream(path) << two_hexahedra_vtu(true);
+  CliRun r = run("--cells " + shell_quote(path) + " --json");
+  EXPECT_EQ(r.exit_code, 1);
+  std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  EXPECT_EQ(json_raw(lines[0], "status"), "POLYHEDRON");
+  EXPECT_EQ(json_raw(lines[1], "status"), "null");
+  EXPECT_TRUE(has(json_raw(lines[1], "message"), "cell 1: ")) << lines[1];
+  EXPECT_EQ(run("--cells " + shell_quote((dir_ / "none.vtu").string())).exit_code, 1);
+  for (const std::string& arguments :
+       {std::string("--cells"), std::string("--cells a.vtu --from 1,2,3"), std::string("--cells a.vtu -o out.obj"),
+        std::string("--cells a.vtu --jobs 0")}) {
+    r = run(arguments);
+    EXPECT_EQ(r.exit_code, 2) << "kergen " << arguments;
+    EXPECT_TRUE(has(r.err, "usage: kergen --cells")) << r.err;
+  }
+}

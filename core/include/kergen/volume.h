@@ -152,8 +152,9 @@ struct CellKernel {
 int32_t cell_status_code(const CellKernel& cell);
 
 struct CellKernels {
-  // Ok, or InvalidArgument when the range is outside the mesh or the mesh's offset arrays are
-  // malformed (no cell computed). Errors of single cells are in their records, not here.
+  // Ok, or InvalidArgument when the range starts past the mesh's end or its cells' entries of
+  // cell_offsets are malformed (no cell computed). Errors of single cells (a face or vertex that
+  // does not exist, malformed face offsets: cell_surface's errors) are in their records, not here.
   Error error = Error::Ok;
   std::string message;
   std::vector<CellKernel> cells;  // cells[i] is cell first_cell + i

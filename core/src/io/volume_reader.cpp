@@ -142,18 +142,25 @@ std::string append_vtk_cell(VolumeBuilder& builder, int64_t type, const int64_t*
 }
 
 namespace {
-int base64_value(unsigned char c) {
-  if (c >= 'A' && c <= 'Z') return c - 'A';
-  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-  if (c >= '0' && c <= '9') return c - '0' + 52;
-  if (c == '+') return 62;
-  if (c == '/') return 63;
-  return -1;
-}
+// The alphabet's values by byte, -1 elsewhere (a table: decoding runs per byte of large arrays).
+struct Base64Table {
+  int8_t value[256];
+  constexpr Base64Table() : value() {
+    for (int c = 0; c < 256; ++c) value[c] = -1;
+    for (int c = 'A'; c <= 'Z'; ++c) value[c] = int8_t(c - 'A');
+    for (int c = 'a'; c <= 'z'; ++c) value[c] = int8_t(c - 'a' + 26);
+    for (int c = '0'; c <= '9'; ++c) value[c] = int8_t(c - '0' + 52);
+    value[int('+')] = 62;
+    value[int('/')] = 63;
+  }
+};
+constexpr Base64Table kBase64;
+int base64_value(unsigned char c) { return kBase64.value[c]; }
 bool is_space(unsigned char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t' || c == '\f' || c == '\v'; }
 }  // namespace
 
 bool base64_decode(std::string_view text, std::string& out, size_t& bad_at, bool stop_at_padding, size_t* consumed) {
+  out.reserve(out.size() + text.size() / 4 * 3 + 3);
   uint32_t quantum = 0;
   int have = 0, padding = 0;
   size_t i = 0;

@@ -132,6 +132,9 @@ void parse_vtk(std::string_view text, const std::string& name, VolumeMesh& mesh)
   while (in.next(keyword)) {
     if (keyword == "POINTS") {
       const long long n = in.count("POINTS count");
+      // Each coordinate takes at least two bytes: a larger count is a lie (and 3 * n could overflow).
+      if (uint64_t(n) > text.size())
+        fail_at_line(name, in.line(), "POINTS count " + std::to_string(n) + " exceeds the file");
       in.word("the POINTS type");
       for (long long i = 0; i < 3 * n; ++i) mesh.positions.push_back(in.number());
       have_points = true;

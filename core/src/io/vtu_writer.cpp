@@ -51,15 +51,22 @@ uint64_t double_bits(double d) {
   return bits;
 }
 
+// The ids the file will hold must exist (the offsets are checked as compute_cell_kernels checks them).
 void check_mesh(const VolumeMesh& mesh, const std::vector<CellKernel>& cells) {
+  auto refuse = [](const std::string& why) { throw std::invalid_argument("write_vtu_with_cell_data: " + why); };
   if (cells.size() != mesh.num_cells())
-    throw std::invalid_argument("write_vtu_with_cell_data: " + std::to_string(cells.size()) + " results for " +
-                                std::to_string(mesh.num_cells()) + " cells");
-  for (size_t c = 0; c < mesh.num_cells(); ++c) {
-    CellSurface s = cell_surface(mesh, c);  // the same checks as the computation's
-    if (s.error == Error::IndexOutOfRange || s.error == Error::InvalidArgument)
-      throw std::invalid_argument("write_vtu_with_cell_data: " + s.message);
-  }
+    refuse(std::to_string(cells.size()) + " results for " + std::to_string(mesh.num_cells()) + " cells");
+  auto monotone = [](const std::vector<uint32_t>& offsets, size_t size) {
+    for (size_t i = 1; i < offsets.size(); ++i)
+      if (offsets[i] < offsets[i - 1]) return false;
+    return offsets.empty() || (offsets[0] == 0 && offsets.back() <= size);
+  };
+  if (!monotone(mesh.face_offsets, mesh.face_indices.size()) || !monotone(mesh.cell_offsets, mesh.cell_faces.size()))
+    refuse("malformed offsets");
+  for (uint32_t v : mesh.face_indices)
+    if (v >= mesh.num_vertices()) refuse("a face uses vertex " + std::to_string(v) + ", which does not exist");
+  for (uint32_t f : mesh.cell_faces)
+    if (f >= mesh.num_faces()) refuse("a cell names face " + std::to_string(f) + ", which does not exist");
 }
 
 // Per cell: its sorted distinct points (connectivity) and its face stream.

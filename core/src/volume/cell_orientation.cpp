@@ -23,7 +23,9 @@ struct Link {
   bool flip;
 };
 
-void collect_links(const Mesh& cell, const std::vector<uint32_t>& starts, std::vector<std::vector<Link>>& links) {
+// Links of each face, flat: links[link_start[f] .. link_start[f + 1]).
+void collect_links(const Mesh& cell, const std::vector<uint32_t>& starts, std::vector<Link>& links,
+                   std::vector<uint32_t>& link_start) {
   std::vector<EdgeUse> uses;
   uses.reserve(cell.indices.size());
   for (uint32_t f = 0; f < cell.face_sizes.size(); ++f) {
@@ -36,15 +38,28 @@ void collect_links(const Mesh& cell, const std::vector<uint32_t>& starts, std::v
     }
   }
   std::sort(uses.begin(), uses.end());
+  struct Pair {
+    uint32_t a, b;
+    bool flip;
+  };
+  std::vector<Pair> pairs;
+  pairs.reserve(uses.size() / 2);
   for (size_t i = 0; i < uses.size();) {
     size_t j = i;
     while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-    if (j - i == 2 && uses[i].face != uses[i + 1].face) {
-      const bool flip = uses[i].forward == uses[i + 1].forward;
-      links[uses[i].face].push_back({uses[i + 1].face, flip});
-      links[uses[i + 1].face].push_back({uses[i].face, flip});
-    }
+    if (j - i == 2 && uses[i].face != uses[i + 1].face)
+      pairs.push_back({uses[i].face, uses[i + 1].face, uses[i].forward == uses[i + 1].forward});
     i = j;
+  }
+  const size_t faces = cell.face_sizes.size();
+  link_start.assign(faces + 1, 0);
+  for (const Pair& p : pairs) ++link_start[p.a + 1], ++link_start[p.b + 1];
+  for (size_t f = 0; f < faces; ++f) link_start[f + 1] += link_start[f];
+  links.resize(2 * pairs.size());
+  std::vector<uint32_t> fill(link_start.begin(), link_start.end() - 1);
+  for (const Pair& p : pairs) {
+    links[fill[p.a]++] = {p.b, p.flip};
+    links[fill[p.b]++] = {p.a, p.flip};
   }
 }
 
@@ -81,8 +96,9 @@ bool orient_cell_outward(Mesh& cell) {
   std::vector<uint32_t> starts(faces);
   for (uint32_t f = 0, s = 0; f < faces; ++f) starts[f] = s, s += cell.face_sizes[f];
 
-  std::vector<std::vector<Link>> links(faces);
-  collect_links(cell, starts, links);
+  std::vector<Link> links;
+  std::vector<uint32_t> link_start;
+  collect_links(cell, starts, links, link_start);
   // 0 = not reached, 1 = kept, 2 = reversed.
   std::vector<uint8_t> state(faces, 0);
   std::vector<uint32_t> queue;
@@ -92,7 +108,8 @@ bool orient_cell_outward(Mesh& cell) {
     queue.assign(1, seed);
     for (size_t q = 0; q < queue.size(); ++q) {
       const uint32_t f = queue[q];
-      for (const Link& l : links[f]) {
+      for (uint32_t k = link_start[f]; k < link_start[f + 1]; ++k) {
+        const Link& l = links[k];
         if (state[l.other]) continue;  // a conflict (non-orientable) is left to compute_kernel
         state[l.other] = static_cast<uint8_t>(l.flip ? 3 - state[f] : state[f]);
         queue.push_back(l.other);
