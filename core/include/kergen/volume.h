@@ -165,7 +165,7 @@ struct CellKernels {
 
 // The kernel of cells first_cell .. first_cell + count - 1 (count is clipped to the mesh's end;
 // SIZE_MAX = all the rest), one at a time, each exactly compute_kernel(cell_surface(mesh, c))
-// (computed through one KernelBatch per call, batch.h: the same results without each cell's set-up).
+// (computed through one KernelBatch per call, batch.h, whose results are compute_kernel's).
 // Never throws for bad input. Safe to call from several threads at once on the same mesh.
 CellKernels compute_cell_kernels(const VolumeMesh& mesh, const CellOptions& options = {}, size_t first_cell = 0,
                                  size_t count = SIZE_MAX);
