@@ -67,12 +67,25 @@ class ExactKernel {
         if (s_.mesh.to_input(s_.mesh.point(uint32_t(v))[c]) != m.positions[3 * v + c]) return;
     const auto& tv = ct_.trace.vertices;
     if (tv.size() != k.num_vertices()) return;
-    for (size_t i = 0; i < tv.size(); ++i) {
+    // The result's vertex i is the trace's vertex traced_[i]: the same index when the result
+    // was traced; else (a convex solid, answered without a trace) the one at the same point.
+    std::map<std::array<double, 3>, uint32_t> at_point;
+    traced_.resize(tv.size());
+    for (uint32_t i = 0; i < tv.size(); ++i) {
       double hi[3], lo[3];
       kergen::precise_coordinates(*s_.planes, tv[i].geom, hi, lo);
-      for (int c = 0; c < 3; ++c)
-        if (std::ldexp(hi[c], -s_.mesh.scale_exp) != k.vertices[3 * i + c]) return;
+      std::array<double, 3> x;
+      for (int c = 0; c < 3; ++c) x[c] = std::ldexp(hi[c], -s_.mesh.scale_exp);
+      if (!at_point.emplace(x, i).second) at_point[x] = kergen::kNoVertex;  // (ambiguous)
+      traced_[i] = i;
     }
+    for (size_t i = 0; i < tv.size(); ++i) {
+      const std::array<double, 3> x{k.vertices[3 * i], k.vertices[3 * i + 1], k.vertices[3 * i + 2]};
+      const auto it = at_point.find(x);
+      if (it == at_point.end()) return;
+      if (it->second != kergen::kNoVertex) traced_[i] = it->second;
+    }
+    if (std::set<uint32_t>(traced_.begin(), traced_.end()).size() != tv.size()) return;
     for (const kergen::Warning& w : s_.mesh.warnings) flipped_ |= w.kind == kergen::Warning::Kind::OrientationFlipped;
     ok_ = true;
   }
@@ -85,10 +98,10 @@ class ExactKernel {
   int side(const std::array<uint32_t, 3>& t, size_t v) {
     auto [it, added] = plane_ids_.try_emplace(t, 0);
     if (added) it->second = s_.planes->add_from_points(t[0], t[1], t[2]);
-    return kergen::side(*s_.planes, it->second, ct_.trace.vertices[v].geom);
+    return kergen::side(*s_.planes, it->second, ct_.trace.vertices[traced_[v]].geom);
   }
   int side_of_plane(uint32_t plane, size_t v) const {
-    return kergen::side(*s_.planes, plane, ct_.trace.vertices[v].geom);
+    return kergen::side(*s_.planes, plane, ct_.trace.vertices[traced_[v]].geom);
   }
   int orient(const std::array<uint32_t, 3>& t, uint32_t p) const {
     const auto& m = s_.mesh;
@@ -175,6 +188,7 @@ class ExactKernel {
   Loops loops_;
   kergen::Setup s_;
   kergen::CulledTrace ct_;
+  std::vector<uint32_t> traced_;
   std::map<std::array<uint32_t, 3>, uint32_t> plane_ids_;
   bool flipped_ = false;
   bool ok_ = false;
