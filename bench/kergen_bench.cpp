@@ -199,16 +199,25 @@ Baseline run_baseline(const kergen::Mesh& m, bool flip, const std::array<double,
 // triangles of a UV quad are not exactly coplanar, and the kernel keeps both). A path of this
 // form names one (see generated_mesh).
 constexpr const char* kGeneratedPrefix = "generated:";
-const char* const kDenseRows[] = {"generated:uv sphere 40k", "generated:uv sphere 200k",
-                                  "generated:near-convex bumpy sphere 40k"};
-// UV spheres 200 x 100 (39,600 triangles) and 400 x 250 (199,200); the bumpy sphere of the
-// streaming rows (amplitude 0.01, 200 x 101: 40,000 triangles).
+const char* const kDenseRows[] = {"generated:uv sphere 40k",       "generated:uv sphere 200k",
+                                  "generated:dimpled sphere 40k",  "generated:wavy sphere 40k",
+                                  "generated:geodesic sphere 40k", "generated:near-convex bumpy sphere 40k"};
+// UV spheres 200 x 100 (39,600 triangles) and 400 x 250 (199,200); the 40k one with a dimple at
+// its top pole, and with waves r = 1 + 0.05 sin 5t cos 7ph (fixtures.h); the geodesic sphere of
+// 40,500 triangles (convex: its own kernel); the bumpy sphere of the streaming rows (amplitude
+// 0.01, 200 x 101: 40,000 triangles).
 bool generated_mesh(const std::string& path, kergen::Mesh& mesh) {
   if (path == kDenseRows[0])
     mesh = kergen_test::uv_sphere(200, 100, 0);
   else if (path == kDenseRows[1])
     mesh = kergen_test::uv_sphere(400, 250, 0);
   else if (path == kDenseRows[2])
+    mesh = kergen_test::dimpled_sphere(200, 100);
+  else if (path == kDenseRows[3])
+    mesh = kergen_test::wavy_sphere(200, 100);
+  else if (path == kDenseRows[4])
+    mesh = kergen_test::geodesic_sphere(45).mesh;
+  else if (path == kDenseRows[5])
     mesh = kergen_test::bumpy_sphere(200, 101, 0.01);
   else
     return false;
