@@ -6,6 +6,8 @@
 //   kergen_bench [options] [mesh files...]
 //     --runs N                timed runs per measurement, the median is reported (default 5)
 //     --json                  one JSON object per row instead of the table
+//     --cpu-time              time with the thread's CPU clock instead of the wall clock (a busy
+//                             machine); CGAL 6.2's column stays wall clock
 //     --quick                 small default list, 1 run (smoke test)
 //     --no-epeck / --no-epick / --no-qhull   skip a baseline
 //     --epeck-max-faces N     skip the Epeck baseline above N input faces (default: no limit)
@@ -203,16 +205,25 @@ Baseline run_baseline(const kergen::Mesh& m, bool flip, const std::array<double,
 // triangles of a UV quad are not exactly coplanar, and the kernel keeps both). A path of this
 // form names one (see generated_mesh).
 constexpr const char* kGeneratedPrefix = "generated:";
-const char* const kDenseRows[] = {"generated:uv sphere 40k", "generated:uv sphere 200k",
-                                  "generated:near-convex bumpy sphere 40k"};
-// UV spheres 200 x 100 (39,600 triangles) and 400 x 250 (199,200); the bumpy sphere of the
-// streaming rows (amplitude 0.01, 200 x 101: 40,000 triangles).
+const char* const kDenseRows[] = {"generated:uv sphere 40k",       "generated:uv sphere 200k",
+                                  "generated:dimpled sphere 40k",  "generated:wavy sphere 40k",
+                                  "generated:geodesic sphere 40k", "generated:near-convex bumpy sphere 40k"};
+// UV spheres 200 x 100 (39,600 triangles) and 400 x 250 (199,200); the 40k one with a dimple at
+// its top pole, and with waves r = 1 + 0.05 sin 5t cos 7ph (fixtures.h); the geodesic sphere of
+// 40,500 triangles (convex: its own kernel); the bumpy sphere of the streaming rows (amplitude
+// 0.01, 200 x 101: 40,000 triangles).
 bool generated_mesh(const std::string& path, kergen::Mesh& mesh) {
   if (path == kDenseRows[0])
     mesh = kergen_test::uv_sphere(200, 100, 0);
   else if (path == kDenseRows[1])
     mesh = kergen_test::uv_sphere(400, 250, 0);
   else if (path == kDenseRows[2])
+    mesh = kergen_test::dimpled_sphere(200, 100);
+  else if (path == kDenseRows[3])
+    mesh = kergen_test::wavy_sphere(200, 100);
+  else if (path == kDenseRows[4])
+    mesh = kergen_test::geodesic_sphere(45).mesh;
+  else if (path == kDenseRows[5])
     mesh = kergen_test::bumpy_sphere(200, 101, 0.01);
   else
     return false;
@@ -534,7 +545,7 @@ struct FamilySummary {
 };
 
 const char* const kUsage =
-    "usage: kergen_bench [--runs N] [--json] [--quick] [--no-epeck] [--no-epick] [--no-qhull]\n"
+    "usage: kergen_bench [--runs N] [--json] [--cpu-time] [--quick] [--no-epeck] [--no-epick] [--no-qhull]\n"
     "                    [--epeck-max-faces N] [--epick-max-faces N] [--qhull-max-faces N]\n"
     "                    [--baseline-budget-ms T] [--no-cgal62] [--cgal62-timeout-s T]\n"
     "                    [--meshes DIR] [--family DIR]... [--families]\n"
@@ -558,6 +569,8 @@ Args parse_args(int argc, char** argv, bool& families_default) {
       args.runs = std::max(1, std::atoi(next().c_str())), runs_given = true;
     else if (a == "--json")
       args.json = true;
+    else if (a == "--cpu-time")
+      kergen_bench::thread_cpu_clock() = true;
     else if (a == "--quick")
       args.quick = true;
     else if (a == "--no-epeck")
@@ -796,9 +809,10 @@ int main(int argc, char** argv) {
   if (!args.json) {
     std::printf(
         "# kergen_bench | %s | CGAL %s | %s | %s | %s, %u threads, load average %s at start | median of %d run(s) | "
-        "times in ms, end to end (parse excluded)\n",
+        "times in ms%s, end to end (parse excluded)\n",
         compiler.c_str(), CGAL_VERSION_STR, kergen_bench::qhull_version().c_str(), cgal62_version().c_str(),
-        cpu_string().c_str(), std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs);
+        cpu_string().c_str(), std::thread::hardware_concurrency(), load_at_start.c_str(), args.runs,
+        kergen_bench::thread_cpu_clock() ? " of thread CPU time" : "");
     std::fflush(stdout);
   }
   if (args.cells) {

@@ -16,6 +16,7 @@
 #include "output/step_replay.h"
 #include "progress.h"
 #include "setup.h"
+#include "solve/convex_answer.h"
 #include "solve/plane_culling.h"
 #include "solve/tracer.h"
 
@@ -106,6 +107,25 @@ bool assemble(const Setup& s, const Options& options, int unscale_exp, const Tra
   return true;
 }
 
+// The kernel of a convex solid (convex_answer.h: setup certified it): the solid itself, assembled
+// like a traced kernel; the kernel point is the vertex the LP would have started from.
+bool convex_kernel(const Setup& s, const Options& options, int unscale_exp, Kernel& out) {
+  TraceResult tr;
+  if (!convex_trace(s, tr)) {
+    out.error = Error::Internal;
+    out.message = "internal error: a convex solid's edges do not form a polytope (please report this mesh)";
+    return false;
+  }
+  double dir[3], hi[3], lo[3];
+  lp_direction(s, options, dir);
+  precise_coordinates(*s.planes, tr.vertices[extreme_vertex(tr, *s.planes, dir)].geom, hi, lo);
+  out.has_kernel_point = true;
+  for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(hi[k], unscale_exp);
+  out.stats.active_planes = s.planes->size() - s.box.size();
+  uint64_t steps = 0;
+  return assemble(s, options, unscale_exp, tr, steps, out);
+}
+
 }  // namespace
 
 namespace {
@@ -130,6 +150,7 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
   const auto t_total = Clock::now();
   Kernel out;
   Setup s;
+  s.try_convex = !options.on_step && options.max_steps == 0;  // (step events replay a trace)
   setup(mesh, options, s, out.stats);
   out.warnings = s.mesh.warnings;
   if (s.mesh.error != Error::Ok) {
@@ -148,6 +169,12 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
   }
   out.stats.active_planes = s.planes->size() - s.box.size();
 
+  if (s.convex) {
+    if (!convex_kernel(s, options, unscale_exp, out)) return out;
+    out.stats.exact_fallbacks = s.planes->exact_fallbacks;
+    out.stats.ms_total = ms_since(t_total);
+    return out;
+  }
   if (s.lp.outcome != LpResult::Outcome::Infeasible && s.mesh.shells > 1) {
     refuse_nested_shells(s.mesh, out.error, out.message);
     out.stats.ms_total = ms_since(t_total);

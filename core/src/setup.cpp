@@ -9,6 +9,7 @@
 #include "planes/face_culling.h"
 #include "planes/plane_classes.h"
 #include "progress.h"
+#include "solve/convex_answer.h"
 
 namespace kergen {
 
@@ -36,11 +37,10 @@ void build_plane_set(const FaceCulling& faces, Setup& s, Stats& stats) {
   const auto t = Clock::now();
   s.planes = std::make_unique<PlaneSet>(&s.mesh.points, s.mesh.exact_shift);
   s.planes->set_extent(s.mesh.extent());
-  std::vector<uint32_t> face_plane;
   if (faces.culled)
-    build_planes(s.mesh, faces.kept_faces, *s.planes, face_plane, &s.plane_face);
+    build_planes(s.mesh, faces.kept_faces, *s.planes, s.face_plane, &s.plane_face);
   else
-    build_planes(s.mesh, *s.planes, face_plane, &s.plane_face);
+    build_planes(s.mesh, *s.planes, s.face_plane, &s.plane_face);
   stats.distinct_planes = s.planes->size();
   s.active.reserve(s.planes->size() + 6);
   for (uint32_t i = 0; i < s.planes->size(); ++i) s.active.push_back(i);
@@ -57,16 +57,8 @@ void build_plane_set(const FaceCulling& faces, Setup& s, Stats& stats) {
 void solve_start_lp(const Options& options, Setup& s, Stats& stats) {
   const auto t = Clock::now();
   report(options, Progress::Phase::Lp, stats.distinct_planes);
-  double dir[3] = {kDefaultDirection[0], kDefaultDirection[1], kDefaultDirection[2]};
-  if (options.has_from) {
-    double len = 0;
-    for (int k = 0; k < 3; ++k) {
-      double d = s.mesh.to_scaled(options.from[k]) - s.center[k];
-      len += d * d;
-    }
-    if (len > 0 && std::isfinite(len))
-      for (int k = 0; k < 3; ++k) dir[k] = s.mesh.to_scaled(options.from[k]) - s.center[k];
-  }
+  double dir[3];
+  lp_direction(s, options, dir);
   s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
   stats.ms_lp += ms_since(t);
 }
@@ -80,6 +72,12 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   const size_t nf = s.mesh.num_faces();
   report(options, Progress::Phase::Planes, nf);
   const auto t = Clock::now();
+  if (s.try_convex && convex_solid(s.mesh)) {
+    s.convex = true;
+    stats.ms_planes = ms_since(t);
+    build_plane_set(FaceCulling{}, s, stats);
+    return;
+  }
   const FaceCulling faces = cull_faces(s.mesh, options.cull_faces, options.seed);
   stats.ms_lp = faces.ms_lp;
   if (faces.kernel_empty) {
@@ -93,6 +91,18 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
 
   build_plane_set(faces, s, stats);
   solve_start_lp(options, s, stats);
+}
+
+void lp_direction(const Setup& s, const Options& options, double dir[3]) {
+  for (int k = 0; k < 3; ++k) dir[k] = kDefaultDirection[k];
+  if (!options.has_from) return;
+  double len = 0;
+  for (int k = 0; k < 3; ++k) {
+    double d = s.mesh.to_scaled(options.from[k]) - s.center[k];
+    len += d * d;
+  }
+  if (len > 0 && std::isfinite(len))
+    for (int k = 0; k < 3; ++k) dir[k] = s.mesh.to_scaled(options.from[k]) - s.center[k];
 }
 
 int32_t face_source(const Setup& s, uint32_t plane) {

@@ -27,6 +27,12 @@ struct Setup {
   std::vector<uint32_t> plane_face;
   LpResult lp;
   bool rejected_early = false;  // empty kernel proven before the plane classes were built
+  // The convex answer (convex_answer.h): try_convex is the caller's wish (compute_kernel without
+  // step events), convex says the certificate held: then the planes are every face's, face_plane
+  // holds each prepared face's plane, and there is no LP (s.lp is unset).
+  bool try_convex = false;
+  bool convex = false;
+  std::vector<uint32_t> face_plane;
   double center[3] = {0, 0, 0};
   size_t surface_faces = 0;  // the mesh's own faces (boundary walls follow them in `mesh`)
 };
@@ -35,6 +41,9 @@ struct Setup {
 // after validation when s.mesh.error is set, and before the planes when face culling proves the
 // kernel empty (s.rejected_early, with that LP's result in s.lp).
 void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats);
+
+// The LP's objective: the default direction, or Options::from seen from the mesh's centre.
+void lp_direction(const Setup& s, const Options& options, double dir[3]);
 
 // What kernel face on `plane` lies on (Kernel::face_sources): the input face of the plane's lowest
 // prepared face, kFaceSourceWall when that is a boundary wall, kFaceSourceBox for a box plane.

@@ -317,6 +317,39 @@ inline Mesh uv_sphere(int nu, int nv, double twist) {
   return m;
 }
 
+// The UV sphere's grid (uv_sphere(nu, nv, 0): the same faces) with each point at radius
+// radius(t, ph) along its direction, t the angle from the top pole (0 to pi), ph the longitude.
+template <class Radius>
+inline Mesh uv_sphere_shaped(int nu, int nv, Radius radius) {
+  Mesh m = uv_sphere(nu, nv, 0);
+  const double pi = 3.14159265358979323846;
+  auto place = [&](size_t v, double t, double ph) {
+    const double r = radius(t, ph);
+    for (int k = 0; k < 3; ++k) m.positions[3 * v + k] *= r;
+  };
+  place(0, pi, 0);
+  for (int i = 1; i < nv; ++i)
+    for (int j = 0; j < nu; ++j) place(size_t(1 + (i - 1) * nu + j), pi - pi * i / nv, 2 * pi * j / nu);
+  place(m.positions.size() / 3 - 1, 0, 0);
+  return m;
+}
+
+// The UV sphere with a dimple at its top pole: within t0 = 0.6 rad of it the radius drops to
+// 1 - 0.3 (1 - t / t0)^2 (0.7 at the pole, smooth at the rim). Not convex: the dimple's faces
+// cut the sphere, and the kernel is the sphere below them.
+inline Mesh dimpled_sphere(int nu, int nv) {
+  return uv_sphere_shaped(nu, nv, [](double t, double) {
+    const double t0 = 0.6, s = t < t0 ? 1 - t / t0 : 0;
+    return 1 - 0.3 * s * s;
+  });
+}
+
+// The UV sphere with bumps all over: r = 1 + 0.05 sin(5 t) cos(7 ph). Star-shaped about the
+// centre, with a small kernel (most faces cannot touch it).
+inline Mesh wavy_sphere(int nu, int nv) {
+  return uv_sphere_shaped(nu, nv, [](double t, double ph) { return 1 + 0.05 * std::sin(5 * t) * std::cos(7 * ph); });
+}
+
 // Bumpy UV sphere r(theta, phi) = 1 + amp sin(3 theta) cos(2 phi) with nu x nv cells (as
 // scripts/gen-big-mesh.mjs): 2 nu (nv - 1) triangles, star-shaped around the origin for small
 // amp, with a kernel much smaller than the shape (most faces cannot touch it).

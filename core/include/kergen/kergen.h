@@ -360,7 +360,9 @@ struct Kernel {
   std::vector<uint32_t> witness_faces;
   std::vector<uint32_t> witness_boundary_edges;
 
-  bool has_kernel_point = false;  // the LP vertex (a kernel vertex); false when Empty
+  // The LP vertex (a kernel vertex; for a convex solid, answered without the LP, the vertex the
+  // LP would have ended on: extreme in its direction); false when Empty.
+  bool has_kernel_point = false;
   std::array<double, 3> kernel_point{};
   bool has_deepest_point = false;  // with Options::deepest_point and a full-dimensional kernel
   std::array<double, 3> deepest_point{};

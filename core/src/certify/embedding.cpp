@@ -170,4 +170,13 @@ EmbeddingCheck check_embedding_at(const PreparedMesh& mesh, const PlaneSet& ps, 
   return degree_from(mesh, out);
 }
 
+EmbeddingCheck check_embedding_in_faces(const PreparedMesh& mesh, const double p[3]) {
+  EmbeddingCheck out;
+  for (int k = 0; k < 3; ++k) out.point[k] = p[k];
+  snap(out.point);
+  for (const auto& r : mesh.rep)
+    if (orient3d(mesh.point(r[0]), mesh.point(r[1]), mesh.point(r[2]), out.point, mesh.exact_shift) >= 0) return out;
+  return degree_from(mesh, out);
+}
+
 }  // namespace kergen

@@ -41,4 +41,9 @@ EmbeddingCheck check_embedding(const PreparedMesh& mesh, const PlaneSet& ps, con
 EmbeddingCheck check_embedding_at(const PreparedMesh& mesh, const PlaneSet& ps, const std::vector<uint32_t>& planes,
                                   const double p[3]);
 
+// The same from a point p (scaled units; snapped like the others) without planes: Undecided
+// unless p lies strictly inside the plane of every face of `mesh` (its representative triangle,
+// exact signs). For a surface whose kernel is not known yet (convex_answer.h).
+EmbeddingCheck check_embedding_in_faces(const PreparedMesh& mesh, const double p[3]);
+
 }  // namespace kergen
