@@ -14,10 +14,11 @@ import { extractTarball, npmEnv, packTarball } from './lib/pack.mjs';
 let tmp;
 let packInfo;
 
-// bytes, packed (npm's "package size"): 350 kB, plus 30 kB for volume meshes (the .vtu / .vtk /
-// .node + .ele readers and the per-cell kernels: kergen.wasm 699,808 -> 810,689 B raw, 266,860 -> 304,300 B gzip;
-// 828,987 B raw, 310,773 B gzip with KernelBatch: 378,657 B packed)
-const SIZE_BUDGET = 380000;
+// bytes, packed (npm's "package size"): 350 kB, plus 50 kB for volume meshes (the .vtu / .vtk /
+// .node + .ele readers, the per-cell kernels and their bindings) and the convex answer: kergen.wasm
+// 699,808 -> 863,995 B raw, 266,860 -> 324,381 B gzip -9; 394,665 B packed. (What makes the
+// readers' code this large has not been looked into.)
+const SIZE_BUDGET = 400000;
 let readmeBefore;
 
 before(() => {
