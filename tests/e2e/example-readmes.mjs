@@ -17,7 +17,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { launch } from './page-tools.mjs';
+import { launch, chooseAndWait } from './page-tools.mjs';
 import { glbOf, lPrismFiles, plusPrismStl, scaledBoxScene } from '../node/lib/example-meshes.mjs';
 
 const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
@@ -69,20 +69,6 @@ async function waitForServer(url, server, log) {
   throw new Error(`${url} did not answer within 60 s`);
 }
 
-async function chooseAndWait(page, file, outSelector) {
-  const before = await page.textContent(outSelector);
-  await page.setInputFiles('input', file);
-  await page.waitForFunction(
-    ([sel, old]) => {
-      const t = document.querySelector(sel).textContent;
-      return t !== old && !/^Reading/.test(t);
-    },
-    [outSelector, before],
-    { timeout: 60000 },
-  );
-  return page.textContent(outSelector);
-}
-
 // Pixels of the canvas that are not the renderer's black background, and the orange (kernel) ones.
 const canvasPixels = (page) =>
   page.evaluate(
@@ -128,22 +114,22 @@ async function checkThreeApp(context, url, mesh, name) {
       );
     };
     // An OFF file: read by the package's readers (three.js has no OFF loader).
-    kernel(await chooseAndWait(page, mesh('l-prism.off'), 'output'), 1, 3);
+    kernel(await chooseAndWait(page, 'input', mesh('l-prism.off'), 'output'), 1, 3);
     const off = await canvasPixels(page);
     await page.screenshot({ path: path.join(artifacts, `readme-${name}-off.png`) });
     assert(off.orange > 1000, `the OFF file's kernel is drawn: ${JSON.stringify(off)}`);
     // A file that fails: its error, and nothing left of the last file's shape or kernel.
-    const bad = await chooseAndWait(page, mesh('open.obj'), 'output');
+    const bad = await chooseAndWait(page, 'input', mesh('open.obj'), 'output');
     assert(/^OPEN_MESH: the mesh is open/.test(bad), `the error is shown with its code: ${bad}`);
     assert(!/weld: true/.test(bad), `the helpers weld already: no weld hint: ${bad}`);
     const failed = await canvasPixels(page);
     await page.screenshot({ path: path.join(artifacts, `readme-${name}-failed.png`) });
     assert(failed.drawn === 0, `the previous shape and kernel are cleared: ${JSON.stringify(failed)}`);
     // A good file after it, then a glTF scene.
-    kernel(await chooseAndWait(page, mesh('plus.stl'), 'output'), 1, 5);
+    kernel(await chooseAndWait(page, 'input', mesh('plus.stl'), 'output'), 1, 5);
     const stl = await canvasPixels(page);
     assert(stl.orange > 500, `the STL's kernel is drawn after the failure: ${JSON.stringify(stl)}`);
-    kernel(await chooseAndWait(page, mesh('box-scaled.glb'), 'output'), 12, 12);
+    kernel(await chooseAndWait(page, 'input', mesh('box-scaled.glb'), 'output'), 12, 12);
     await page.screenshot({ path: path.join(artifacts, `readme-${name}-glb.png`) });
     assert(errors.length === 0, errors.join(' | '));
     seen.push(
@@ -165,9 +151,9 @@ async function checkNoBundler(context, url, mesh) {
   page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
   try {
     await page.goto(url);
-    const r = JSON.parse(await chooseAndWait(page, mesh('l-prism.off'), 'pre'));
+    const r = JSON.parse(await chooseAndWait(page, 'input', mesh('l-prism.off'), 'pre'));
     assert(r.status === 'POLYHEDRON' && r.volume === 1 && r.shapeVolume === 3, JSON.stringify(r));
-    const bad = await chooseAndWait(page, mesh('broken.off'), 'pre');
+    const bad = await chooseAndWait(page, 'input', mesh('broken.off'), 'pre');
     assert(/^PARSE_ERROR: .*broken\.off/.test(bad), `the error is shown with its code: ${bad}`);
     assert(errors.length === 0, errors.join(' | '));
     return `OFF: ${r.status} ${r.volume} of ${r.shapeVolume}; broken.off: PARSE_ERROR`;

@@ -13,7 +13,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serve, launch } from './page-tools.mjs';
+import { serve, launch, chooseAndWait } from './page-tools.mjs';
 import { extractTarball, packTarball } from '../node/lib/pack.mjs';
 import { glbOf, lPrismFiles, plusPrismStl, scaledBoxScene } from '../node/lib/example-meshes.mjs';
 
@@ -63,20 +63,6 @@ const orangePixels = (page) =>
         }),
       ),
   );
-
-async function chooseAndWait(page, selector, file, outSelector) {
-  const before = await page.textContent(outSelector);
-  await page.setInputFiles(selector, file);
-  await page.waitForFunction(
-    ([sel, old]) => {
-      const t = document.querySelector(sel).textContent;
-      return t !== old && !/^Reading/.test(t);
-    },
-    [outSelector, before],
-    { timeout: 60000 },
-  );
-  return page.textContent(outSelector);
-}
 
 export async function examplesTests(context, tmp, { test, assert, artifacts }) {
   let tarball;

@@ -209,3 +209,19 @@ export async function dragFrameDeltas(page, { ms = 1000 } = {}) {
   await page.mouse.up();
   return (await page.evaluate(() => ((window.__stopFrames = true), window.__frames))).slice(2);
 }
+
+// Sets `file` on the file input at `selector` and waits until the text at `outSelector` changes
+// and no longer starts with "Reading"; returns that text.
+export async function chooseAndWait(page, selector, file, outSelector) {
+  const before = await page.textContent(outSelector);
+  await page.setInputFiles(selector, file);
+  await page.waitForFunction(
+    ([sel, old]) => {
+      const t = document.querySelector(sel).textContent;
+      return t !== old && !/^Reading/.test(t);
+    },
+    [outSelector, before],
+    { timeout: 60000 },
+  );
+  return page.textContent(outSelector);
+}
