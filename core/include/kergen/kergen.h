@@ -319,7 +319,10 @@ constexpr int32_t kFaceSourceWall = -2;
 //   faces: each loop starts at its lowest vertex id (and runs CCW from outside), the loops in
 //     increasing lexicographic order of their vertex ids; triangles: each face's fan from its
 //     first corner, in face order; face_sources follows the faces;
-//   volume and area: summed in that order, so equal to the last bit.
+//   volume and area: summed in that order, from each vertex's coordinates to ~1e-30 relative;
+//     their last bits can still depend on which three planes a vertex was found on (the low
+//     parts of its coordinates are not rounded canonically): over the shared test meshes they
+//     were equal to the last bit between seeds, culling, `from` and algorithm versions.
 // With Options::on_step or max_steps, vertices and edges instead keep the numbering and
 // orientation of the step events (the order the trace discovered them); the faces are still
 // sorted as above, by the vertices' canonical order, and volume and area are the same as without
