@@ -7,6 +7,7 @@ import { test, before } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { assertBuilt } from './lib/env.mjs';
 
 let K;
@@ -63,7 +64,10 @@ test('accepted as given: EMPTY with a FACES_POINT_INWARD warning offering the fl
 });
 
 test('the shared fixture open_cube.off: read by the core, inward, flipped: the 100-cube', async (t) => {
-  const file = path.resolve(import.meta.dirname, '../../../shared/meshes/fixtures/open_cube.off');
+  const file = path.resolve(
+    path.dirname(fileURLToPath(import.meta.url)),
+    '../../../shared/meshes/fixtures/open_cube.off',
+  );
   if (!fs.existsSync(file)) return t.skip(`${file} is absent`);
   const mesh = await K.readMesh(fs.readFileSync(file), { name: 'open_cube.off' });
   const given = await K.computeKernel(mesh.positions, mesh.indices, { open: 'perpendicular' });
