@@ -142,6 +142,14 @@ export async function firstVisitTests(page, context, base, h) {
       await page.setInputFiles('#file-input', file);
       const s = await waitFinished(page);
       await actionsSettled(page);
+      // (The actions' state is unset for a moment before the trials begin: wait for a tried button.)
+      await page
+        .waitForFunction(
+          () => [...document.querySelectorAll('#actions button')].some((x) => !x.hidden && x.dataset.outcome),
+          null,
+          { timeout: 60000 },
+        )
+        .catch(() => {});
       assert(s.state === 'error' && s.message?.code === 'OPEN_MESH', `refused as open: ${JSON.stringify(s.message)}`);
       const b = await verdictBox(page);
       const offered = await page.evaluate(() =>
