@@ -36,6 +36,16 @@ const actionsSettled = (page) =>
     { timeout: 60000 },
   );
 
+// Waits (up to 60 s; the assertions after it say what is missing) for a visible action button:
+// the actions' state is unset for a moment before the trials begin, so actionsSettled can pass
+// before any button is shown.
+const visibleAction = (page) =>
+  page
+    .waitForFunction(() => [...document.querySelectorAll('#actions button')].some((x) => !x.hidden), null, {
+      timeout: 60000,
+    })
+    .catch(() => {});
+
 // The panel (and the page, where it scrolls) scrolled to its end, as a phone user does to reach
 // the samples or Choose… (under the 3D view, the panel scrolls by itself).
 const scrollToEnd = (page) =>
@@ -61,6 +71,7 @@ export async function firstVisitTests(page, context, base, h) {
     const check = async (name, { action = true } = {}) => {
       await waitFinished(page);
       await actionsSettled(page);
+      if (action) await visibleAction(page);
       const b = await verdictBox(page);
       rows.push({ name, from, ...b });
       await page.screenshot({ path: path.join(artifacts, `visit-${name}-390.png`) });
@@ -142,14 +153,7 @@ export async function firstVisitTests(page, context, base, h) {
       await page.setInputFiles('#file-input', file);
       const s = await waitFinished(page);
       await actionsSettled(page);
-      // (The actions' state is unset for a moment before the trials begin: wait for a tried button.)
-      await page
-        .waitForFunction(
-          () => [...document.querySelectorAll('#actions button')].some((x) => !x.hidden && x.dataset.outcome),
-          null,
-          { timeout: 60000 },
-        )
-        .catch(() => {});
+      await visibleAction(page);
       assert(s.state === 'error' && s.message?.code === 'OPEN_MESH', `refused as open: ${JSON.stringify(s.message)}`);
       const b = await verdictBox(page);
       const offered = await page.evaluate(() =>
