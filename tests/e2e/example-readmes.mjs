@@ -17,7 +17,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { launch, chooseAndWait } from './page-tools.mjs';
+import { launch, chooseAndWait, canvasPixels } from './page-tools.mjs';
 import { glbOf, lPrismFiles, plusPrismStl, scaledBoxScene } from '../node/lib/example-meshes.mjs';
 
 const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
@@ -68,32 +68,6 @@ async function waitForServer(url, server, log) {
   }
   throw new Error(`${url} did not answer within 60 s`);
 }
-
-// Pixels of the canvas that are not the renderer's black background, and the orange (kernel) ones.
-const canvasPixels = (page) =>
-  page.evaluate(
-    () =>
-      new Promise((resolve) =>
-        requestAnimationFrame(() =>
-          requestAnimationFrame(() => {
-            const c = document.querySelector('canvas');
-            const copy = document.createElement('canvas');
-            copy.width = c.width;
-            copy.height = c.height;
-            const ctx = copy.getContext('2d');
-            ctx.drawImage(c, 0, 0);
-            const d = ctx.getImageData(0, 0, c.width, c.height).data;
-            let drawn = 0,
-              orange = 0;
-            for (let i = 0; i < d.length; i += 4) {
-              if (d[i] > 12 || d[i + 1] > 12 || d[i + 2] > 12) drawn++;
-              if (d[i] > 120 && d[i] - d[i + 2] > 80) orange++;
-            }
-            resolve({ drawn, orange });
-          }),
-        ),
-      ),
-  );
 
 // The three.js app of vite-three and vite-three-ts, served at `url`.
 async function checkThreeApp(context, url, mesh, name) {

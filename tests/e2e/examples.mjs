@@ -13,7 +13,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { serve, launch, chooseAndWait } from './page-tools.mjs';
+import { serve, launch, chooseAndWait, canvasPixels } from './page-tools.mjs';
 import { extractTarball, packTarball } from '../node/lib/pack.mjs';
 import { glbOf, lPrismFiles, plusPrismStl, scaledBoxScene } from '../node/lib/example-meshes.mjs';
 
@@ -43,26 +43,6 @@ async function writeMeshFiles(dir) {
   for (const [name, data] of Object.entries(files)) fs.writeFileSync(path.join(dir, name), data);
   return (name) => path.join(dir, name);
 }
-
-// Orange pixels of the canvas (the kernel), read right after three.js drew a frame.
-const orangePixels = (page) =>
-  page.evaluate(
-    () =>
-      new Promise((resolve) =>
-        requestAnimationFrame(() => {
-          const c = document.querySelector('canvas');
-          const copy = document.createElement('canvas');
-          copy.width = c.width;
-          copy.height = c.height;
-          const ctx = copy.getContext('2d');
-          ctx.drawImage(c, 0, 0);
-          const d = ctx.getImageData(0, 0, c.width, c.height).data;
-          let n = 0;
-          for (let i = 0; i < d.length; i += 4) if (d[i] > 120 && d[i] - d[i + 2] > 80) n++;
-          resolve(n);
-        }),
-      ),
-  );
 
 export async function examplesTests(context, tmp, { test, assert, artifacts }) {
   let tarball;
@@ -105,7 +85,7 @@ export async function examplesTests(context, tmp, { test, assert, artifacts }) {
           `${name}: shape volume ${r.shapeVolume}, expected ${shapeVolume}`,
         );
         await page.waitForTimeout(300);
-        orange.push(await orangePixels(page));
+        orange.push((await canvasPixels(page)).orange);
         await page.screenshot({ path: path.join(artifacts, `example-vite-three-${name}.png`) });
       }
       // The box's kernel is the whole box; the plus prism's only its central cube, seen from the

@@ -225,3 +225,30 @@ export async function chooseAndWait(page, selector, file, outSelector) {
   );
   return page.textContent(outSelector);
 }
+
+// Pixels of the canvas that are not the renderer's black background, and the orange (kernel) ones,
+// read two frames after the call (three.js has drawn the latest scene).
+export const canvasPixels = (page) =>
+  page.evaluate(
+    () =>
+      new Promise((resolve) =>
+        requestAnimationFrame(() =>
+          requestAnimationFrame(() => {
+            const c = document.querySelector('canvas');
+            const copy = document.createElement('canvas');
+            copy.width = c.width;
+            copy.height = c.height;
+            const ctx = copy.getContext('2d');
+            ctx.drawImage(c, 0, 0);
+            const d = ctx.getImageData(0, 0, c.width, c.height).data;
+            let drawn = 0,
+              orange = 0;
+            for (let i = 0; i < d.length; i += 4) {
+              if (d[i] > 12 || d[i + 1] > 12 || d[i + 2] > 12) drawn++;
+              if (d[i] > 120 && d[i] - d[i + 2] > 80) orange++;
+            }
+            resolve({ drawn, orange });
+          }),
+        ),
+      ),
+  );
