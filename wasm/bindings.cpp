@@ -38,6 +38,7 @@
 #include <utility>
 #include <vector>
 
+#include "blocks.h"
 #include "kergen/io.h"
 #include "kergen/kergen.h"
 
@@ -223,26 +224,6 @@ uintptr_t pack(Out& o) {
   return reinterpret_cast<uintptr_t>(block);
 }
 
-uintptr_t error_block(const char* code, const std::string& message) {
-  Out o;
-  o.name = code;
-  o.message = message;
-  return pack(o);
-}
-
-// Runs an entry's body: a C++ exception becomes an error block (thrown in JS as a KergenError),
-// never a trap that would leave the module unusable.
-template <class Body>
-uintptr_t guarded(Body&& body) {
-  try {
-    return body();
-  } catch (const std::bad_alloc&) {
-    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
-  } catch (const std::exception& e) {
-    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
-  }
-}
-
 // The request block as a MeshView (it points into the block, which index.js frees after the call).
 kergen::MeshView mesh_view(uintptr_t request, uint32_t num_values, uint32_t num_indices, uint32_t num_face_sizes) {
   const double* positions = reinterpret_cast<const double*>(request) + kOptionSlots;
@@ -257,6 +238,28 @@ kergen::MeshView mesh_view(uintptr_t request, uint32_t num_values, uint32_t num_
     m.num_faces = num_face_sizes;
   }
   return m;
+}
+
+void put_stats(const kergen::Stats& s, double* out) {
+  for (const kergen::StatsField& f : kergen::stats_fields(s)) *out++ = f.value;
+}
+
+void put_xyz(const std::array<double, 3>& p, double* out) {
+  out[0] = p[0];
+  out[1] = p[1];
+  out[2] = p[2];
+}
+
+}  // namespace
+
+// What batch_bindings.cpp shares (blocks.h).
+namespace kergen_wasm {
+
+uintptr_t error_block(const char* code, const std::string& message) {
+  Out o;
+  o.name = code;
+  o.message = message;
+  return pack(o);
 }
 
 kergen::Options read_options(uintptr_t request) {
@@ -283,15 +286,35 @@ kergen::Options read_options(uintptr_t request) {
   return o;
 }
 
-void put_stats(const kergen::Stats& s, double* out) {
-  for (const kergen::StatsField& f : kergen::stats_fields(s)) *out++ = f.value;
+uintptr_t kernel_block(const kergen::Kernel& k) {
+  if (k.error != kergen::Error::Ok) return error_block(kergen::error_name(k.error), k.message);
+  Out o;
+  o.head[kHead_ok] = 1;
+  o.head[kHead_complete] = k.complete;
+  o.head[kHead_hasKernelPoint] = k.has_kernel_point;
+  o.head[kHead_hasDeepestPoint] = k.has_deepest_point;
+  o.scalars[kScalar_volume] = k.volume;
+  o.scalars[kScalar_area] = k.area;
+  o.scalars[kScalar_shapeVolume] = k.shape_volume;
+  o.scalars[kScalar_volumeRatio] = k.volume_ratio;
+  put_xyz(k.kernel_point, o.scalars + kScalar_kernelPoint);
+  put_xyz(k.deepest_point, o.scalars + kScalar_deepestPoint);
+  o.scalars[kScalar_inscribedRadius] = k.inscribed_radius;
+  put_stats(k.stats, o.scalars + kScalar_stats);
+  o.name = kergen::kernel_type_name(k.type);
+  o.warnings = &k.warnings;
+  o.set_kernel(k);
+  return pack(o);
 }
 
-void put_xyz(const std::array<double, 3>& p, double* out) {
-  out[0] = p[0];
-  out[1] = p[1];
-  out[2] = p[2];
-}
+}  // namespace kergen_wasm
+
+namespace {
+
+using kergen_wasm::error_block;
+using kergen_wasm::guarded;
+using kergen_wasm::kernel_block;
+using kergen_wasm::read_options;
 
 // compute(request, numPositionValues, numIndices, numFaceSizes, onStep|null, onProgress|null)
 // → result block address.
@@ -316,27 +339,7 @@ uintptr_t compute(uintptr_t request, uint32_t num_values, uint32_t num_indices, 
         return !on_step(reinterpret_cast<uintptr_t>(&s)).isFalse();
       };
     }
-    const kergen::Kernel k =
-        kergen::compute_kernel(mesh_view(request, num_values, num_indices, num_face_sizes), options);
-    if (k.error != kergen::Error::Ok) return error_block(kergen::error_name(k.error), k.message);
-
-    Out o;
-    o.head[kHead_ok] = 1;
-    o.head[kHead_complete] = k.complete;
-    o.head[kHead_hasKernelPoint] = k.has_kernel_point;
-    o.head[kHead_hasDeepestPoint] = k.has_deepest_point;
-    o.scalars[kScalar_volume] = k.volume;
-    o.scalars[kScalar_area] = k.area;
-    o.scalars[kScalar_shapeVolume] = k.shape_volume;
-    o.scalars[kScalar_volumeRatio] = k.volume_ratio;
-    put_xyz(k.kernel_point, o.scalars + kScalar_kernelPoint);
-    put_xyz(k.deepest_point, o.scalars + kScalar_deepestPoint);
-    o.scalars[kScalar_inscribedRadius] = k.inscribed_radius;
-    put_stats(k.stats, o.scalars + kScalar_stats);
-    o.name = kergen::kernel_type_name(k.type);
-    o.warnings = &k.warnings;
-    o.set_kernel(k);
-    return pack(o);
+    return kernel_block(kergen::compute_kernel(mesh_view(request, num_values, num_indices, num_face_sizes), options));
   });
 }
 

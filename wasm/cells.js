@@ -456,7 +456,11 @@ const readOptionsOf = (options) =>
  * onProgress({ phase: 'cells', count, total }) after every range of `rangeSize` cells. See index.d.ts.
  */
 export function computeCellKernelsSync(meshOrBytes, options = {}) {
-  const run = cellRun('computeCellKernels', meshOrBytes, options);
+  return runThrough(cellRun('computeCellKernels', meshOrBytes, options));
+}
+
+// A run (a generator that yields between ranges) run to its end; returns its value.
+export function runThrough(run) {
   for (;;) {
     const step = run.next();
     if (step.done) return step.value;
@@ -484,18 +488,26 @@ function yieldToEventLoop() {
  */
 export async function computeCellKernels(meshOrBytes, options = {}) {
   await init();
+  return runYielding('computeCellKernels', options, () => cellRun('computeCellKernels', meshOrBytes, options));
+}
+
+/**
+ * Runs the generator makeRun() returns to its end, yielding to the event loop between its steps;
+ * options.signal (an AbortSignal) cancels between them (code 'CANCELLED'; the generator's
+ * `finally` frees what it holds in the heap).
+ */
+export async function runYielding(fn, options, makeRun) {
   const signal = options && options.signal;
-  if (signal != null && typeof signal.aborted !== 'boolean')
-    throw invalid('computeCellKernels', 'options.signal must be an AbortSignal');
-  const cancelled = () => new KergenError('CANCELLED', 'computeCellKernels: cancelled by options.signal');
+  if (signal != null && typeof signal.aborted !== 'boolean') throw invalid(fn, 'options.signal must be an AbortSignal');
+  const cancelled = () => new KergenError('CANCELLED', `${fn}: cancelled by options.signal`);
   if (signal && signal.aborted) throw cancelled();
-  const run = cellRun('computeCellKernels', meshOrBytes, options);
+  const run = makeRun();
   for (;;) {
     const step = run.next();
     if (step.done) return step.value;
     await yieldToEventLoop();
     if (signal && signal.aborted) {
-      run.return(); // closes the volume
+      run.return();
       throw cancelled();
     }
   }

@@ -651,3 +651,51 @@ export function joinCellKernelsSync(
   parts: readonly CellKernelsResult[],
   options?: { worst?: number },
 ): CellKernelsResult;
+
+/** One mesh of computeKernels: what computeKernel takes (readMesh's and cellSurface's results fit). */
+export interface KernelMesh {
+  positions: PositionsInput;
+  indices: IndicesInput;
+  /** Vertices per face (absent or null: every face is a triangle). */
+  faceSizes?: Uint32Array | readonly number[] | null;
+}
+
+/** Progress of computeKernels: after every range of meshes. */
+export interface KernelsProgress {
+  phase: 'meshes';
+  /** Meshes done so far. */
+  count: number;
+  /** Meshes to compute. */
+  total: number;
+}
+
+/**
+ * computeKernels' options: computeKernel's, the same for every mesh (without onStep, and without
+ * faceSizes, which each mesh gives), plus the ranges' progress and cancellation.
+ */
+export interface KernelsOptions extends Omit<KernelOptions, 'onStep' | 'onProgress' | 'faceSizes'> {
+  /** Meshes per range: onProgress is called, and the async variant yields, after each (default 100;
+   * a range also ends once its meshes' arrays reach 32 MiB). */
+  rangeSize?: number;
+  onProgress?: (progress: KernelsProgress) => void;
+  /** computeKernels (async) only: cancels between ranges (rejects with 'CANCELLED'). */
+  signal?: AbortSignal;
+}
+
+/**
+ * The kernels of many meshes with one options object, in one run of the module's KernelBatch:
+ * `results[i]` is exactly what computeKernel gives for `meshes[i]` (the same arrays, values and
+ * warnings; only `stats`' times differ), or the KergenError it would throw (check with
+ * `instanceof KergenError`; its `.code` and message are computeKernel's): one bad mesh never stops
+ * the others. Malformed options reject the whole call. Yields to the event loop between ranges;
+ * `signal` cancels.
+ */
+export function computeKernels(
+  meshes: readonly KernelMesh[],
+  options?: KernelsOptions,
+): Promise<Array<KernelResult | KergenError>>;
+/** Synchronous computeKernels (onProgress still runs between ranges); requires a finished init(). */
+export function computeKernelsSync(
+  meshes: readonly KernelMesh[],
+  options?: Omit<KernelsOptions, 'signal'>,
+): Array<KernelResult | KergenError>;

@@ -32,6 +32,7 @@ export {
   joinCellKernelsSync,
   joinCellKernels,
 } from './cells.js';
+export { computeKernels, computeKernelsSync } from './batch.js';
 
 // ---- public API -----------------------------------------------------------------------------
 

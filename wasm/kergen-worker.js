@@ -151,11 +151,33 @@ async function handleRepairMesh(msg) {
   self.postMessage({ type: 'result', id: msg.id, result: repaired }, unique(meshTransferables(repaired)));
 }
 
+// Many meshes (the package's computeKernelsSync): progress after every range; each entry a
+// result (its arrays transferred) or a mesh's error as { code, message }.
+async function handleComputeKernels(msg) {
+  const { id } = msg;
+  self.postMessage({ type: 'progress', id, phase: 'loading', steps: 0 });
+  await ensureInit(msg.wasmUrl);
+  const onProgress = ({ phase, count, total }) =>
+    self.postMessage({ type: 'progress', id, phase, steps: 0, count, total });
+  const options = { ...msg.options, ...msg.batchOptions, onProgress };
+  const results = packageFunction('computeKernelsSync')(msg.meshes, options);
+  self.postMessage({ type: 'progress', id, phase: 'done', steps: 0 });
+  const transfer = [];
+  const entries = results.map((r) => {
+    if (r instanceof KergenError) return { code: r.code, message: r.message };
+    transfer.push(...resultTransferables(r));
+    const { faces: _faces, ...plain } = r; // rebuilt on the page from faceIndices
+    return plain;
+  });
+  self.postMessage({ type: 'result', id, result: entries }, unique(transfer));
+}
+
 const HANDLERS = {
   compute: handleCompute,
   computeFile: handleComputeFile,
   writeMesh: handleWriteMesh,
   repairMesh: handleRepairMesh,
+  computeKernels: handleComputeKernels,
   ...cellHandlers(ensureInit), // volume meshes: kergen-worker-cells.js
 };
 

@@ -13,18 +13,8 @@ const textDecoder = new TextDecoder();
 // An option slot: NaN = not given (the core's default applies), booleans as 1 / 0.
 const slot = (v) => (v === undefined ? NaN : Number(v));
 
-// Copies the mesh and the checked options into one malloc'd block; returns its address (the
-// caller frees it).
-export function writeRequest(m, positions, indices, faceSizes, opts) {
-  const numFaceSizes = faceSizes ? faceSizes.length : 0;
-  const slots = W.option.slots;
-  const bytes = 8 * (slots + positions.length) + 4 * (indices.length + numFaceSizes);
-  // malloc takes a 32-bit size; anything larger cannot fit into the heap anyway.
-  const ptr = bytes < 2 ** 32 ? m._malloc(bytes) : 0;
-  if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
-  // Views are read after malloc: growing the heap replaces them.
-  const f64 = m.HEAPF64;
-  const at = ptr / 8;
+// Writes the checked options into the option slots at f64 index `at` of `f64` (a heap view).
+export function writeOptionSlots(f64, at, opts) {
   const o = W.option;
   const from = opts.from;
   f64[at + o.fromX] = from ? from[0] : NaN;
@@ -42,6 +32,21 @@ export function writeRequest(m, positions, indices, faceSizes, opts) {
   f64[at + o.repair] = slot(opts.repair);
   f64[at + o.openBoundary] = slot(opts.openBoundary);
   f64[at + o.flipFaces] = slot(opts.flipFaces);
+}
+
+// Copies the mesh and the checked options into one malloc'd block; returns its address (the
+// caller frees it).
+export function writeRequest(m, positions, indices, faceSizes, opts) {
+  const numFaceSizes = faceSizes ? faceSizes.length : 0;
+  const slots = W.option.slots;
+  const bytes = 8 * (slots + positions.length) + 4 * (indices.length + numFaceSizes);
+  // malloc takes a 32-bit size; anything larger cannot fit into the heap anyway.
+  const ptr = bytes < 2 ** 32 ? m._malloc(bytes) : 0;
+  if (!ptr) throw new KergenError('OUT_OF_MEMORY', OUT_OF_MEMORY);
+  // Views are read after malloc: growing the heap replaces them.
+  const f64 = m.HEAPF64;
+  const at = ptr / 8;
+  writeOptionSlots(f64, at, opts);
   f64.set(positions, at + slots);
   const u32 = m.HEAPU32;
   const indexAt = (at + slots + positions.length) * 2;

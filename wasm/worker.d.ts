@@ -21,6 +21,9 @@ import type {
   CellKernelOptions,
   CellKernelsResult,
   CellSurface,
+  KergenError,
+  KernelMesh,
+  KernelsOptions,
 } from './index.js';
 
 export { KergenError, FACE_SOURCE_BOX, FACE_SOURCE_WALL } from './index.js';
@@ -48,7 +51,8 @@ export interface ProgressEvent {
   count?: number;
   /** 'reading': the file's size in bytes. */
   bytes?: number;
-  /** computeCellKernels, phase 'cells': the number of cells to compute (`count` are done). */
+  /** computeCellKernels, phase 'cells' (computeKernels, phase 'meshes'): the number of cells
+   * (meshes) to compute (`count` are done). */
   total?: number;
 }
 
@@ -64,6 +68,19 @@ export interface WorkerCellKernelOptions extends Omit<CellKernelOptions, 'onProg
   /** Called with the mesh read from a file (its own copy) before the cells are computed. */
   onMesh?: (mesh: VolumeMesh) => void;
   /** Transfer the input's buffers instead of copying them (detached here afterwards). */
+  transfer?: boolean;
+}
+
+/** computeKernels in the worker: its options, and the worker's progress. */
+export interface WorkerKernelsOptions extends Omit<KernelsOptions, 'onProgress'> {
+  /** 'loading', then 'meshes' after every range (`count` of `total`), then 'done'. */
+  onProgress?: (progress: {
+    phase: 'loading' | 'meshes' | 'done';
+    steps: number;
+    count?: number;
+    total?: number;
+  }) => void;
+  /** Transfer the meshes' buffers instead of copying them (detached here afterwards). */
   transfer?: boolean;
 }
 
@@ -133,6 +150,15 @@ export class KernelWorker {
   joinCellKernels(parts: readonly CellKernelsResult[], options?: { worst?: number }): Promise<CellKernelsResult>;
   /** One cell of a volume mesh as a surface (cellSurface), in the worker (the mesh is copied). */
   cellSurface(mesh: VolumeMeshInput, cell: number): Promise<CellSurface>;
+  /**
+   * The kernels of many meshes (computeKernels) in the worker: each entry a KernelResult or that
+   * mesh's KergenError; progress after every range; cancel() or aborting `signal` stops it
+   * (rejects with 'CANCELLED', restarting the worker as cancel() does).
+   */
+  computeKernels(
+    meshes: readonly KernelMesh[],
+    options?: WorkerKernelsOptions,
+  ): Promise<Array<KernelResult | KergenError>>;
   /** Writes a mesh or kernel result as file bytes in the worker (arrays are copied). */
   writeMesh(meshOrKernel: KernelResult | MeshInput, format: 'obj' | 'off' | 'stl'): Promise<Uint8Array>;
   /**

@@ -157,6 +157,10 @@ export class KernelWorker {
       case 'result':
         this._jobs.delete(job.id);
         if (job.kind === 'writeMesh' || job.kind === 'repairMesh' || job.rawResult) job.resolve(msg.result);
+        else if (job.kind === 'computeKernels')
+          job.resolve(
+            msg.result.map((e) => (e.code !== undefined ? new KergenError(e.code, e.message) : rebuildResult(e))),
+          );
         else if (job.kind === 'computeFile') job.resolve({ mesh: msg.mesh, result: rebuildResult(msg.result) });
         else job.resolve(rebuildResult(msg.result));
         break;
@@ -281,6 +285,57 @@ export class KernelWorker {
       },
       { onMesh },
     );
+  }
+
+  /**
+   * The kernels of many meshes in the worker (the package's computeKernels: one options object for
+   * all; results[i] is meshes[i]'s KernelResult or its KergenError). The meshes' arrays are copied,
+   * or transferred with `transfer: true`. onProgress: 'loading', then 'meshes' after every range
+   * of `rangeSize` meshes (`count` of `total`), then 'done'. cancel() or aborting `signal` stops it
+   * (as cancel() does: the worker is restarted), rejecting with 'CANCELLED'.
+   */
+  computeKernels(meshes, options = {}) {
+    const fn = 'computeKernels';
+    options = options || {};
+    const { signal, rangeSize, onStep, faceSizes } = options;
+    if (!Array.isArray(meshes))
+      return Promise.reject(
+        new KergenError('INVALID_ARGUMENT', `${fn}: meshes must be an array of { positions, indices, faceSizes? }`),
+      );
+    if (signal != null && typeof signal.aborted !== 'boolean')
+      return Promise.reject(new KergenError('INVALID_ARGUMENT', `${fn}: options.signal must be an AbortSignal`));
+    if (signal && signal.aborted)
+      return Promise.reject(new KergenError('CANCELLED', `${fn}: cancelled by options.signal`));
+    const id = this._nextId; // the job's id, if _submit posts one
+    const promise = this._submit(fn, 'computeKernels', { ...options, onStep: undefined }, (transfer) => {
+      const move = wantsTransfer(fn, options);
+      const post = (i, name, arr) => toTransferable(`${fn}: meshes[${i}]`, name, arr, move, transfer);
+      return {
+        meshes: meshes.map((mesh, i) =>
+          mesh === null || typeof mesh !== 'object'
+            ? mesh
+            : {
+                positions: post(i, 'positions', mesh.positions),
+                indices: post(i, 'indices', mesh.indices),
+                faceSizes: post(i, 'faceSizes', mesh.faceSizes),
+              },
+        ),
+        // Checked by the worker's computeKernelsSync (onStep and faceSizes are refused there).
+        batchOptions: { rangeSize, faceSizes, onStep: onStep == null ? undefined : true },
+      };
+    });
+    if (signal && this._nextId > id) {
+      const onAbort = () => {
+        const job = this._jobs.get(id);
+        if (job) this._abort(job, new KergenError('CANCELLED', `${fn}: cancelled by options.signal`));
+      };
+      signal.addEventListener('abort', onAbort, { once: true });
+      promise.then(
+        () => signal.removeEventListener('abort', onAbort),
+        () => signal.removeEventListener('abort', onAbort),
+      );
+    }
+    return promise;
   }
 
   /**

@@ -11,7 +11,7 @@ import path from 'node:path';
 import zlib from 'node:zlib';
 import { distWasm, distGlue, repoRoot } from './lib/env.mjs';
 
-const READMES = ['wasm/README.md', 'README.md'];
+const READMES = ['wasm/README.md', 'README.md', 'docs/js-api.md'];
 
 function blocks(readme) {
   const text = fs.readFileSync(path.join(repoRoot, readme), 'utf8');

@@ -12,6 +12,8 @@ import {
   writeMesh,
   repairMesh,
   repairMeshSync,
+  computeKernels,
+  computeKernelsSync,
   KergenError,
   FACE_SOURCE_BOX,
   FACE_SOURCE_WALL,
@@ -22,6 +24,7 @@ import {
   type KernelResult,
   type StepEvent,
   type Vec3,
+  type KernelMesh,
 } from 'kergen-wasm';
 import {
   KernelWorker,
@@ -160,6 +163,20 @@ async function main(): Promise<void> {
   const inWorker: RepairedMesh = await worker.repairMesh(positions, indices, { repair: true, transfer: false });
   void inWorker.error;
   void stlBytes;
+  const many: KernelMesh[] = [{ positions, indices }, await readMesh(new Uint8Array(8), { name: 'b.off' })];
+  const entries = await computeKernels(many, {
+    deepestPoint: true,
+    rangeSize: 10,
+    signal: new AbortController().signal,
+    onProgress: ({ phase, count, total }) => void [phase === 'meshes', count, total],
+  });
+  for (const e of entries) {
+    if (e instanceof KergenError) void e.code;
+    else void e.volume;
+  }
+  const syncEntries: (KernelResult | KergenError)[] = computeKernelsSync(many, { open: 'clip' });
+  const workerEntries = await worker.computeKernels(many, { transfer: true, onProgress: (p) => void p.total });
+  void [syncEntries, workerEntries.length];
   worker.cancel();
   worker.dispose();
 }
@@ -180,5 +197,9 @@ FACE_SOURCE_BOX = 0;
 // @ts-expect-error: statuses are a closed set
 const bad: KernelResult['status'] = 'CONCAVE';
 void bad;
+// @ts-expect-error: computeKernels has no onStep (one options object for all meshes)
+void computeKernels([{ positions, indices }], { onStep: () => true });
+// @ts-expect-error: each mesh gives its own faceSizes
+void computeKernels([{ positions, indices }], { faceSizes: [3] });
 
 void main;
