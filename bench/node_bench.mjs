@@ -1,8 +1,19 @@
 // node_bench.mjs: the wasm package's computeKernelSync timed in Node, optionally next to the
 // native build (kergen_bench --json) on the same meshes. One Markdown row (or JSON object) per mesh.
 //
-//   node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick] [--liftoff] [--native build/bench/kergen_bench]
-//                             [--meshes DIR] [mesh.off ...]
+//   node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick | --small] [--cpu-time] [--liftoff]
+//                             [--native build/bench/kergen_bench] [--meshes DIR] [mesh.off ...]
+//   node bench/node_bench.mjs --cells [--runs N] [--rounds K] [--json] [--native ...] [DIR ...]
+//
+// --small: the small meshes only (thingi bot_eye, plus, button; refinements/spiral1).
+// --cpu-time: time with the process's CPU clock (process.cpuUsage: the main thread and V8's helper
+// threads) and pass --cpu-time to kergen_bench (its thread's CPU clock): on a machine shared with
+// builds, wall time counts other processes' time slices.
+// --cells: cells per second of whole folders of small meshes (default: the four polyhedra sets of
+// the mesh folder), as kergen_bench --cells measures them natively: CPU time per cell of one warm
+// round over the folder, by single calls (computeKernelSync per mesh) and by one batch call
+// (computeKernelsSync over the folder: one KernelBatch, one call into wasm per range of meshes);
+// kergen_bench --cells on the same folder alternates with them.
 //
 // Needs dist/kergen.{mjs,wasm} (npm run build:wasm). Timed: computeKernelSync(positions, indices,
 // {faceSizes}) including the copies in and out of the wasm heap; not timed: reading the OFF file
@@ -33,6 +44,9 @@ function parseArgs(argv) {
     json: false,
     quick: false,
     liftoff: false,
+    small: false,
+    cpuTime: false,
+    cells: false,
     native: '',
     meshes: path.resolve(repoRoot, '..', 'shared', 'meshes'),
     files: [],
@@ -51,11 +65,15 @@ function parseArgs(argv) {
     else if (s === '--json') a.json = true;
     else if (s === '--liftoff') a.liftoff = true;
     else if (s === '--quick') a.quick = true;
+    else if (s === '--small') a.small = true;
+    else if (s === '--cpu-time') a.cpuTime = true;
+    else if (s === '--cells') a.cells = true;
     else if (s === '--native') a.native = next();
     else if (s === '--meshes') a.meshes = next();
     else if (s === '-h' || s === '--help') {
       console.log(
-        'usage: node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick] [--liftoff] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]',
+        'usage: node bench/node_bench.mjs [--runs N] [--rounds K] [--json] [--quick | --small] [--cpu-time] [--liftoff] [--native path/to/kergen_bench] [--meshes DIR] [files.off ...]\n' +
+          '       node bench/node_bench.mjs --cells [--runs N] [--rounds K] [--json] [--native path/to/kergen_bench] [DIR ...]',
       );
       process.exit(0);
     } else if (s.startsWith('-')) throw new Error(`unknown option ${s}`);
@@ -103,7 +121,8 @@ function readOff(file) {
 
 function defaultList(a) {
   const rel = [];
-  if (a.quick)
+  if (a.small) rel.push('thingi/bot_eye.off', 'thingi/plus.off', 'thingi/button.off', 'refinements/spiral1.off');
+  else if (a.quick)
     rel.push(
       'princeton/350.off',
       'princeton/200.off',
@@ -127,6 +146,93 @@ const median = (v) => {
   return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
 };
 const fmt = (x, d = 2) => (Number.isFinite(x) ? x.toFixed(d) : '');
+// The process's CPU time in ms (user + system; the main thread and V8's helper threads).
+const cpuMs = () => {
+  const u = process.cpuUsage();
+  return (u.user + u.system) / 1000;
+};
+
+// ---- --cells: whole folders of small meshes, single calls and one batch call -----------------
+
+function cellFolders(a) {
+  if (a.files.length) return a.files.map((dir) => ({ dir, label: dir }));
+  return ['tet10', 'tet20', 'tet30', 'voro'].map((d) => ({
+    dir: path.join(a.meshes, 'polyhedra', d),
+    label: `polyhedra/${d}`,
+  }));
+}
+
+async function cellRows(a, kergen) {
+  if (!a.json) {
+    console.log(
+      `# node_bench --cells | Node ${process.version} | V8 ${a.liftoff ? 'default tiering' : 'optimizing tier only'} | median of ${a.rounds} x ${a.runs} round(s) over each folder, alternating with kergen_bench --cells | CPU µs per cell (process CPU time; native: thread CPU time)`,
+    );
+    console.log(
+      '| cells | meshes | mean faces | wasm single µs/cell | wasm batch µs/cell | wasm batch cells/s | single/batch (wasm) | native single µs/cell | native batch µs/cell | wasm/native single | wasm/native batch |',
+    );
+    console.log('|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|');
+  }
+  for (const { dir, label } of cellFolders(a)) {
+    const files = fs
+      .readdirSync(dir)
+      .filter((f) => f.endsWith('.off'))
+      .sort();
+    const meshes = files.map((f) => readOff(path.join(dir, f)));
+    let sink = 0;
+    const singleRound = () => {
+      const t = cpuMs();
+      for (const m of meshes)
+        sink += kergen.computeKernelSync(m.positions, m.indices, { faceSizes: m.faceSizes }).volume;
+      return cpuMs() - t;
+    };
+    const batchRound = () => {
+      const t = cpuMs();
+      for (const r of kergen.computeKernelsSync(meshes)) sink += r.volume ?? 0;
+      return cpuMs() - t;
+    };
+    for (let w = 0; w < 2; ++w) {
+      // warm-up, not timed: the wrapper's JavaScript optimized by V8
+      singleRound();
+      batchRound();
+    }
+    const single = [],
+      batch = [],
+      nativeSingle = [],
+      nativeBatch = [];
+    for (let round = 0; round < a.rounds; ++round) {
+      if (a.native) {
+        const out = execFileSync(a.native, ['--cells', dir, '--json', '--runs', String(a.runs)], {
+          encoding: 'utf8',
+          stdio: ['ignore', 'pipe', 'ignore'],
+        });
+        const row = JSON.parse(out.split('\n').find((l) => l.startsWith('{')));
+        nativeSingle.push(row.single_us_per_cell);
+        nativeBatch.push(row.batch_us_per_cell);
+      }
+      for (let r = 0; r < a.runs; ++r) {
+        single.push((1000 * singleRound()) / meshes.length);
+        batch.push((1000 * batchRound()) / meshes.length);
+      }
+    }
+    const o = {
+      cells: label,
+      meshes: meshes.length,
+      mean_faces: meshes.reduce((s, m) => s + m.faces, 0) / meshes.length,
+      wasm_single_us_per_cell: median(single),
+      wasm_batch_us_per_cell: median(batch),
+      native_single_us_per_cell: nativeSingle.length ? median(nativeSingle) : NaN,
+      native_batch_us_per_cell: nativeBatch.length ? median(nativeBatch) : NaN,
+    };
+    if (a.json) {
+      console.log(JSON.stringify({ ...o, node: process.version, runs: a.runs, rounds: a.rounds, sink }));
+      continue;
+    }
+    const x = (v) => (Number.isFinite(v) ? `${fmt(v)}x` : '-');
+    console.log(
+      `| ${label} | ${o.meshes} | ${fmt(o.mean_faces, 1)} | ${fmt(o.wasm_single_us_per_cell, 1)} | ${fmt(o.wasm_batch_us_per_cell, 1)} | ${fmt(1e6 / o.wasm_batch_us_per_cell, 0)} | ${x(o.wasm_single_us_per_cell / o.wasm_batch_us_per_cell)} | ${fmt(o.native_single_us_per_cell, 1)} | ${fmt(o.native_batch_us_per_cell, 1)} | ${x(o.wasm_single_us_per_cell / o.native_single_us_per_cell)} | ${x(o.wasm_batch_us_per_cell / o.native_batch_us_per_cell)} |`,
+    );
+  }
+}
 
 async function main() {
   const a = parseArgs(process.argv.slice(2));
@@ -137,6 +243,8 @@ async function main() {
   }
   const kergen = await import('../wasm/index.js');
   await kergen.init();
+  if (a.cells) return cellRows(a, kergen);
+  const clock = a.cpuTime ? cpuMs : () => performance.now();
   const list = a.files.length ? a.files.map((f) => ({ file: f, label: f })) : defaultList(a);
   if (!a.files.length && !fs.existsSync(a.meshes)) {
     console.error(`mesh folder ${a.meshes} not found: pass --meshes DIR or files`);
@@ -147,7 +255,15 @@ async function main() {
   // change of machine speed during the benchmark (shared hosts) does not skew the ratio.
   const nativeRow = (file) => {
     if (!a.native) return null;
-    const out = execFileSync(a.native, ['--json', '--no-epick', '--no-epeck', '--runs', String(a.runs), file], {
+    const flags = [
+      '--json',
+      '--no-epick',
+      '--no-epeck',
+      '--no-qhull',
+      '--no-cgal62',
+      ...(a.cpuTime ? ['--cpu-time'] : []),
+    ];
+    const out = execFileSync(a.native, [...flags, '--runs', String(a.runs), file], {
       encoding: 'utf8',
       maxBuffer: 1 << 26,
       stdio: ['ignore', 'pipe', 'ignore'],
@@ -159,7 +275,7 @@ async function main() {
   const wasmStat = fs.statSync(wasmPath);
   if (!a.json) {
     console.log(
-      `# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.rounds} x ${a.runs} run(s), alternating with native | V8 ${a.liftoff ? 'default tiering (Liftoff first)' : 'optimizing tier only (--no-liftoff)'} | ms, parse excluded`,
+      `# node_bench | Node ${process.version} | dist/kergen.wasm ${(wasmStat.size / 1024).toFixed(0)} KiB, built ${wasmStat.mtime.toISOString()} | median of ${a.rounds} x ${a.runs} run(s), alternating with native | V8 ${a.liftoff ? 'default tiering (Liftoff first)' : 'optimizing tier only (--no-liftoff)'} | ms${a.cpuTime ? ' of CPU time' : ''}, parse excluded`,
     );
     console.log(
       '| mesh | faces | kernel | V | E | F | wasm | native | wasm/native | validate | planes | lp | trace | assemble |',
@@ -201,13 +317,13 @@ async function main() {
       nat = nativeRow(file);
       if (nat && !nat.error) nativeMs.push(nat.ours_ms);
       for (let r = 0; r < a.runs; ++r) {
-        const t0 = performance.now();
+        const t0 = clock();
         try {
           result = kergen.computeKernelSync(mesh.positions, mesh.indices, options);
         } catch (e) {
           error = e;
         }
-        times.push(performance.now() - t0);
+        times.push(clock() - t0);
         if (error) break;
         results.push(result);
       }
