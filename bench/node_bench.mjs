@@ -7,8 +7,9 @@
 //
 // --small: the small meshes only (thingi bot_eye, plus, button; refinements/spiral1).
 // --cpu-time: time with the process's CPU clock (process.cpuUsage: the main thread and V8's helper
-// threads) and pass --cpu-time to kergen_bench (its thread's CPU clock): on a machine shared with
-// builds, wall time counts other processes' time slices.
+// threads; each timed run is as many calls as take ~2 ms, its time the mean per call) and pass
+// --cpu-time to kergen_bench (its thread's CPU clock): on a machine shared with builds, wall time
+// counts other processes' time slices.
 // --cells: cells per second of whole folders of small meshes (default: the four polyhedra sets of
 // the mesh folder), as kergen_bench --cells measures them natively: CPU time per cell of one warm
 // round over the folder, by single calls (computeKernelSync per mesh) and by one batch call
@@ -293,6 +294,7 @@ async function main() {
       continue;
     }
     const options = mesh.faceSizes ? { faceSizes: mesh.faceSizes } : {};
+    let callsPerRun = 1;
     const times = [],
       results = [];
     let result = null,
@@ -303,8 +305,13 @@ async function main() {
     // after start-up: 0.16 ms, after a large mesh: 0.05 ms).
     try {
       const w0 = performance.now();
-      for (let w = 0; w < 20 || (w < 20000 && performance.now() - w0 < 300); ++w)
+      let w = 0;
+      for (; w < 20 || (w < 20000 && performance.now() - w0 < 300); ++w)
         kergen.computeKernelSync(mesh.positions, mesh.indices, options);
+      // With --cpu-time a timed run is as many calls as take ~2 ms (the process CPU clock is
+      // read around them, and a single call of a tiny mesh is shorter than the clock's steps
+      // and V8's helper threads' bursts); its time is the mean per call.
+      if (a.cpuTime) callsPerRun = Math.max(1, Math.round(2 / ((performance.now() - w0) / w)));
     } catch {
       /* reported by the timed runs */
     }
@@ -319,11 +326,12 @@ async function main() {
       for (let r = 0; r < a.runs; ++r) {
         const t0 = clock();
         try {
-          result = kergen.computeKernelSync(mesh.positions, mesh.indices, options);
+          for (let c = 0; c < callsPerRun; ++c)
+            result = kergen.computeKernelSync(mesh.positions, mesh.indices, options);
         } catch (e) {
           error = e;
         }
-        times.push(clock() - t0);
+        times.push((clock() - t0) / callsPerRun);
         if (error) break;
         results.push(result);
       }
