@@ -91,8 +91,18 @@ function writeRange(m, L, opts, list) {
 // The kernels of `list`'s meshes ({ index, mesh }) into results[index].
 function computeRange(fn, m, L, batch, opts, list, results) {
   if (!list.length) return;
+  let ptr;
+  try {
+    ptr = callWasm(fn, () => writeRange(m, L, opts, list));
+  } catch (err) {
+    // No room for the range's copy: its meshes one by one, so that only a mesh that does not fit
+    // alone gets OUT_OF_MEMORY as its entry.
+    if (!(err instanceof KergenError) || err.code !== 'OUT_OF_MEMORY') throw err;
+    if (list.length === 1) results[list[0].index] = err;
+    else for (const one of list) computeRange(fn, m, L, batch, opts, [one], results);
+    return;
+  }
   callWasm(fn, () => {
-    const ptr = writeRange(m, L, opts, list);
     const rows = (ptr + 8 * W.option.slots) / 4;
     try {
       m.batchCompute(batch, ptr, rows * 4, list.length);

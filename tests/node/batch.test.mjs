@@ -194,6 +194,29 @@ test('progress after every range; a signal cancels between ranges and the heap i
   assert.equal(K.memoryStats().jsHandles, 0);
 });
 
+test('no heap room for a range: its meshes one by one, only the one that does not fit is OUT_OF_MEMORY', async () => {
+  const { requireModule } = await import('../../wasm/load.js');
+  const m = requireModule('test');
+  const malloc = m._malloc;
+  // A big mesh: CUBE's vertices repeated (unreferenced vertices are allowed), ~80 kB of positions.
+  const big = { ...CUBE, positions: new Float64Array(30000).map((_, i) => CUBE.positions[i % 24]) };
+  const limit = 8 * big.positions.length; // a range holding the big mesh does not fit; the others do
+  const before = K.memoryStats().heapUsed;
+  m._malloc = (n) => (n > limit ? 0 : malloc(n));
+  let results;
+  try {
+    results = K.computeKernelsSync([CUBE, big, CUBE]);
+  } finally {
+    m._malloc = malloc;
+  }
+  assert.equal(results[0].volume, 1);
+  assert.ok(results[1] instanceof K.KergenError && results[1].code === 'OUT_OF_MEMORY', String(results[1]));
+  assertSameResult(results[2], alone(CUBE), 'the mesh after it');
+  assert.equal(K.memoryStats().heapUsed, before);
+  // With room, the big mesh is computed (its unreferenced vertices change nothing).
+  assert.equal(K.computeKernelsSync([big])[0].volume, 1);
+});
+
 test('KernelWorker.computeKernels equals computeKernels: results, error entries, progress; cancel', async (t) => {
   if (sharedMeshesMissing()) return t.skip(sharedMeshesMissing());
   const files = offFiles('polyhedra/voro').slice(0, 60);
