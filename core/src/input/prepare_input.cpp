@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <string>
 #include <utility>
 
@@ -156,10 +157,18 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* v
   const bool can_weld = weldable(mesh);
   if (!can_weld) return judge_open(judge_shells(prepare_mesh(mesh, options, true, purpose)), mesh);
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
+  if (w.unchanged && options.repair) {  // (repair changes its own copy)
+    w.mesh = copy_of(mesh);
+    w.source_face.resize(mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
+    std::iota(w.source_face.begin(), w.source_face.end(), 0u);
+    w.unchanged = false;
+  }
   RepairCounts repaired;
   std::vector<uint32_t> repair_kept;
   if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
-  PreparedMesh m = judge_open(judge_shells(prepare_mesh(w.mesh.view(), options, true, purpose)), w.mesh.view());
+  // (A weld that changed nothing leaves the input as it is: it is validated in place.)
+  const MeshView welded = w.unchanged ? mesh : w.mesh.view();
+  PreparedMesh m = judge_open(judge_shells(prepare_mesh(welded, options, true, purpose)), welded);
   // Faces are named by their index in the input (the witness): through the repair, then the weld.
   m.welded_source = std::move(w.source_face);
   if (options.repair) {
@@ -180,7 +189,7 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* v
     }
   const std::vector<Warning> done = weld_and_repair_warnings(w, repaired);
   m.warnings.insert(m.warnings.begin(), done.begin(), done.end());
-  if (validated) *validated = std::move(w.mesh);
+  if (validated) *validated = w.unchanged ? copy_of(mesh) : std::move(w.mesh);
   return m;
 }
 
