@@ -168,7 +168,9 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* v
   if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
   // (A weld that changed nothing leaves the input as it is: it is validated in place.)
   const MeshView welded = w.unchanged ? mesh : w.mesh.view();
-  PreparedMesh m = judge_open(judge_shells(prepare_mesh(welded, options, true, purpose)), welded);
+  // (After a weld no two vertices share a position: equal positions are within any tolerance. A
+  // repair changes the faces after the weld, so its mesh is searched as any other.)
+  PreparedMesh m = judge_open(judge_shells(prepare_mesh(welded, options, true, purpose, !options.repair)), welded);
   // Faces are named by their index in the input (the witness): through the repair, then the weld.
   m.welded_source = std::move(w.source_face);
   if (options.repair) {
