@@ -158,6 +158,12 @@ TEST(Weld, MalformedInputIsReportedAsGiven) {
   Mesh nan = kergen_test::unit_cube();
   nan.positions[4] = std::nan("");
   EXPECT_EQ(kergen::compute_kernel(nan.view(), o).error, Error::NonFiniteCoordinate);
+  Mesh inf = kergen_test::unit_cube();
+  inf.positions.back() = -INFINITY;
+  EXPECT_EQ(kergen::compute_kernel(inf.view(), o).error, Error::NonFiniteCoordinate);
+  Mesh last = kergen_test::unit_cube();
+  last.indices.back() = uint32_t(last.num_vertices());  // (one past the end, in the last face)
+  EXPECT_EQ(kergen::compute_kernel(last.view(), o).error, Error::IndexOutOfRange);
   // Off by default: the soup stays open and the message says what to try.
   const kergen::Kernel open = kergen::compute_kernel(soup(kergen_test::unit_cube(), 0, 3).view());
   EXPECT_EQ(open.error, Error::OpenMesh);
