@@ -25,8 +25,10 @@ Warning unused_vertices_warning(size_t count) {
 }
 
 // The phases in order; each refuses the mesh or leaves its part of the state for the next.
-PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells, PrepareFor purpose) {
+PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells, PrepareFor purpose,
+                          bool positions_distinct) {
   Prep s(mesh, options, allow_shells, purpose == PrepareFor::Verdict);
+  s.positions_distinct = positions_distinct;
   s.nv = mesh.num_vertices;
   s.nf = mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3;
   s.m.input_faces = s.nf;

@@ -69,8 +69,10 @@ Warning unused_vertices_warning(size_t count);
 enum class PrepareFor { Faces, Verdict };
 
 // `allow_shells`: a closed mesh of several pieces is prepared (PreparedMesh::shells counts them)
-// instead of refused with Error::MultipleComponents.
+// instead of refused with Error::MultipleComponents. `positions_distinct`: no two vertices have
+// the same position (a weld has just merged every such pair), so the search for used vertices
+// that share one is skipped.
 PreparedMesh prepare_mesh(const MeshView& mesh, const Options& options, bool allow_shells = false,
-                          PrepareFor purpose = PrepareFor::Faces);
+                          PrepareFor purpose = PrepareFor::Faces, bool positions_distinct = false);
 
 }  // namespace kergen

@@ -77,6 +77,7 @@ struct Prep {
   // it): the unused vertices, whether two used vertices share a position, the bounding box of
   // the used vertices (its zero bounds' signs set by take_bounding_box).
   size_t unused = 0;
+  bool positions_distinct = false;  // (prepare_mesh's argument: no search needed)
   bool shared_position = false;
   double lo3[3], hi3[3];
 

@@ -128,6 +128,23 @@ bool has_shared_position(const std::vector<double>& pts, const std::vector<char>
   return shared_in_block();
 }
 
+// The bounding box of the used vertices, taken in id order (as has_shared_position takes it).
+void used_box(const std::vector<double>& pts, const std::vector<char>& used, double lo3[3], double hi3[3]) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  const double* P = pts.data();
+  for (size_t v = 0; v < used.size(); ++v) {
+    if (!used[v]) continue;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], P[3 * v + k]);
+      hi[k] = std::max(hi[k], P[3 * v + k]);
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    lo3[k] = lo[k];
+    hi3[k] = hi[k];
+  }
+}
+
 // The pair reported when used vertices share a position: the two lowest ids at the
 // lexicographically smallest shared position (a sort, run only once a pair is known to exist).
 std::array<uint32_t, 2> first_shared_position(const std::vector<double>& pts, const std::vector<char>& used) {
@@ -611,6 +628,10 @@ void find_shared_positions(Prep& s) {
   s.face_pairs.resize((s.clean_size + 1) / 2);
   uint64_t* scratch = reinterpret_cast<uint64_t*>(s.face_pairs.data());
   const size_t scratch_slots = s.face_pairs.size() * sizeof(s.face_pairs[0]) / sizeof(uint64_t);
+  if (s.positions_distinct) {
+    used_box(s.m.points, s.used, s.lo3, s.hi3);
+    return;
+  }
   s.shared_position = has_shared_position(s.m.points, s.used, s.nv - s.unused, s.lo3, s.hi3, scratch, scratch_slots);
 }
 

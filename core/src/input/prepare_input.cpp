@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <numeric>
 #include <string>
 #include <utility>
 
@@ -15,21 +17,38 @@
 #include "input/repair.h"
 #include "input/shells.h"
 #include "input/weld.h"
+#include "util/compiler_hints.h"
 #include "util/plural.h"
 
 namespace kergen {
 
 namespace {
 
+// Whether the n coordinates x are finite and the k indices below nv, as two reductions with no
+// early exit, so that they vectorize: the coordinates' largest magnitude as bits (without the sign
+// bit, doubles order like their bit patterns, and every NaN or infinity lies at or above
+// infinity's; below 2^63, so signed 64-bit maxima, which SIMD units have, order them) and the
+// largest index. (Multiversioned: the AVX2 clone takes four coordinates and eight indices a step.)
+KERGEN_MULTIVERSION
+bool finite_and_below(const double* x, size_t n, const uint32_t* index, size_t k, size_t nv) {
+  constexpr uint64_t kAbs = ~(uint64_t(1) << 63);
+  int64_t top = 0;
+  for (size_t i = 0; i < n; ++i) {
+    uint64_t b;
+    std::memcpy(&b, x + i, sizeof b);
+    top = std::max(top, int64_t(b & kAbs));
+  }
+  uint32_t largest = 0;
+  for (size_t i = 0; i < k; ++i) largest = std::max(largest, index[i]);
+  return top < int64_t(0x7ff0000000000000ll) && (k == 0 || largest < nv);
+}
+
 // Whether Options::weld can run on the input as given: finite coordinates, indices in range,
 // face sizes that add up, no face of fewer than three corners. Otherwise validation reports the
 // input's defect as given (welding would hide or change it).
 bool weldable(const MeshView& m) {
   if (m.num_vertices == 0 || (m.face_sizes == nullptr && m.num_indices % 3 != 0)) return false;
-  for (size_t i = 0; i < 3 * m.num_vertices; ++i)
-    if (!std::isfinite(m.positions[i])) return false;
-  for (size_t i = 0; i < m.num_indices; ++i)
-    if (m.indices[i] >= m.num_vertices) return false;
+  if (!finite_and_below(m.positions, 3 * m.num_vertices, m.indices, m.num_indices, m.num_vertices)) return false;
   if (m.face_sizes) {
     size_t sum = 0;
     for (size_t f = 0; f < m.num_faces; ++f) {
@@ -156,10 +175,20 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* v
   const bool can_weld = weldable(mesh);
   if (!can_weld) return judge_open(judge_shells(prepare_mesh(mesh, options, true, purpose)), mesh);
   WeldResult w = weld_vertices(mesh, weld ? options.weld : 0, weld && options.weld_relative);
+  if (w.unchanged && options.repair) {  // (repair changes its own copy)
+    w.mesh = copy_of(mesh);
+    w.source_face.resize(mesh.face_sizes ? mesh.num_faces : mesh.num_indices / 3);
+    std::iota(w.source_face.begin(), w.source_face.end(), 0u);
+    w.unchanged = false;
+  }
   RepairCounts repaired;
   std::vector<uint32_t> repair_kept;
   if (options.repair) repaired = repair_mesh(w.mesh, &repair_kept);
-  PreparedMesh m = judge_open(judge_shells(prepare_mesh(w.mesh.view(), options, true, purpose)), w.mesh.view());
+  // (A weld that changed nothing leaves the input as it is: it is validated in place.)
+  const MeshView welded = w.unchanged ? mesh : w.mesh.view();
+  // (After a weld no two vertices share a position: equal positions are within any tolerance. A
+  // repair changes the faces after the weld, so its mesh is searched as any other.)
+  PreparedMesh m = judge_open(judge_shells(prepare_mesh(welded, options, true, purpose, !options.repair)), welded);
   // Faces are named by their index in the input (the witness): through the repair, then the weld.
   m.welded_source = std::move(w.source_face);
   if (options.repair) {
@@ -180,7 +209,7 @@ PreparedMesh prepare_input(const MeshView& mesh, const Options& options, Mesh* v
     }
   const std::vector<Warning> done = weld_and_repair_warnings(w, repaired);
   m.warnings.insert(m.warnings.begin(), done.begin(), done.end());
-  if (validated) *validated = std::move(w.mesh);
+  if (validated) *validated = w.unchanged ? copy_of(mesh) : std::move(w.mesh);
   return m;
 }
 

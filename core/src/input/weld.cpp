@@ -6,18 +6,23 @@
 // 2^shift fine cells each, about as wide as the mean spacing of the vertices, hold the vertices
 // (usually one each); a vertex whose fine cell is inside its coarse cell, not on its boundary,
 // has all 27 fine neighbours in its own coarse cell, and only vertices on a coarse cell's boundary
-// look into the coarse cells next to it. Coarse cells that hold many vertices (a dense cluster)
-// are searched by fine cell, as a single-level grid would, so the work stays bounded by the fine
-// cells' occupancy. The pairs compared and merged are exactly the single-level grid's.
+// look into the coarse cells next to it. The coarse cells are found by a radix sort of the
+// vertices by cell (a hash table of them cost a cache miss a vertex, and its keys 24 bytes).
+// Coarse cells that hold many vertices (a dense cluster) are searched by fine cell, as a
+// single-level grid would, so the work stays bounded by the fine cells' occupancy. The pairs
+// compared and merged are exactly the single-level grid's. When none merge, nothing is copied.
 #include "input/weld.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <utility>
 #include <vector>
 
 #include "util/compiler_hints.h"
+#include "util/raw_vector.h"
 #include "util/union_find.h"
 
 namespace kergen {
@@ -55,7 +60,7 @@ uint64_t cell_hash(const Cell& c) {
   return h ^ (h >> 32);
 }
 
-// Cells numbered 0, 1, 2, ... in the order first inserted (open addressing, linear probing, at
+// Fine cells numbered 0, 1, 2, ... in the order first inserted (open addressing, linear probing, at
 // most half full). A slot holds 32 bits of the cell's hash and its number, so probing past another
 // cell's slot reads that cell's key only when those bits agree.
 class CellTable {
@@ -106,7 +111,7 @@ class CellTable {
 };
 
 // Vertices grouped by cell: each cell's members chained in increasing order (built while the
-// vertices are numbered in order, so no sorting).
+// vertices are numbered in order, so no sorting): the fine cells of dense coarse cells.
 struct Members {
   std::vector<uint32_t> first, last, count;  // per cell
   std::vector<uint32_t> next;                // per vertex: the next one in its cell, or kNone
@@ -128,9 +133,69 @@ struct Members {
 // A coarse cell holding more vertices than this is searched by fine cell.
 constexpr uint32_t kDenseCell = 16;
 
+// The points' bounding box.
+struct Box {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+};
+
+// A coarse cell's 32-bit key (CloseVertices): its coordinates relative to the box's lowest cell,
+// packed, when they fit in 32 bits, else 32 bits of its hash.
+struct KeyRule {
+  bool packed = false;
+  int bits = 32;  // the keys' width
+  int64_t low[3] = {0, 0, 0};
+  uint64_t span[3] = {0, 0, 0};
+  int axis_bits[3] = {0, 0, 0};
+  // The key of coarse cell c; false when c lies outside the box's cells (no vertex is there).
+  bool key_of(const Cell& c, uint32_t& key) const {
+    if (!packed) {
+      key = uint32_t(cell_hash(c) >> 32);
+      return true;
+    }
+    uint64_t at_all = 0;
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t at = uint64_t(c[k] - low[k]);
+      if (c[k] < low[k] || at > span[k]) return false;
+      at_all = at_all << axis_bits[k] | at;
+    }
+    key = uint32_t(at_all);
+    return true;
+  }
+};
+
+// Each point's key << 32 | its id, and on which sides its fine cell touches its coarse cell's
+// boundary (bit 2k: the low side along axis k, bit 2k + 1: the high side; none when reach is 0).
+// (Multiversioned: with AVX2 the floors of cell_of are one instruction each.)
+KERGEN_MULTIVERSION
+void key_points(const double* pts, size_t n, double tolerance, int shift, const KeyRule& rule, uint8_t* border_of,
+                uint64_t* keyed) {
+  const uint64_t last = (uint64_t(1) << shift) - 1;
+  const bool reach = tolerance != 0;
+  for (uint32_t v = 0; v < n; ++v) {
+    const Cell f = fine_cell(pts + 3 * size_t(v), tolerance);
+    uint8_t border = 0;
+    Cell c;
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t within = uint64_t(f[k]) & last;  // f[k] - 2^shift c[k]
+      border |= uint8_t((reach && within == 0) << (2 * k) | (reach && within == last) << (2 * k + 1));
+      c[k] = coarse_of(f[k], shift);
+    }
+    border_of[v] = border;
+    uint32_t key = 0;
+    rule.key_of(c, key);
+    keyed[v] = uint64_t(key) << 32 | v;
+  }
+}
+
+// The coarse cells are found by sorting, not hashing: each vertex gets a 32-bit key of its coarse
+// cell (the cell's coordinates relative to the box's lowest cell, packed, when they fit in 32
+// bits; else 32 bits of the cell's hash), and a stable radix sort of (key, vertex) lists the
+// vertices cell by cell, each cell's in increasing order (a run of equal keys). A hashed key's
+// run may hold several coarse cells; every pair compared is still judged by its fine cells
+// (join_if_close), so the pairs merged are the single-level grid's whatever the runs hold.
 class CloseVertices {
  public:
-  CloseVertices(const double* positions, size_t n, double tolerance, int shift, UnionFind& groups)
+  CloseVertices(const double* positions, size_t n, double tolerance, int shift, const Box& box, UnionFind& groups)
       : pts_(positions),
         n_(n),
         t_(tolerance),
@@ -138,55 +203,86 @@ class CloseVertices {
         reach_(tolerance == 0 ? 0 : 1),
         shift_(shift),
         groups_(groups),
-        coarse_(n),
-        coarse_id_(n),
         border_(n),
-        members_(n) {}
+        sorted_(n) {
+    choose_keys(box);
+  }
 
-  void run() {
-    assign_coarse_cells();
+  // The number of merges made (0: every vertex is its own group).
+  size_t run() {
+    sort_by_cell();
     index_dense_cells();
+    join_within_cells();
     for (uint32_t v = 0; v < n_; ++v)
-      if (border_[v] != 0 || members_.count[coarse_id_[v]] > 1) join_with_earlier(v);
+      if (border_[v] != 0) join_across_cells(v);
+    return unions_;
   }
 
  private:
-  // Each vertex's coarse cell, and on which sides its fine cell touches that cell's boundary
-  // (bit 2k: the low side along axis k, bit 2k + 1: the high side). Hashes are computed a block
-  // ahead and their slots prefetched: on big meshes every lookup misses the caches.
-  void assign_coarse_cells() {
-    constexpr uint32_t kBlock = 32;
-    const uint64_t last = (uint64_t(1) << shift_) - 1;
-    Cell cells[kBlock];
-    uint64_t hashes[kBlock];
-    for (uint32_t first = 0; first < n_; first += kBlock) {
-      const uint32_t count = std::min<uint32_t>(kBlock, uint32_t(n_ - first));
-      for (uint32_t i = 0; i < count; ++i) {
-        const uint32_t v = first + i;
-        const Cell f = fine_cell(pts_ + 3 * size_t(v), t_);
-        uint8_t border = 0;
-        for (int k = 0; k < 3; ++k) {
-          cells[i][k] = coarse_of(f[k], shift_);
-          const uint64_t within = uint64_t(f[k]) & last;  // f[k] - 2^shift cells[i][k]
-          border |= uint8_t((reach_ && within == 0) << (2 * k) | (reach_ && within == last) << (2 * k + 1));
-        }
-        border_[v] = border;
-        hashes[i] = cell_hash(cells[i]);
-        coarse_.prefetch_slot(hashes[i]);
+  Cell coarse_cell(const Cell& f) const {
+    return {coarse_of(f[0], shift_), coarse_of(f[1], shift_), coarse_of(f[2], shift_)};
+  }
+  // Packed keys when the coarse cells' coordinates span at most 32 bits in all (tolerance > 0:
+  // cell_of is then monotone, so the box's corners hold the extreme cells).
+  void choose_keys(const Box& box) {
+    if (t_ == 0) return;
+    const Cell lo = coarse_cell(fine_cell(box.lo, t_)), hi = coarse_cell(fine_cell(box.hi, t_));
+    int bits = 0;
+    for (int k = 0; k < 3; ++k) {
+      rule_.low[k] = lo[k];
+      rule_.span[k] = uint64_t(hi[k] - lo[k]);
+      while (rule_.axis_bits[k] < 63 && (rule_.span[k] >> rule_.axis_bits[k]) != 0) ++rule_.axis_bits[k];
+      bits += rule_.axis_bits[k];
+    }
+    rule_.packed = bits <= 32;
+    rule_.bits = rule_.packed ? bits : 32;
+  }
+  uint32_t key_at(size_t i) const { return uint32_t(sorted_[i] >> 32); }
+  uint32_t vertex_at(size_t i) const { return uint32_t(sorted_[i]); }
+
+  // The keys, then their LSD radix sort, 11 bits a pass (stable: a cell's vertices stay in
+  // increasing order).
+  void sort_by_cell() {
+    key_points(pts_, n_, t_, shift_, rule_, border_.data(), sorted_.data());
+    constexpr int kDigit = 11;
+    RawVector<uint64_t> other(n_);
+    std::vector<uint32_t> start(size_t(1) << kDigit);
+    for (int at = 32; at < 32 + rule_.bits; at += kDigit) {
+      std::fill(start.begin(), start.end(), 0u);
+      for (size_t i = 0; i < n_; ++i) ++start[(sorted_[i] >> at) & ((1u << kDigit) - 1)];
+      uint32_t total = 0;
+      for (uint32_t& s : start) {
+        const uint32_t size = s;
+        s = total;
+        total += size;
       }
-      for (uint32_t i = 0; i < count; ++i) {
-        coarse_id_[first + i] = coarse_.find_or_insert(cells[i], hashes[i]);
-        members_.add(first + i, coarse_id_[first + i]);
-      }
+      for (size_t i = 0; i < n_; ++i) other[start[(sorted_[i] >> at) & ((1u << kDigit) - 1)]++] = sorted_[i];
+      std::swap(sorted_, other);
     }
   }
 
-  // The vertices of dense coarse cells, grouped by fine cell.
+  // The end of the run that starts at `begin`.
+  size_t run_end(size_t begin) const {
+    size_t end = begin + 1;
+    while (end < n_ && key_at(end) == key_at(begin)) ++end;
+    return end;
+  }
+  // The run of `key`, empty when no vertex has it.
+  std::pair<size_t, size_t> run_of(uint32_t key) const {
+    const uint64_t* first = sorted_.data();
+    const uint64_t* at = std::lower_bound(first, first + n_, uint64_t(key) << 32);
+    const size_t begin = size_t(at - first);
+    return {begin, begin < n_ && key_at(begin) == key ? run_end(begin) : begin};
+  }
+
+  // The vertices of dense cells, grouped by fine cell.
   void index_dense_cells() {
     std::vector<uint32_t> dense;
-    for (uint32_t c = 0; c < members_.count.size(); ++c)
-      if (members_.count[c] > kDenseCell)
-        for (uint32_t v = members_.first[c]; v != CellTable::kNone; v = members_.next[v]) dense.push_back(v);
+    for (size_t begin = 0, end; begin < n_; begin = end) {
+      end = run_end(begin);
+      if (end - begin > kDenseCell)
+        for (size_t i = begin; i < end; ++i) dense.push_back(vertex_at(i));
+    }
     if (dense.empty()) return;
     std::sort(dense.begin(), dense.end());
     fine_ = CellTable(dense.size());
@@ -197,11 +293,29 @@ class CloseVertices {
     }
   }
 
-  // v against every earlier vertex in the 27 fine cells around its own.
-  void join_with_earlier(uint32_t v) {
+  // Each vertex against the earlier ones of its own coarse cell (its run).
+  void join_within_cells() {
+    for (size_t begin = 0, end; begin < n_; begin = end) {
+      end = run_end(begin);
+      if (end - begin == 1) continue;
+      for (size_t i = begin; i < end; ++i) {
+        const uint32_t v = vertex_at(i);
+        const double* p = pts_ + 3 * size_t(v);
+        const Cell f = fine_cell(p, t_);
+        if (end - begin > kDenseCell)
+          join_in_fine_cells(v, p, f, coarse_cell(f));
+        else
+          for (size_t j = begin; j < i; ++j) join_if_close(v, p, f, vertex_at(j));
+      }
+    }
+  }
+
+  // v, whose fine cell is on its coarse cell's boundary, against the earlier vertices of the
+  // coarse cells next to it on those sides.
+  void join_across_cells(uint32_t v) {
     const double* p = pts_ + 3 * size_t(v);
     const Cell f = fine_cell(p, t_);
-    const Cell home = coarse_.key(coarse_id_[v]);
+    const Cell home = coarse_cell(f);
     int lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
       lo[k] = border_[v] >> (2 * k) & 1 ? -1 : 0;
@@ -210,13 +324,15 @@ class CloseVertices {
     for (int dx = lo[0]; dx <= hi[0]; ++dx)
       for (int dy = lo[1]; dy <= hi[1]; ++dy)
         for (int dz = lo[2]; dz <= hi[2]; ++dz) {
+          if (dx == 0 && dy == 0 && dz == 0) continue;  // (join_within_cells)
           const Cell c = {home[0] + dx, home[1] + dy, home[2] + dz};
-          const uint32_t id = dx == 0 && dy == 0 && dz == 0 ? coarse_id_[v] : coarse_.find(c, cell_hash(c));
-          if (id == CellTable::kNone) continue;
-          if (members_.count[id] > kDenseCell)
+          uint32_t key;
+          if (!rule_.key_of(c, key)) continue;
+          const auto run = run_of(key);
+          if (run.second - run.first > kDenseCell)
             join_in_fine_cells(v, p, f, c);
           else
-            for (uint32_t w = members_.first[id]; w < v; w = members_.next[w]) join_if_close(v, p, f, w);
+            for (size_t j = run.first; j < run.second && vertex_at(j) < v; ++j) join_if_close(v, p, f, vertex_at(j));
         }
   }
 
@@ -242,7 +358,7 @@ class CloseVertices {
       if (!(f[k] == g[k] || (reach_ && (f[k] == g[k] + 1 || f[k] + 1 == g[k])))) return;
     const double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
     const bool close = t_ == 0 ? d[0] == 0 && d[1] == 0 && d[2] == 0 : d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= t2_;
-    if (close) groups_.unite(v, w);
+    if (close) unions_ += groups_.unite(v, w);
   }
 
   const double* pts_;
@@ -251,26 +367,28 @@ class CloseVertices {
   int reach_;  // fine cells compared around a vertex's own: 1, or 0 for exact equality
   int shift_;  // a coarse cell is 2^shift fine cells wide
   UnionFind& groups_;
-  CellTable coarse_;
-  std::vector<uint32_t> coarse_id_;
-  std::vector<uint8_t> border_;
-  Members members_;    // of the coarse cells
-  CellTable fine_{0};  // the fine cells of dense coarse cells' vertices
+  size_t unions_ = 0;
+  KeyRule rule_;
+  RawVector<uint8_t> border_;
+  RawVector<uint64_t> sorted_;  // key << 32 | vertex, by key, then vertex
+  CellTable fine_{0};           // the fine cells of dense coarse cells' vertices
   Members fine_members_;
 };
 
-// The diagonal of the points' bounding box.
-double diagonal_of(const double* pts, size_t n) {
-  if (n == 0) return 0;
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = pts[k];
+// The points' bounding box.
+Box box_of(const double* pts, size_t n) {
+  Box box;
+  if (n == 0) return box;
+  for (int k = 0; k < 3; ++k) box.lo[k] = box.hi[k] = pts[k];
   for (size_t v = 0; v < n; ++v)
     for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], pts[3 * v + k]);
-      hi[k] = std::max(hi[k], pts[3 * v + k]);
+      box.lo[k] = std::min(box.lo[k], pts[3 * v + k]);
+      box.hi[k] = std::max(box.hi[k], pts[3 * v + k]);
     }
-  return std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  return box;
 }
+
+double diagonal_of(const Box& b) { return std::hypot(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]); }
 
 // The coarse cells' width in fine cells, 2^shift: about the mean spacing of n vertices on a
 // surface that spans `diagonal`, so that a coarse cell holds about one vertex and a vertex's fine
@@ -283,13 +401,31 @@ int coarse_shift(double tolerance, double diagonal, size_t n) {
   return shift;
 }
 
-std::vector<uint32_t> groups_of(const double* pts, size_t n, double tolerance, double diagonal) {
+// Each point's group (its lowest-indexed member); empty when no two points merge.
+std::vector<uint32_t> groups_of(const double* pts, size_t n, double tolerance, const Box& box) {
   UnionFind groups(n);
-  CloseVertices(pts, n, tolerance, coarse_shift(tolerance, diagonal, n), groups).run();
+  const int shift = coarse_shift(tolerance, diagonal_of(box), n);
+  if (CloseVertices(pts, n, tolerance, shift, box, groups).run() == 0) return {};
   // (union_find.h: the smaller id is the root, so a group's root is its lowest-indexed vertex.)
   std::vector<uint32_t> root(n);
   for (uint32_t v = 0; v < n; ++v) root[v] = groups.find(v);
   return root;
+}
+
+// Whether some face has equal consecutive corners (the last and the first included), which
+// renumber_faces collapses even when no vertex merged.
+bool repeats_a_corner(const MeshView& mesh) {
+  const uint32_t* in = mesh.indices;
+  if (!mesh.face_sizes) {
+    bool repeats = false;  // (no early exit, and | rather than ||: the loop vectorizes)
+    for (size_t i = 0; i + 3 <= mesh.num_indices; i += 3)
+      repeats |= (in[i] == in[i + 1]) | (in[i + 1] == in[i + 2]) | (in[i + 2] == in[i]);
+    return repeats;
+  }
+  for (size_t f = 0, at = 0; f < mesh.num_faces; at += mesh.face_sizes[f++])
+    for (size_t i = 0, k = mesh.face_sizes[f]; i < k; ++i)
+      if (in[at + i] == in[at + (i + 1 == k ? 0 : i + 1)]) return true;
+  return false;
 }
 
 // The faces with each corner replaced by its group's vertex; equal consecutive corners collapse,
@@ -345,11 +481,19 @@ void renumber_faces(const MeshView& mesh, const std::vector<uint32_t>& root, Wel
 WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative) {
   WeldResult out;
   const size_t n = mesh.num_vertices;
-  const double diagonal = diagonal_of(mesh.positions, n);
-  if (relative && n > 0) tolerance *= diagonal;
+  const Box box = box_of(mesh.positions, n);
+  if (relative && n > 0) tolerance *= diagonal_of(box);
   if (!(tolerance >= 0) || !std::isfinite(tolerance)) tolerance = 0;
   out.tolerance = tolerance;
-  const std::vector<uint32_t> root = groups_of(mesh.positions, n, tolerance, diagonal);
+  std::vector<uint32_t> root = groups_of(mesh.positions, n, tolerance, box);
+  if (root.empty()) {  // no vertex merged: the faces change only where they repeat a corner
+    if (!repeats_a_corner(mesh)) {
+      out.unchanged = true;
+      return out;
+    }
+    root.resize(n);
+    std::iota(root.begin(), root.end(), 0u);
+  }
   for (uint32_t v = 0; v < n; ++v) out.merged_vertices += root[v] != v;
   out.mesh.positions.assign(mesh.positions, mesh.positions + 3 * n);
   renumber_faces(mesh, root, out);
@@ -357,7 +501,12 @@ WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative) 
 }
 
 std::vector<uint32_t> weld_groups(const double* positions, size_t n, double tolerance) {
-  return groups_of(positions, n, tolerance, diagonal_of(positions, n));
+  std::vector<uint32_t> root = groups_of(positions, n, tolerance, box_of(positions, n));
+  if (root.empty()) {
+    root.resize(n);
+    std::iota(root.begin(), root.end(), 0u);
+  }
+  return root;
 }
 
 }  // namespace kergen

@@ -17,14 +17,18 @@ struct WeldResult {
   size_t dropped_faces = 0;           // faces left with fewer than three distinct corners
   double tolerance = 0;               // the distance used (absolute)
   std::vector<uint32_t> source_face;  // the input face of each face of `mesh` (increasing)
+  // Nothing merged and no face changed: `mesh` and `source_face` are left empty (the input is
+  // the welded mesh; no copy of it is made).
+  bool unchanged = false;
 };
 
 // Vertices within `tolerance` of each other (Euclidean; relative: in units of the bounding box
 // diagonal) are merged transitively, each group into its lowest-indexed vertex, whose input
 // position it keeps (no coordinate is computed, so exactness downstream is unaffected). Equal
 // consecutive corners of a face collapse into one. `mesh` must have finite coordinates and
-// indices in range (checked by the caller). Expected O(n) (a hash grid of cells of the
-// tolerance's size, searched in two levels: weld.cpp).
+// indices in range (checked by the caller). O(n) expected (a grid of cells of the tolerance's
+// size, searched in two levels: weld.cpp); when no vertex merges and no face changes, the result
+// is `unchanged` and holds no copy of the input.
 WeldResult weld_vertices(const MeshView& mesh, double tolerance, bool relative);
 
 // The group of each of the n points (xyz), by the lowest-indexed point it is merged with (itself

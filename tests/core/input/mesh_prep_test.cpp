@@ -160,6 +160,30 @@ TEST(MeshPrep, AdjacentPairsOfTriangleQuadAndMixedCubes) {
 
 // A mesh oriented clockwise is flipped; each triangle is then its own representative, with the
 // flipped orientation.
+// After a weld no two vertices share a position, and prepare_mesh is told so (it skips that
+// search): the box (zero bounds' signs included), volume and faces are the same as with the
+// search. The cube is moved so that some coordinates are -0.
+TEST(MeshPrep, DistinctPositionsSkipOnlyTheSearch) {
+  Mesh cube = unit_cube();
+  for (size_t i = 0; i < cube.positions.size(); ++i)
+    if (cube.positions[i] == 0 && i % 2 == 0) cube.positions[i] = -0.0;
+  for (const Mesh& m : {unit_cube(), cube, quad_cube()})
+    for (const PrepareFor purpose : {PrepareFor::Faces, PrepareFor::Verdict}) {
+      const PreparedMesh searched = prepare_mesh(m.view(), Options{}, true, purpose, false);
+      const PreparedMesh skipped = prepare_mesh(m.view(), Options{}, true, purpose, true);
+      ASSERT_EQ(searched.error, Error::Ok) << searched.message;
+      ASSERT_EQ(skipped.error, Error::Ok) << skipped.message;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(std::signbit(searched.bbox_min[k]), std::signbit(skipped.bbox_min[k]));
+        EXPECT_EQ(searched.bbox_min[k], skipped.bbox_min[k]);
+        EXPECT_EQ(searched.bbox_max[k], skipped.bbox_max[k]);
+      }
+      EXPECT_EQ(searched.volume, skipped.volume);
+      EXPECT_EQ(searched.num_faces(), skipped.num_faces());
+      EXPECT_EQ(searched.warnings.size(), skipped.warnings.size());
+    }
+}
+
 TEST(MeshPrep, FlippedTrianglesAreTheirOwnRepresentatives) {
   Mesh m = unit_cube();
   for (size_t i = 0; i < m.indices.size(); i += 3) std::swap(m.indices[i], m.indices[i + 2]);

@@ -114,6 +114,41 @@ TEST(Weld, CollapsedFacesAreDroppedAndCounted) {
   EXPECT_NE(welded(k)->message.find("1 face that collapsed was dropped"), std::string::npos) << welded(k)->message;
 }
 
+// A weld that merges nothing leaves the input as it is (no copy): the kernel, its face sources
+// and the warnings are those of the run without weld. A face repeating a corner is still dropped
+// by the weld when nothing merges.
+TEST(Weld, NothingMergedIsTheInputAsGiven) {
+  const Mesh cube = kergen_test::unit_cube();
+  const kergen::WeldResult w = kergen::weld_vertices(cube.view(), 1e-9, true);
+  EXPECT_TRUE(w.unchanged);
+  EXPECT_EQ(w.merged_vertices, 0u);
+  EXPECT_TRUE(w.mesh.indices.empty());
+  Options o;
+  o.weld = 1e-9;
+  o.weld_relative = true;
+  const kergen::Kernel plain = kergen::compute_kernel(cube.view()), weld = kergen::compute_kernel(cube.view(), o);
+  ASSERT_TRUE(weld.ok()) << weld.message;
+  EXPECT_EQ(weld.vertices, plain.vertices);
+  EXPECT_EQ(weld.face_sources, plain.face_sources);
+  EXPECT_EQ(weld.warnings.size(), plain.warnings.size());
+  EXPECT_EQ(welded(weld), nullptr);
+  Options repaired = o;
+  repaired.repair = true;
+  EXPECT_EQ(kergen::compute_kernel(cube.view(), repaired).vertices, plain.vertices);
+
+  Mesh repeats = cube;  // one more face, a -> a -> b: dropped by the weld, no vertex merged
+  repeats.indices.insert(repeats.indices.end(), {0, 0, 1});
+  const kergen::WeldResult r = kergen::weld_vertices(repeats.view(), 1e-9, true);
+  EXPECT_FALSE(r.unchanged);
+  EXPECT_EQ(r.merged_vertices, 0u);
+  EXPECT_EQ(r.dropped_faces, 1u);
+  EXPECT_EQ(r.mesh.num_faces(), 12u);
+  const kergen::Kernel k = kergen::compute_kernel(repeats.view(), o);
+  ASSERT_TRUE(k.ok()) << k.message;
+  EXPECT_EQ(k.stats.dropped_faces, 1u);
+  EXPECT_EQ(k.vertices, plain.vertices);
+}
+
 TEST(Weld, MalformedInputIsReportedAsGiven) {
   Options o;
   o.weld = 1e-6;
@@ -123,6 +158,12 @@ TEST(Weld, MalformedInputIsReportedAsGiven) {
   Mesh nan = kergen_test::unit_cube();
   nan.positions[4] = std::nan("");
   EXPECT_EQ(kergen::compute_kernel(nan.view(), o).error, Error::NonFiniteCoordinate);
+  Mesh inf = kergen_test::unit_cube();
+  inf.positions.back() = -INFINITY;
+  EXPECT_EQ(kergen::compute_kernel(inf.view(), o).error, Error::NonFiniteCoordinate);
+  Mesh last = kergen_test::unit_cube();
+  last.indices.back() = uint32_t(last.num_vertices());  // (one past the end, in the last face)
+  EXPECT_EQ(kergen::compute_kernel(last.view(), o).error, Error::IndexOutOfRange);
   // Off by default: the soup stays open and the message says what to try.
   const kergen::Kernel open = kergen::compute_kernel(soup(kergen_test::unit_cube(), 0, 3).view());
   EXPECT_EQ(open.error, Error::OpenMesh);
