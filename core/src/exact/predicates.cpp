@@ -120,6 +120,109 @@ int side_exact_on_point_line(const PlaneSet& ps, uint32_t l, const VertexGeom& v
 }
 }  // namespace
 
+namespace {
+// The input points of side_on_point_line's factorisation, times 2^exact_shift: the anchor point
+// x, the other two corners of planes a and b in their cyclic order from x (so (a1 - x) x (a2 - x)
+// is a's normal as its representative triangle gives it, a positive multiple of n_a), and the
+// representative triangles of planes c and l.
+struct PointLineCorners {
+  double x[3], a1[3], a2[3], b1[3], b2[3], c[3][3], l[3][3];
+  // The factors below known to be 0 by construction (a point of the plane's own faces).
+  bool zero[8] = {false, false, false, false, false, false, false, false};
+};
+// Whether plane i is a triangle's plane through input point x as a corner; then the two other
+// corners in cyclic order from x.
+bool corners_from(const PlaneSet& ps, uint32_t i, uint32_t x, uint32_t& first, uint32_t& second) {
+  if (ps.explicit_plane(i)) return false;
+  const auto& r = ps.rep(i);
+  for (int k = 0; k < 3; ++k)
+    if (r[k] == x) {
+      first = r[(k + 1) % 3];
+      second = r[(k + 2) % 3];
+      return true;
+    }
+  return false;
+}
+void scaled_point(const PlaneSet& ps, uint32_t p, double out[3]) {
+  const Scaled s(ps.point(p), ps.exact_shift());
+  std::copy(s.v, s.v + 3, out);
+}
+// f_l(v) det3(n_a, n_b, n_c) for a vertex v on the line of planes a and b through their common
+// corner x (times a positive constant), from eight orient3d values of input points, each of
+// degree 3. With A_i = a_i - x, B_i = b_i - x, n_a = A1 x A2 and n_b = B1 x B2, the line's
+// direction is u = n_a x n_b = D1 B1 - D2 B2 (D1 = det3(A1, A2, B2), D2 = det3(A1, A2, B1)),
+// and n_m . B_i = f_m(b_i) - f_m(x) for any plane m. Put into f_l(x) (n_c . u) - f_c(x) (n_l . u)
+// (see side_through_anchor), the terms f_l(x) f_c(x) cancel:
+//   D1 (f_l(x) f_c(b1) - f_c(x) f_l(b1)) - D2 (f_l(x) f_c(b2) - f_c(x) f_l(b2)).
+// Every factor is a plane's value at an input point, accurate to its last bits in each number
+// type even where it is tiny (a plane through a point up to rounding, which is what makes the
+// vertex nearly incident to l), so the combination is decided with far less cancellation than
+// the plane coefficients' expansions had.
+template <class T, class Factor>
+T point_line_value(const PointLineCorners& k, Factor f) {
+  auto factor = [&](int i, const double* p, const double* q, const double* r, const double* s) {
+    return k.zero[i] ? T(0.0) : f(p, q, r, s);
+  };
+  const T d1 = factor(0, k.x, k.a1, k.a2, k.b2), d2 = factor(1, k.x, k.a1, k.a2, k.b1);
+  const T lx = factor(2, k.l[0], k.l[1], k.l[2], k.x), cx = factor(3, k.c[0], k.c[1], k.c[2], k.x);
+  const T lb1 = factor(4, k.l[0], k.l[1], k.l[2], k.b1), cb1 = factor(5, k.c[0], k.c[1], k.c[2], k.b1);
+  const T lb2 = factor(6, k.l[0], k.l[1], k.l[2], k.b2), cb2 = factor(7, k.c[0], k.c[1], k.c[2], k.b2);
+  return d1 * (lx * cb1 - cx * lb1) - d2 * (lx * cb2 - cx * lb2);
+}
+}  // namespace
+
+Approx orient3d_value(const double* a, const double* b, const double* c, const double* p) {
+  constexpr double kRelative = 0x1p-30;
+  const Approx d = orient3d_formula<Approx>(a, b, c, p);
+  if (d.e <= kRelative * std::fabs(d.v)) return d;
+  // |exact - v| <= e_dd + |(hi + lo) - v|, the latter below eps |v| (scaled up for its roundings).
+  const exact::ApproxDD dd = orient3d_formula<exact::ApproxDD>(a, b, c, p);
+  const double v = dd.hi + dd.lo, e = (dd.e + exact::kEps * std::fabs(v)) * exact::kBoundScale;
+  if (e <= kRelative * std::fabs(v)) return {v, e};
+  Expansion x = orient3d_formula<Expansion>(a, b, c, p);
+  x.compress();
+  const double rounded = x.estimate();
+  const Expansion rest = x - Expansion(rounded);
+  double r = 0;  // sum of |rest|'s components, rounded up by the factor
+  for (size_t i = 0; i < rest.size(); ++i) r += std::fabs(rest.data()[i]);
+  return {rounded, r * (1 + 2 * double(rest.size() + 1) * exact::kEps) * exact::kBoundScale};
+}
+
+int side_on_point_line(const PlaneSet& ps, uint32_t l, const VertexGeom& v, int* stage) {
+  const VertexAnchor an = vertex_anchor(ps, v);
+  if (an.kind != 1 || ps.explicit_plane(an.c) || ps.explicit_plane(l)) return 2;
+  uint32_t a1, a2, b1, b2;
+  if (!corners_from(ps, an.a, an.x, a1, a2) || !corners_from(ps, an.b, an.x, b1, b2)) return 2;
+  PointLineCorners k;
+  scaled_point(ps, an.x, k.x);
+  scaled_point(ps, a1, k.a1);
+  scaled_point(ps, a2, k.a2);
+  scaled_point(ps, b1, k.b1);
+  scaled_point(ps, b2, k.b2);
+  for (int i = 0; i < 3; ++i) {
+    scaled_point(ps, ps.rep(an.c)[i], k.c[i]);
+    scaled_point(ps, ps.rep(l)[i], k.l[i]);
+  }
+  // Factors of points on the plane by construction (neighbouring faces share corners) are 0.
+  const uint32_t plane_of[8] = {an.a, an.a, l, an.c, l, an.c, l, an.c},
+                 point_of[8] = {b2, b1, an.x, an.x, b1, b1, b2, b2};
+  for (int i = 0; i < 8; ++i) k.zero[i] = ps.point_on_plane(point_of[i], plane_of[i]);
+  // Factors accurate to 2^-30 of themselves: the combination decides in double unless it cancels
+  // itself; then in double-double, then exactly.
+  int s = point_line_value<Approx>(k, orient3d_value).sign(), decided_by = 0;
+  if (s == 2) {
+    s = point_line_value<exact::ApproxDD>(k, orient3d_formula<exact::ApproxDD>).sign();
+    decided_by = 1;
+  }
+  if (s == 2) {
+    s = point_line_value<Expansion>(k, orient3d_formula<Expansion>).sign();
+    decided_by = 2;
+  }
+  if (stage) *stage = decided_by;
+  // det3(n_a, n_b, n_c) is a cyclic shift of the basis order: its sign is det_sign.
+  return s * v.det_sign;
+}
+
 int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   // The defining planes hold the vertex by construction (their filtered value is a rounding
   // residue the filter cannot decide, and deciding it exactly costs a full Cramer solve).
@@ -154,6 +257,10 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v) {
   {
     const int sa = side_through_anchor(ps, l, v);
     if (sa != 2) return sa;
+  }
+  {
+    const int sp = side_on_point_line(ps, l, v);
+    if (sp != 2) return sp;
   }
   if (!v.exact) {
     // A vertex whose exact homogeneous coordinates are not known yet (the usual case: most

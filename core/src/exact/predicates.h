@@ -35,6 +35,18 @@ int side(const PlaneSet& ps, uint32_t l, const VertexGeom& v);
 // line of two basis planes through their shared input points), from signs of degree 3; 2 when
 // there is no such point. side() uses it before exact expansions.
 int side_through_anchor(const PlaneSet& ps, uint32_t l, const VertexGeom& v);
+// The same sign when the vertex lies on the line of two triangles' planes through their common
+// corner (kind 1 anchor), from eight orient3d values of input points, each of degree 3 (in
+// double from relatively accurate factors, then double-double, then exactly); 2 for other
+// vertices and planes (polygon planes not cornered at the point, explicit planes). side() uses it
+// where the double-double filter cannot decide. `stage`, when given, gets the stage that decided
+// (0 double, 1 double-double, 2 exact expansions), for tests.
+int side_on_point_line(const PlaneSet& ps, uint32_t l, const VertexGeom& v, int* stage = nullptr);
+// orient(a,b,c,p)'s value as a double v with a rigorous bound e, |v - exact| <= e, and e at most
+// 2^-30 |v| (e = 0 for an exact zero): the double formula where its own bound is that small,
+// else double-double, else the exact expansion rounded. Points as the exact stages take them
+// (scaled by 2^exact_shift: no underflow).
+Approx orient3d_value(const double* a, const double* b, const double* c, const double* p);
 // sign of orient(a,b,c,p) = ((b-a) x (c-a)) . (p-a) for input points; exact stages use the points
 // times 2^shift (same sign, no underflow).
 int orient3d(const double* a, const double* b, const double* c, const double* p, int shift = 0);

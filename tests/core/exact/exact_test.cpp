@@ -1,6 +1,8 @@
 // Exact arithmetic and predicates against integer arithmetic (__int128) as the independent truth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <random>
 #include <vector>
@@ -78,6 +80,63 @@ TEST(Exact, FilteredDet3BoundContainsTheExactDeterminant) {
     ASSERT_LE(std::fabs(diff.estimate()), d.e) << "case " << i;
     if (d.sign() != 2) ASSERT_EQ(d.sign(), exact.sign()) << "case " << i;
   }
+}
+
+// det3 in double-double (the running bound of each operation): entries hi + lo +- e around exact
+// values hi + lo + delta (|delta| <= e, e = 0 for known entries), general, nearly singular (a row
+// a combination of the others up to 1e-12 or up to 1e-31) and singular matrices (two equal rows):
+// the bound must contain the exact determinant, a decided sign must be exact, and the bound must
+// stay near double-double accuracy.
+TEST(Exact, DoubleDoubleDet3BoundContainsTheExactDeterminant) {
+  using kergen::exact::ApproxDD;
+  std::mt19937_64 rng(37);
+  std::uniform_real_distribution<double> U(-1, 1);
+  size_t decided = 0, undecided = 0;
+  for (int i = 0; i < 20000; ++i) {
+    double h[9], l[9], delta[9], e[9];
+    const double scale = std::ldexp(1.0, int(rng() % 60) - 30);
+    for (int k = 0; k < 9; ++k) h[k] = U(rng) * scale;
+    if (i % 3 != 0)  // nearly singular: row 3 = row 1 + row 2 / 2 + a perturbation
+      for (int k = 0; k < 3; ++k) h[6 + k] = h[k] + h[3 + k] * 0.5 + U(rng) * scale * (i % 3 == 1 ? 1e-12 : 1e-31);
+    for (int k = 0; k < 9; ++k) {
+      double lo = U(rng) * std::fabs(h[k]) * 1e-16, hi;
+      kergen::exact::eft::two_sum(h[k], lo, hi, lo);
+      h[k] = hi;
+      l[k] = lo;
+      e[k] = (i % 2) ? std::fabs(hi) * 1e-30 * (1 + k) : 0;
+      delta[k] = U(rng) * e[k];
+    }
+    if (i % 6 == 5)  // two equal rows, errors included: an exact zero
+      for (int k = 0; k < 3; ++k) {
+        h[6 + k] = h[k];
+        l[6 + k] = l[k];
+        e[6 + k] = e[k];
+        delta[6 + k] = delta[k];
+      }
+    ApproxDD a[9];
+    Expansion x[9];
+    for (int k = 0; k < 9; ++k) {
+      a[k] = ApproxDD(h[k], l[k], e[k]);
+      x[k] = Expansion(h[k]) + Expansion(l[k]) + Expansion(delta[k]);
+    }
+    const ApproxDD d = kergen::det3(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8]);
+    const Expansion exact = kergen::det3(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], x[8]);
+    const Expansion shown = Expansion(d.hi) + Expansion(d.lo);
+    ASSERT_LE((exact - shown - Expansion(d.e)).sign(), 0) << "case " << i;
+    ASSERT_GE((exact - shown + Expansion(d.e)).sign(), 0) << "case " << i;
+    double perm = 0;
+    for (double v : h) perm = std::max(perm, std::fabs(v));
+    perm = 6 * perm * perm * perm;
+    ASSERT_LE(d.e, 1e-28 * perm + 1e-20 * perm * (i % 2)) << "case " << i;
+    if (d.sign() != 2) {
+      ASSERT_EQ(d.sign(), exact.sign()) << "case " << i;
+      ++decided;
+    } else {
+      ++undecided;
+    }
+  }
+  EXPECT_GT(decided, 10000u);
+  EXPECT_GT(undecided, 100u) << "no case near the bound";
 }
 
 TEST(Exact, Orient3dMatchesIntegerArithmetic) {

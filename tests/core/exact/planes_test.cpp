@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "exact/formulas.h"
 #include "exact/predicates.h"
 #include "fixtures.h"
 #include "input/mesh_prep.h"
@@ -68,7 +69,8 @@ std::vector<std::array<uint32_t, 2>> planes_sharing(const Planes& p, int wanted)
 }
 
 struct Tally {
-  size_t det_checked = 0, det_undecided_by_filters = 0, side_checked = 0, anchor_decided = 0;
+  size_t det_checked = 0, det_undecided_by_filters = 0, side_checked = 0, anchor_decided = 0, point_line_decided = 0;
+  size_t point_line_by_stage[3] = {0, 0, 0};
 };
 
 // Pairs along an edge or through a point with nearby and random third planes, in all argument
@@ -125,6 +127,15 @@ void check_mesh(const Mesh& m, const std::string& name, Tally& t, size_t max_pai
           ASSERT_EQ(anchored, ref.side(ps, l)) << "anchor: plane " << l << " at vertex " << a << " " << b << " " << c;
           ++t.anchor_decided;
         }
+        // The orient3d factorisation on a line through one point, likewise.
+        int stage = -1;
+        const int on_point_line = side_on_point_line(ps, l, v, &stage);
+        if (on_point_line != 2) {
+          ASSERT_EQ(on_point_line, ref.side(ps, l))
+              << "point line: plane " << l << " at vertex " << a << " " << b << " " << c << ", stage " << stage;
+          ++t.point_line_decided;
+          ++t.point_line_by_stage[stage];
+        }
       }
       // Coordinates from the line formula agree with Cramer's quotient to double-double accuracy.
       double hi[3], lo[3];
@@ -139,10 +150,16 @@ TEST(Planes, LineShortcutsMatchExpansionsOnTwistedSphere) {
   // A fine, twisted UV sphere: neighbouring triangles are nearly coplanar.
   Tally t;
   check_mesh(kergen_test::uv_sphere(32, 16, 0.37), "uv_sphere 32x16", t, 100);
-  std::printf("sphere: %zu det signs, %zu undecided by both filters; %zu side tests, %zu by the anchor formula\n",
-              t.det_checked, t.det_undecided_by_filters, t.side_checked, t.anchor_decided);
+  std::printf(
+      "sphere: %zu det signs, %zu undecided by both filters; %zu side tests, %zu by the anchor formula, %zu by the "
+      "point-line factorisation (%zu / %zu / %zu in double / double-double / exactly)\n",
+      t.det_checked, t.det_undecided_by_filters, t.side_checked, t.anchor_decided, t.point_line_decided,
+      t.point_line_by_stage[0], t.point_line_by_stage[1], t.point_line_by_stage[2]);
   EXPECT_GT(t.side_checked, 0u);
   EXPECT_GT(t.anchor_decided, 0u);
+  EXPECT_GT(t.point_line_decided, 0u);
+  // Each stage of the factorisation met (and checked against Cramer above).
+  for (size_t decided : t.point_line_by_stage) EXPECT_GT(decided, 10u);
 }
 
 TEST(Planes, LineShortcutsMatchExpansionsOnVoronoiCells) {
@@ -162,6 +179,110 @@ TEST(Planes, LineShortcutsMatchExpansionsOnVoronoiCells) {
               t.det_checked, t.det_undecided_by_filters, t.side_checked, t.anchor_decided);
   EXPECT_GT(t.det_undecided_by_filters, 0u) << "the sample no longer exercises the exact shortcut";
   EXPECT_GT(t.anchor_decided, 0u);
+}
+
+// side_on_point_line's two stages against Cramer's rule in expansions, on constructed planes:
+// a and b are triangles with the common corner x, so their vertex with c lies on a line through
+// x; c and l pass through copies of x moved by 0 to 3 ulps per coordinate (the vertex is then
+// within a few ulps of x and nearly on l, the case a split polygon or a bent quad makes), or
+// through x itself (the vertex is x, on l: an exact zero), or l is a plane far away. Every
+// stage's sign must be the exact one, and each stage must decide some of the cases.
+TEST(Planes, PointLineFactorisationMatchesCramerOnNearlyIncidentPlanes) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> U(-1, 1);
+  auto nudged = [&](const double* p, double* out) {
+    for (int k = 0; k < 3; ++k) {
+      out[k] = p[k];
+      const int ulps = int(rng() % 7) - 3;
+      for (int i = 0; i < std::abs(ulps); ++i) out[k] = std::nextafter(out[k], ulps > 0 ? 2.0 : -2.0);
+    }
+  };
+  size_t by_stage[3] = {0, 0, 0}, zeros = 0, cases = 0;
+  for (int i = 0; i < 20000; ++i) {
+    std::vector<double> pts(11 * 3);
+    double* P[11];
+    for (int j = 0; j < 11; ++j) P[j] = &pts[3 * j];
+    const double size = std::ldexp(1.0, -int(rng() % 30));
+    for (int k = 0; k < 3; ++k) P[0][k] = U(rng);
+    for (int j = 1; j <= 4; ++j)  // a1, a2, b1, b2 around x
+      for (int k = 0; k < 3; ++k) P[j][k] = P[0][k] + size * U(rng);
+    nudged(P[0], P[5]);  // c through a copy of x
+    if (i % 8 == 7) {    // c and l through x itself
+      for (int k = 0; k < 3; ++k) P[5][k] = P[8][k] = P[0][k];
+    } else if (i % 4 == 3) {
+      for (int k = 0; k < 3; ++k) P[8][k] = U(rng);  // l anywhere
+    } else if (i % 4 == 2) {
+      for (int k = 0; k < 3; ++k) P[8][k] = P[5][k];  // l through c's point: the vertex may lie on l
+    } else {
+      nudged(P[0], P[8]);
+    }
+    for (int j : {6, 7})
+      for (int k = 0; k < 3; ++k) P[j][k] = P[5][k] + size * U(rng);
+    for (int j : {9, 10})
+      for (int k = 0; k < 3; ++k) P[j][k] = P[8][k] + size * U(rng);
+    PlaneSet ps(&pts);
+    const uint32_t a = ps.add_from_points(0, 1, 2), b = ps.add_from_points(0, 3, 4), c = ps.add_from_points(5, 6, 7),
+                   l = ps.add_from_points(8, 9, 10);
+    RawVector<uint32_t> offsets = {0, 3, 6, 9, 12}, rows = {0, 1, 2, 0, 3, 4, 5, 6, 7, 8, 9, 10};
+    ps.set_incidence(std::move(offsets), std::move(rows));
+    if (exact_det_sign(ps, a, b, c) == 0) continue;
+    const VertexGeom v = make_vertex(ps, a, b, c, false);
+    const int expected = Cramer(ps, a, b, c).side(ps, l);
+    int stage = -1;
+    ASSERT_EQ(side_on_point_line(ps, l, v, &stage), expected) << "case " << i << ", stage " << stage;
+    ASSERT_EQ(side(ps, l, v), expected) << "case " << i;
+    ++by_stage[stage];
+    zeros += expected == 0;
+    ++cases;
+  }
+  std::printf("point line: %zu cases, decided in double %zu, double-double %zu, exactly %zu; %zu zeros\n", cases,
+              by_stage[0], by_stage[1], by_stage[2], zeros);
+  EXPECT_GT(by_stage[0], 10000u);
+  EXPECT_GT(by_stage[2], 1000u);
+  EXPECT_GT(zeros, 1000u);
+}
+
+// orient3d_value's bound must contain the exact value and be below 2^-30 of it, through each of
+// its three ways: general points (double), points nearly coplanar by rounding (p a copy of a
+// point of the plane moved by a few ulps: double-double) and exactly coplanar or nearly
+// collinear ones (exact), at scales from 1 down to 2^-40.
+TEST(Planes, Orient3dValueBoundsContainTheExactValue) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> U(-1, 1);
+  size_t zeros = 0, refined = 0, cases = 0;
+  for (int i = 0; i < 30000; ++i) {
+    double p[4][3];
+    const double size = std::ldexp(1.0, -int(rng() % 40));
+    for (int k = 0; k < 3; ++k) p[0][k] = U(rng);
+    for (int j = 1; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) p[j][k] = p[0][k] + size * U(rng);
+    const int kind = i % 4;
+    for (int k = 0; k < 3; ++k) {
+      if (kind == 0) {
+        p[3][k] = p[0][k] + size * U(rng);
+      } else {  // a point of the plane (a, b, c, or on the line ab) moved by -3..3 ulps
+        p[3][k] = kind == 3 ? p[1][k] : p[int(rng() % 3)][k];
+        const int ulps = kind == 1 ? int(rng() % 7) - 3 : 0;
+        for (int u = 0; u < std::abs(ulps); ++u) p[3][k] = std::nextafter(p[3][k], ulps > 0 ? 2.0 : -2.0);
+      }
+    }
+    const Approx v = orient3d_value(p[0], p[1], p[2], p[3]);
+    const Expansion exact = formula::orient3d_formula<Expansion>(p[0], p[1], p[2], p[3]);
+    for (int end : {-1, 1}) {
+      const int s = (exact - Expansion(v.v) - Expansion(end * v.e)).sign();  // exact - (v +- e)
+      ASSERT_TRUE(end < 0 ? s >= 0 : s <= 0) << "case " << i << ": " << v.v << " +- " << v.e;
+    }
+    ASSERT_LE(v.e, std::ldexp(std::fabs(v.v), -30)) << "case " << i;
+    zeros += exact.sign() == 0;
+    // Nonzero values the double formula alone could not give to 2^-30 (the refined ways).
+    const Approx in_double = formula::orient3d_formula<Approx>(p[0], p[1], p[2], p[3]);
+    refined += exact.sign() != 0 && !(in_double.e <= std::ldexp(std::fabs(in_double.v), -30));
+    ++cases;
+  }
+  std::printf("orient3d values: %zu cases, %zu exact zeros, %zu nonzero refined beyond double\n", cases, zeros,
+              refined);
+  EXPECT_GT(zeros, 1000u);
+  EXPECT_GT(refined, 200u);
 }
 
 // The filtered plane of a triangle (the doubles every float scan uses) must contain the exact
