@@ -4,6 +4,7 @@
 #include "kergen/kergen.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -16,6 +17,9 @@
 #include "output/step_replay.h"
 #include "progress.h"
 #include "setup.h"
+#include "small/extreme_vertex.h"
+#include "small/kernel_path.h"
+#include "small/small_kernel.h"
 #include "solve/convex_answer.h"
 #include "solve/plane_culling.h"
 #include "solve/tracer.h"
@@ -24,12 +28,68 @@ namespace kergen {
 
 namespace {
 
+// Whether `path` takes the small-input path (small_kernel.h) for an input of `planes` mesh
+// planes: Auto up to kSmallPlaneLimit, Small always, never with step events (they replay a
+// trace from its start vertex, in the trace's numbering).
+bool small_path(const Options& options, KernelPath path, size_t planes) {
+  if (path == KernelPath::General || options.on_step || options.max_steps) return false;
+  return path == KernelPath::Small || planes <= kSmallPlaneLimit;
+}
+
+// The kernel clipped on the small-input path into `ct`. False when it does not apply or the
+// clipping hands over (a flat or empty kernel): the caller then traces.
+bool clip_small(const Setup& s, const Options& options, KernelPath path, CulledTrace& ct) {
+  if (!small_path(options, path, s.planes->size() - s.box.size())) return false;
+  std::vector<uint32_t> mesh_planes;
+  mesh_planes.reserve(s.planes->size());
+  for (uint32_t i = 0; i < s.planes->size(); ++i)
+    if (!s.is_box[i]) mesh_planes.push_back(i);
+  thread_local ClipPolytope clip;
+  if (!small_kernel_trace(*s.planes, mesh_planes, s.box, clip, ct.trace)) return false;
+  ct.active = std::move(mesh_planes);
+  ct.active.insert(ct.active.end(), s.box.begin(), s.box.end());
+  ct.start_vertex = 0;
+  ct.rounds = 1;
+  return true;
+}
+
+// The LP that setup deferred (Setup::defer_lp_up_to), answered from the clipped kernel when it
+// is full-dimensional and has one vertex certainly extreme in the LP's direction: that vertex is
+// the LP's optimum (its lexicographic tie-breaks never come into play). Else the LP is solved,
+// and the kernel traced as usual. True when `ct` holds the clipped kernel.
+// `tried` says whether the clipping ran (it is not tried twice).
+bool clip_instead_of_lp(const Options& options, KernelPath path, Setup& s, CulledTrace& ct, Stats& stats, bool& tried) {
+  if (!s.lp_deferred) return false;
+  s.lp_deferred = false;
+  tried = true;
+  // (The phases are reported as without the clipping, which finds the LP's vertex here: the
+  // progress a caller sees does not depend on the path.)
+  report(options, Progress::Phase::Lp, stats.distinct_planes);
+  const auto t = Clock::now();
+  double dir[3];
+  lp_direction(s, options, dir);
+  const bool clipped = s.mesh.shells == 1 && clip_small(s, options, path, ct);
+  if (clipped) {
+    const uint32_t top = certainly_extreme_vertex(ct.trace, dir);
+    if (top != kNoVertex) {
+      s.lp.outcome = LpResult::Outcome::Optimal;
+      s.lp.vertex = ct.trace.vertices[top].geom;
+      stats.ms_lp += ms_since(t);
+      return true;
+    }
+  }
+  s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
+  stats.ms_lp += ms_since(t);
+  return clipped;
+}
+
 // The kernel traced from the LP's vertex and certified (certify.h), into `ct`. It is traced
 // without events whatever the caller asked for; the stream is then replayed from the result
-// (step_replay.h), so steps never change the algorithm. False when `out` is final: the surface is
-// refused, or the trace failed (Error::Internal).
-bool trace_certified(const Setup& s, const Options& options, int unscale_exp, CulledTrace& ct, uint64_t& steps,
-                     Kernel& out) {
+// (step_replay.h), so steps never change the algorithm. Small inputs are clipped instead
+// (clip_small; `clipped`: already, `clip_tried`: tried in vain), with the same result. False when `out` is final: the
+// surface is refused, or the trace failed (Error::Internal).
+bool trace_certified(const Setup& s, const Options& options, KernelPath path, bool clipped, bool clip_tried,
+                     int unscale_exp, CulledTrace& ct, uint64_t& steps, Kernel& out) {
   const auto t = Clock::now();
   report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
   ReplayOptions ropt;
@@ -41,7 +101,7 @@ bool trace_certified(const Setup& s, const Options& options, int unscale_exp, Cu
     ropt.has_from = true;
     for (int k = 0; k < 3; ++k) ropt.from[k] = s.mesh.to_scaled(options.from[k]);
   }
-  ct = trace_kernel(s, options);
+  if (!clipped && (clip_tried || !clip_small(s, options, path, ct))) ct = trace_kernel(s, options);
   TraceResult& tr = ct.trace;
   if (!tr.internal_error && !certify_embedding(s, options, tr, out)) return false;
   if (!tr.internal_error && (options.on_step || options.max_steps)) replay_steps(*s.planes, ct.start_vertex, tr, ropt);
@@ -146,11 +206,12 @@ void offer_flipped(const MeshView& mesh, const Options& options, Kernel& out) {
   }
 }
 
-Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
+Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options, KernelPath path) {
   const auto t_total = Clock::now();
   Kernel out;
   Setup s;
   s.try_convex = !options.on_step && options.max_steps == 0;  // (step events replay a trace)
+  if (small_path(options, path, 0)) s.defer_lp_up_to = path == KernelPath::Small ? SIZE_MAX : kSmallPlaneLimit;
   setup(mesh, options, s, out.stats);
   out.warnings = s.mesh.warnings;
   if (s.mesh.error != Error::Ok) {
@@ -175,6 +236,9 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
     out.stats.ms_total = ms_since(t_total);
     return out;
   }
+  CulledTrace ct;
+  bool clip_tried = false;
+  const bool clipped = clip_instead_of_lp(options, path, s, ct, out.stats, clip_tried);
   if (s.lp.outcome != LpResult::Outcome::Infeasible && s.mesh.shells > 1) {
     refuse_nested_shells(s.mesh, out.error, out.message);
     out.stats.ms_total = ms_since(t_total);
@@ -197,9 +261,8 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
     double hi[3], lo[3];
     precise_coordinates(*s.planes, s.lp.vertex, hi, lo);
     for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(hi[k], unscale_exp);
-    CulledTrace ct;
     uint64_t steps = 0;  // events emitted, the replayed trace's then the faces'
-    if (!trace_certified(s, options, unscale_exp, ct, steps, out)) return out;
+    if (!trace_certified(s, options, path, clipped, clip_tried, unscale_exp, ct, steps, out)) return out;
     if (!assemble(s, options, unscale_exp, ct.trace, steps, out)) return out;
   }
   out.stats.exact_fallbacks = s.planes->exact_fallbacks;
@@ -209,10 +272,14 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
 
 }  // namespace
 
-Kernel compute_kernel(const MeshView& mesh, const Options& options) {
-  Kernel out = compute_kernel_as_given(mesh, options);
+Kernel compute_kernel_on_path(const MeshView& mesh, const Options& options, KernelPath path) {
+  Kernel out = compute_kernel_as_given(mesh, options, path);
   offer_flipped(mesh, options, out);
   return out;
+}
+
+Kernel compute_kernel(const MeshView& mesh, const Options& options) {
+  return compute_kernel_on_path(mesh, options, KernelPath::Auto);
 }
 
 KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {
