@@ -57,11 +57,20 @@ bool edge_between(const PlaneSet& ps, const TraceResult& tr, uint32_t a, uint32_
 TraceResult box_polytope(const PlaneSet& ps, const std::vector<uint32_t>& box) {
   TraceResult tr;
   tr.vertices.resize(8);
+  // Corner c lies at x_k = +-2 (bit k of c: the high side), on the box planes -x_k - 2 <= 0 and
+  // x_k - 2 <= 0 (add_bounding_box), whose normals -+e_k have determinant the product of their
+  // signs: exact without any evaluation.
   for (uint32_t c = 0; c < 8; ++c) {
     TracedVertex& v = tr.vertices[c];
-    for (int k = 0; k < 3; ++k) v.tight.push_back(box[2 * k + ((c >> k) & 1)]);
+    v.geom.det_sign = 1;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t high = (c >> k) & 1;
+      v.tight.push_back(box[2 * k + high]);
+      v.geom.basis[k] = box[2 * k + high];
+      v.geom.x[k] = Approx(high ? 2.0 : -2.0);
+      if (!high) v.geom.det_sign = -v.geom.det_sign;
+    }
     std::sort(v.tight.begin(), v.tight.end());
-    v.geom = make_vertex(ps, v.tight[0], v.tight[1], v.tight[2], false);
   }
   for (uint32_t c = 0; c < 8; ++c)
     for (int k = 0; k < 3; ++k) {

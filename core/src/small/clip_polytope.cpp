@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "exact/formulas.h"
 #include "exact/error_bounds.h"
+#include "exact/formulas.h"
 #include "exact/predicates.h"
 #include "exact/vertex.h"
 #include "small/box_polytope.h"
@@ -62,7 +62,7 @@ VertexGeom transient_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t
 void ClipPolytope::reset(const TraceResult& start) {
   vertices_.clear();
   filter_.clear();
-  alive_.clear();
+  live_.clear();
   for (const TracedVertex& v : start.vertices) add_vertex(TracedVertex(v));
   edges_.clear();
   for (const TracedEdge& e : start.edges) edges_.push_back({e.a, e.b});
@@ -70,8 +70,8 @@ void ClipPolytope::reset(const TraceResult& start) {
 
 uint32_t ClipPolytope::add_vertex(TracedVertex&& v) {
   filter_.push_back({{v.geom.x[0].v, v.geom.x[1].v, v.geom.x[2].v}, vertex_filter_terms(v.geom.x)});
-  alive_.push_back(1);
   vertices_.push_back(std::move(v));
+  live_.push_back(uint32_t(vertices_.size() - 1));
   return uint32_t(vertices_.size() - 1);
 }
 
@@ -84,11 +84,9 @@ bool ClipPolytope::clip(const PlaneSet& ps, uint32_t h) {
   const PlaneCoef<Approx> c = ps.approx(h);
   const double a = c.n[0].v, b = c.n[1].v, cz = c.n[2].v, d = c.d.v;
   const PlaneFilterTerms terms = plane_filter_terms(a, b, cz, d, c.n[0].e, c.n[1].e, c.n[2].e, c.d.e);
-  for (size_t v = 0; v < n; ++v) {
-    if (!alive_[v]) {
-      side_[v] = 2;
-      continue;
-    }
+  const size_t live = live_.size();
+  for (size_t i = 0; i < live; ++i) {
+    const uint32_t v = live_[i];
     const Filter& fv = filter_[v];
     const double f = a * fv.x[0] + b * fv.x[1] + cz * fv.x[2] + d;
     const double bound = vertex_filter_bound(terms, fv.terms) * exact::kBoundScale;
@@ -99,8 +97,8 @@ bool ClipPolytope::clip(const PlaneSet& ps, uint32_t h) {
   }
   if (!any_in) return false;
   cut_points_.clear();
-  for (uint32_t v = 0; v < n; ++v)
-    if (side_[v] == 0) {
+  for (size_t i = 0; i < live; ++i)
+    if (const uint32_t v = live_[i]; side_[v] == 0) {
       insert_sorted(vertices_[v].tight, h);
       cut_points_.push_back(v);
     }
@@ -138,8 +136,11 @@ bool ClipPolytope::clip(const PlaneSet& ps, uint32_t h) {
     e = {in, id};
   }
   if (!connect_cut_points(ps, h, first_new)) return false;
-  for (uint32_t v = 0; v < n; ++v)
-    if (side_[v] == 1) alive_[v] = 0;
+  // The survivors, then the cut points added after them (ids stay increasing).
+  size_t kept_live = 0;
+  for (size_t i = 0; i < live; ++i)
+    if (side_[live_[i]] <= 0) live_[kept_live++] = live_[i];
+  live_.erase(live_.begin() + kept_live, live_.begin() + live);
   size_t kept = 0;
   for (const auto& e : edges_)
     if (e[0] != kNoVertex) edges_[kept++] = e;
@@ -172,11 +173,8 @@ bool ClipPolytope::connect_cut_points(const PlaneSet& ps, uint32_t h, size_t fir
 bool ClipPolytope::finish(const PlaneSet& ps, TraceResult& out) {
   out = TraceResult();
   remap_.assign(vertices_.size(), kNoVertex);
-  size_t alive = 0;
-  for (char a : alive_) alive += a;
-  out.vertices.reserve(alive);
-  for (uint32_t v = 0; v < vertices_.size(); ++v) {
-    if (!alive_[v]) continue;
+  out.vertices.reserve(live_.size());
+  for (uint32_t v : live_) {
     remap_[v] = uint32_t(out.vertices.size());
     TracedVertex& tv = vertices_[v];
     // The survivors as make_vertex makes them (with their input point, or refined

@@ -47,13 +47,14 @@ class ClipPolytope {
   uint32_t add_vertex(TracedVertex&& v);
   bool connect_cut_points(const PlaneSet& ps, uint32_t h, size_t first_new);
 
-  // Vertices are only appended (a cut-away one is marked dead): a clip moves no vertex record.
+  // Vertices are only appended (a cut-away one leaves the live list): a clip moves no vertex
+  // record.
   std::vector<TracedVertex> vertices_;
   std::vector<Filter> filter_;
-  std::vector<char> alive_;
+  std::vector<uint32_t> live_;  // the polytope's vertices, increasing
   std::vector<std::array<uint32_t, 2>> edges_;
-  std::vector<int8_t> side_;            // per vertex: its side of the plane being clipped by
-  std::vector<uint32_t> cut_points_;    // vertices on the plane after the cut
+  std::vector<int8_t> side_;          // per vertex: its side of the plane being clipped by
+  std::vector<uint32_t> cut_points_;  // vertices on the plane after the cut
   std::vector<uint32_t> remap_;
   PlaneIds shared_;
 };
