@@ -171,7 +171,10 @@ bool ClipPolytope::connect_cut_points(const PlaneSet& ps, uint32_t h, size_t fir
 }
 
 bool ClipPolytope::finish(const PlaneSet& ps, TraceResult& out) {
-  out = TraceResult();
+  out.vertices.clear();  // (cleared, not replaced: a batch keeps their capacity)
+  out.edges.clear();
+  out.complete = true;
+  out.internal_error = false;
   remap_.assign(vertices_.size(), kNoVertex);
   out.vertices.reserve(live_.size());
   for (uint32_t v : live_) {

@@ -14,7 +14,14 @@ enum class KernelPath {
   Small,    // clip whatever the number of planes (still never with step events, nor flat kernels)
 };
 
+struct KernelWorkspace;  // workspace.h
+
 // compute_kernel(mesh, options) on `path`.
 Kernel compute_kernel_on_path(const MeshView& mesh, const Options& options, KernelPath path);
+
+// The same into `out` (every field overwritten, its arrays' capacity kept), with the working
+// memory of `ws` (whose capacity is kept too): KernelBatch's call.
+void compute_kernel_into(const MeshView& mesh, const Options& options, KernelPath path, KernelWorkspace& ws,
+                         Kernel& out);
 
 }  // namespace kergen
