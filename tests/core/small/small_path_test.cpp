@@ -11,6 +11,7 @@
 #include "exact/plane_store.h"
 #include "exact/vertex.h"
 #include "fixtures.h"
+#include "kergen/io.h"
 #include "kergen/kergen.h"
 #include "small/clip_polytope.h"
 #include "small/extreme_vertex.h"
@@ -193,6 +194,70 @@ TEST(SmallPath, AnalyticKernels) {
   kergen::Options open;
   open.allow_open = true;
   both_paths(open_cube(), "open cube", open);
+}
+
+// A kernel far from the origin (x near -1e6, the rest of size 1) with pairs of vertices whose
+// coordinates round to the same doubles: their order is their exact coordinates' (found by the
+// differential fuzzer: the low parts of the coordinates, which follow the planes a vertex was
+// found on, had ordered them differently on the two paths).
+TEST(SmallPath, VerticesRoundingAlikeInExactOrder) {
+  const kergen::ReadResult r = kergen::read_off(R"(OFF
+17 30 0
+-1000000 0 1
+-1000000 0 -1
+-999999.16789321881 0 0.83210678118654768
+-999999.81274198776 0.57632090142723058 0.60597965688967914
+-1000000.6033114028 0.43833139177762104 0.745733905483416
+-1000000.6033114028 -0.43833139177762087 0.745733905483416
+-999999.81274198776 -0.57632090142723058 0.60597965688967903
+-999999.25 0 4.5924254968025742e-17
+-999999.62848300568 1.1434117373686068 7.3616840865081302e-17
+-1000000.7465169943 0.54237634429213821 5.6501881544324978e-17
+-1000000.7465169943 -0.54237634429213788 5.6501881544324965e-17
+-999999.62848300568 -1.143411737368607 7.3616840865081302e-17
+-999999.16789321881 0 -0.83210678118654735
+-999999.81274198776 0.57632090142723069 -0.60597965688967903
+-1000000.6033114028 0.43833139177762109 -0.74573390548341589
+-1000000.6033114028 -0.43833139177762093 -0.74573390548341589
+-999999.81274198776 -0.57632090142723069 -0.60597965688967903
+3 0 2 3
+3 1 13 12
+3 0 3 4
+3 1 14 13
+3 0 4 5
+3 1 15 14
+3 0 5 6
+3 1 16 15
+3 0 6 2
+3 1 12 16
+3 2 7 8
+3 2 8 3
+3 3 8 9
+3 3 9 4
+3 4 9 10
+3 4 10 5
+3 5 10 11
+3 5 11 6
+3 6 11 7
+3 6 7 2
+3 7 12 13
+3 7 13 8
+3 8 13 14
+3 8 14 9
+3 9 14 15
+3 9 15 10
+3 10 15 16
+3 10 16 11
+3 11 16 12
+3 11 12 7
+)");
+  ASSERT_TRUE(r.ok()) << r.message;
+  const Kernel k = both_paths(r.mesh, "far kernel with ties");
+  ASSERT_TRUE(k.ok());
+  size_t ties = 0;
+  for (size_t i = 1; i < k.num_vertices(); ++i)
+    ties += std::equal(&k.vertices[3 * i - 3], &k.vertices[3 * i], &k.vertices[3 * i]);
+  EXPECT_GT(ties, 0u);
 }
 
 #ifdef KERGEN_SHARED_MESHES
