@@ -59,7 +59,17 @@ VertexGeom transient_vertex(const PlaneSet& ps, uint32_t a, uint32_t b, uint32_t
 
 }  // namespace
 
-void ClipPolytope::reset(const TraceResult& start) {
+void ClipPolytope::reset(const TraceResult& start, size_t clips) {
+  // Room for what the clips add (measured on the polyhedra sets: about four vertices and six
+  // edges a clip), so that a first use allocates each array once instead of growing it.
+  const size_t room_v = start.vertices.size() + 6 * clips, room_e = start.edges.size() + 9 * clips;
+  vertices_.reserve(room_v);
+  filter_.reserve(room_v);
+  live_.reserve(room_v);
+  side_.reserve(room_v);
+  remap_.reserve(room_v);
+  edges_.reserve(room_e);
+  cut_points_.reserve(16);
   vertices_.clear();
   filter_.clear();
   live_.clear();

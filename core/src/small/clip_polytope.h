@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -26,9 +27,9 @@ namespace kergen {
 
 class ClipPolytope {
  public:
-  // Starts from the polytope `start` (a complete trace, e.g. box_polytope's); buffers are
-  // kept from earlier uses.
-  void reset(const TraceResult& start);
+  // Starts from the polytope `start` (a complete trace, e.g. box_polytope's) for about `clips`
+  // clips; buffers are kept from earlier uses.
+  void reset(const TraceResult& start, size_t clips);
   // Clips by the inner half-space of plane h (not yet clipped by, nor its opposite). False when
   // the result is not full-dimensional (no vertex strictly inside: empty or flat), or a cut
   // meets a configuration a convex polytope cannot have; the polytope is then unspecified.

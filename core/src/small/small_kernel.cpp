@@ -44,7 +44,7 @@ void spread_order(const PlaneSet& ps, const std::vector<uint32_t>& planes, std::
 
 bool small_kernel_trace(const PlaneSet& ps, const std::vector<uint32_t>& planes, const std::vector<uint32_t>& box,
                         ClipPolytope& clip, TraceResult& out) {
-  clip.reset(box_polytope(ps, box));
+  clip.reset(box_polytope(ps, box), planes.size());
   // Normals spread out first (each next plane the one whose normal is farthest from those of
   // the planes clipped by so far): the polytope is then near the kernel before the nearly
   // coplanar planes of a split polygon come, whose cuts would otherwise make vertices of poorly
