@@ -4,8 +4,8 @@
 // binary little- and big-endian) into OUT_DIR/{fuzz_off,fuzz_obj,fuzz_stl_ascii,fuzz_stl_binary,
 // fuzz_ply}/, copies the original file into
 // the directory of its own format as it is (so format quirks are kept), and writes one seed per
-// generated base mesh for fuzz_kernel, and volume seeds (each small mesh as one cell) for fuzz_vtu,
-// fuzz_vtk_legacy and fuzz_node_ele.
+// generated base mesh for fuzz_kernel (and fuzz_small_path), and volume seeds (each small mesh as one cell) for
+// fuzz_vtu, fuzz_vtk_legacy and fuzz_node_ele.
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -167,8 +167,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string out = argv[1];
-  const char* dirs[] = {"fuzz_off",    "fuzz_obj",   "fuzz_stl_ascii", "fuzz_stl_binary", "fuzz_ply",
-                        "fuzz_kernel", "fuzz_batch", "fuzz_vtu",       "fuzz_vtk_legacy", "fuzz_node_ele"};
+  const char* dirs[] = {"fuzz_off",   "fuzz_obj", "fuzz_stl_ascii",  "fuzz_stl_binary", "fuzz_ply",       "fuzz_kernel",
+                        "fuzz_batch", "fuzz_vtu", "fuzz_vtk_legacy", "fuzz_node_ele",   "fuzz_small_path"};
   mkdir(out.c_str(), 0755);
   for (const char* d : dirs) mkdir((out + "/" + d).c_str(), 0755);
   int written = 0;
@@ -209,6 +209,8 @@ int main(int argc, char** argv) {
       s += char(sb);
       s += char(0);
       put(out + "/fuzz_kernel/base-" + std::to_string(which) + "-" + std::to_string(sb), s);
+      // fuzz_small_path decodes its input as fuzz_kernel does: the same seeds.
+      put(out + "/fuzz_small_path/base-" + std::to_string(which) + "-" + std::to_string(sb), s);
     }
   // fuzz_batch: pairs and quadruples of base meshes (a large one next to small ones, star and
   // not, open and closed), each part 8 bytes.

@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_off fuzz_obj fuzz_stl_ascii fuzz_stl_binary fuzz_ply fuzz_kernel fuzz_batch fuzz_vtu fuzz_vtk_legacy fuzz_node_ele)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_off fuzz_obj fuzz_stl_ascii fuzz_stl_binary fuzz_ply fuzz_kernel fuzz_batch fuzz_small_path fuzz_vtu fuzz_vtk_legacy fuzz_node_ele)
 BUILD=${KERGEN_FUZZ_BUILD:-build-fuzz}
 SHARED=${KERGEN_SHARED_MESHES:-../shared/meshes}
 JOBS=${KERGEN_FUZZ_JOBS:-1}

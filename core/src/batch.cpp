@@ -1,12 +1,18 @@
 // KernelBatch and compute_kernels (batch.h): compute_kernel's pipeline, called from a per-thread
-// object that later versions can keep working memory in (none is kept yet: see batch.h).
+// object that keeps the pipeline's working memory (workspace.h) and fills the caller's Kernel in
+// place.
 #include "kergen/batch.h"
 
 #include <utility>
 
+#include "small/kernel_path.h"
+#include "workspace.h"
+
 namespace kergen {
 
-struct KernelBatch::Workspace {};
+struct KernelBatch::Workspace {
+  KernelWorkspace kernel;
+};
 
 KernelBatch::KernelBatch() : workspace_(std::make_unique<Workspace>()) {}
 KernelBatch::~KernelBatch() = default;
@@ -21,7 +27,7 @@ Kernel KernelBatch::compute(const MeshView& mesh, const Options& options) {
 
 void KernelBatch::compute(const MeshView& mesh, const Options& options, Kernel& result) {
   if (!workspace_) workspace_ = std::make_unique<Workspace>();  // moved from: usable again
-  result = compute_kernel(mesh, options);
+  compute_kernel_into(mesh, options, KernelPath::Auto, workspace_->kernel, result);
 }
 
 void KernelBatch::release() { workspace_ = std::make_unique<Workspace>(); }

@@ -4,6 +4,7 @@
 #include "kergen/kergen.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -16,20 +17,80 @@
 #include "output/step_replay.h"
 #include "progress.h"
 #include "setup.h"
+#include "small/extreme_vertex.h"
+#include "small/kernel_path.h"
+#include "small/small_kernel.h"
 #include "solve/convex_answer.h"
 #include "solve/plane_culling.h"
 #include "solve/tracer.h"
+#include "workspace.h"
 
 namespace kergen {
 
 namespace {
 
+// Whether `path` takes the small-input path (small_kernel.h) for an input of `planes` mesh
+// planes: Auto up to kSmallPlaneLimit, Small always, never with step events (they replay a
+// trace from its start vertex, in the trace's numbering).
+bool small_path(const Options& options, KernelPath path, size_t planes) {
+  if (path == KernelPath::General || options.on_step || options.max_steps) return false;
+  return path == KernelPath::Small || planes <= kSmallPlaneLimit;
+}
+
+// The kernel clipped on the small-input path into `ct`. False when it does not apply or the
+// clipping hands over (a flat or empty kernel): the caller then traces.
+bool clip_small(const Setup& s, const Options& options, KernelPath path, ClipPolytope& clip, CulledTrace& ct) {
+  if (!small_path(options, path, s.planes->size() - s.box.size())) return false;
+  std::vector<uint32_t> mesh_planes;
+  mesh_planes.reserve(s.planes->size());
+  for (uint32_t i = 0; i < s.planes->size(); ++i)
+    if (!s.is_box[i]) mesh_planes.push_back(i);
+  if (!small_kernel_trace(*s.planes, mesh_planes, s.box, clip, ct.trace)) return false;
+  ct.active = std::move(mesh_planes);
+  ct.active.insert(ct.active.end(), s.box.begin(), s.box.end());
+  ct.start_vertex = 0;
+  ct.rounds = 1;
+  return true;
+}
+
+// The LP that setup deferred (Setup::defer_lp_up_to), answered from the clipped kernel when it
+// is full-dimensional and has one vertex certainly extreme in the LP's direction: that vertex is
+// the LP's optimum (its lexicographic tie-breaks never come into play). Else the LP is solved,
+// and the kernel traced as usual. True when `ct` holds the clipped kernel.
+// `tried` says whether the clipping ran (it is not tried twice).
+bool clip_instead_of_lp(const Options& options, KernelPath path, Setup& s, ClipPolytope& clip, CulledTrace& ct,
+                        Stats& stats, bool& tried) {
+  if (!s.lp_deferred) return false;
+  s.lp_deferred = false;
+  tried = true;
+  // (The phases are reported as without the clipping, which finds the LP's vertex here: the
+  // progress a caller sees does not depend on the path.)
+  report(options, Progress::Phase::Lp, stats.distinct_planes);
+  const auto t = Clock::now();
+  double dir[3];
+  lp_direction(s, options, dir);
+  const bool clipped = s.mesh.shells == 1 && clip_small(s, options, path, clip, ct);
+  if (clipped) {
+    const uint32_t top = certainly_extreme_vertex(ct.trace, dir);
+    if (top != kNoVertex) {
+      s.lp.outcome = LpResult::Outcome::Optimal;
+      s.lp.vertex = ct.trace.vertices[top].geom;
+      stats.ms_lp += ms_since(t);
+      return true;
+    }
+  }
+  s.lp = solve_lp(*s.planes, s.active, dir, kLpBound, options.seed);
+  stats.ms_lp += ms_since(t);
+  return clipped;
+}
+
 // The kernel traced from the LP's vertex and certified (certify.h), into `ct`. It is traced
 // without events whatever the caller asked for; the stream is then replayed from the result
-// (step_replay.h), so steps never change the algorithm. False when `out` is final: the surface is
-// refused, or the trace failed (Error::Internal).
-bool trace_certified(const Setup& s, const Options& options, int unscale_exp, CulledTrace& ct, uint64_t& steps,
-                     Kernel& out) {
+// (step_replay.h), so steps never change the algorithm. Small inputs are clipped instead
+// (clip_small; `clipped`: already, `clip_tried`: tried in vain), with the same result. False when `out` is final: the
+// surface is refused, or the trace failed (Error::Internal).
+bool trace_certified(const Setup& s, const Options& options, KernelPath path, bool clipped, bool clip_tried,
+                     int unscale_exp, ClipPolytope& clip, CulledTrace& ct, uint64_t& steps, Kernel& out) {
   const auto t = Clock::now();
   report(options, Progress::Phase::Tracing, out.stats.distinct_planes);
   ReplayOptions ropt;
@@ -41,7 +102,7 @@ bool trace_certified(const Setup& s, const Options& options, int unscale_exp, Cu
     ropt.has_from = true;
     for (int k = 0; k < 3; ++k) ropt.from[k] = s.mesh.to_scaled(options.from[k]);
   }
-  ct = trace_kernel(s, options);
+  if (!clipped && (clip_tried || !clip_small(s, options, path, clip, ct))) ct = trace_kernel(s, options);
   TraceResult& tr = ct.trace;
   if (!tr.internal_error && !certify_embedding(s, options, tr, out)) return false;
   if (!tr.internal_error && (options.on_step || options.max_steps)) replay_steps(*s.planes, ct.start_vertex, tr, ropt);
@@ -146,18 +207,40 @@ void offer_flipped(const MeshView& mesh, const Options& options, Kernel& out) {
   }
 }
 
-Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
+// `out` as a default Kernel, its arrays emptied but keeping their capacity (KernelBatch fills
+// the same Kernel again and again).
+void clear_keeping_capacity(Kernel& out) {
+  Kernel fresh;
+  auto keep = [](auto& from, auto& to) {
+    from.clear();
+    std::swap(from, to);
+  };
+  keep(out.message, fresh.message);
+  keep(out.vertices, fresh.vertices);
+  keep(out.edges, fresh.edges);
+  keep(out.face_indices, fresh.face_indices);
+  keep(out.face_sizes, fresh.face_sizes);
+  keep(out.triangles, fresh.triangles);
+  keep(out.face_sources, fresh.face_sources);
+  keep(out.witness_faces, fresh.witness_faces);
+  keep(out.witness_boundary_edges, fresh.witness_boundary_edges);
+  keep(out.warnings, fresh.warnings);
+  out = std::move(fresh);
+}
+
+void compute_kernel_as_given(const MeshView& mesh, const Options& options, KernelPath path, KernelWorkspace& ws,
+                             Kernel& out) {
   const auto t_total = Clock::now();
-  Kernel out;
   Setup s;
   s.try_convex = !options.on_step && options.max_steps == 0;  // (step events replay a trace)
+  if (small_path(options, path, 0)) s.defer_lp_up_to = path == KernelPath::Small ? SIZE_MAX : kSmallPlaneLimit;
   setup(mesh, options, s, out.stats);
   out.warnings = s.mesh.warnings;
   if (s.mesh.error != Error::Ok) {
     out.error = s.mesh.error;
     out.message = s.mesh.message;
     out.stats.ms_total = ms_since(t_total);
-    return out;
+    return;
   }
   const int unscale_exp = -s.mesh.scale_exp;  // outputs: scaled values times 2^unscale_exp
   out.shape_volume = std::ldexp(s.mesh.volume, 3 * unscale_exp);
@@ -165,20 +248,23 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
     out.type = KernelType::Empty;
     input_witness(s, out.witness_faces, out.witness_boundary_edges);
     out.stats.ms_total = ms_since(t_total);
-    return out;
+    return;
   }
   out.stats.active_planes = s.planes->size() - s.box.size();
 
   if (s.convex) {
-    if (!convex_kernel(s, options, unscale_exp, out)) return out;
+    if (!convex_kernel(s, options, unscale_exp, out)) return;
     out.stats.exact_fallbacks = s.planes->exact_fallbacks;
     out.stats.ms_total = ms_since(t_total);
-    return out;
+    return;
   }
+  CulledTrace& ct = ws.trace;
+  bool clip_tried = false;
+  const bool clipped = clip_instead_of_lp(options, path, s, ws.clip, ct, out.stats, clip_tried);
   if (s.lp.outcome != LpResult::Outcome::Infeasible && s.mesh.shells > 1) {
     refuse_nested_shells(s.mesh, out.error, out.message);
     out.stats.ms_total = ms_since(t_total);
-    return out;
+    return;
   }
   if (s.lp.outcome == LpResult::Outcome::Infeasible) {
     out.type = KernelType::Empty;
@@ -188,7 +274,7 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
     if (!certify_no_contact(s, out.error, out.message, out.warnings)) {
       out.type = KernelType::Empty;
       out.stats.ms_total = ms_since(t_total);
-      return out;
+      return;
     }
   } else {
     out.has_kernel_point = true;
@@ -197,22 +283,33 @@ Kernel compute_kernel_as_given(const MeshView& mesh, const Options& options) {
     double hi[3], lo[3];
     precise_coordinates(*s.planes, s.lp.vertex, hi, lo);
     for (int k = 0; k < 3; ++k) out.kernel_point[k] = std::ldexp(hi[k], unscale_exp);
-    CulledTrace ct;
     uint64_t steps = 0;  // events emitted, the replayed trace's then the faces'
-    if (!trace_certified(s, options, unscale_exp, ct, steps, out)) return out;
-    if (!assemble(s, options, unscale_exp, ct.trace, steps, out)) return out;
+    if (!trace_certified(s, options, path, clipped, clip_tried, unscale_exp, ws.clip, ct, steps, out)) return;
+    if (!assemble(s, options, unscale_exp, ct.trace, steps, out)) return;
   }
   out.stats.exact_fallbacks = s.planes->exact_fallbacks;
   out.stats.ms_total = ms_since(t_total);
-  return out;
+  return;
 }
 
 }  // namespace
 
-Kernel compute_kernel(const MeshView& mesh, const Options& options) {
-  Kernel out = compute_kernel_as_given(mesh, options);
+void compute_kernel_into(const MeshView& mesh, const Options& options, KernelPath path, KernelWorkspace& ws,
+                         Kernel& out) {
+  clear_keeping_capacity(out);
+  compute_kernel_as_given(mesh, options, path, ws, out);
   offer_flipped(mesh, options, out);
+}
+
+Kernel compute_kernel_on_path(const MeshView& mesh, const Options& options, KernelPath path) {
+  KernelWorkspace ws;
+  Kernel out;
+  compute_kernel_into(mesh, options, path, ws, out);
   return out;
+}
+
+Kernel compute_kernel(const MeshView& mesh, const Options& options) {
+  return compute_kernel_on_path(mesh, options, KernelPath::Auto);
 }
 
 KernelPoint find_kernel_point(const MeshView& mesh, const Options& options) {

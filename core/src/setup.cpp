@@ -90,7 +90,8 @@ void setup(const MeshView& mesh, const Options& options, Setup& s, Stats& stats)
   stats.ms_planes = ms_since(t) - stats.ms_lp;  // culling's own LP is counted as LP time
 
   build_plane_set(faces, s, stats);
-  solve_start_lp(options, s, stats);
+  s.lp_deferred = s.mesh.boundary_edges == 0 && s.planes->size() - s.box.size() <= s.defer_lp_up_to;
+  if (!s.lp_deferred) solve_start_lp(options, s, stats);
 }
 
 void lp_direction(const Setup& s, const Options& options, double dir[3]) {

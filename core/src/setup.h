@@ -33,6 +33,11 @@ struct Setup {
   bool try_convex = false;
   bool convex = false;
   std::vector<uint32_t> face_plane;
+  // The LP left to the caller for a closed mesh of at most defer_lp_up_to planes: the
+  // small-input path (small_kernel.h) finds the kernel, and the LP's vertex, without it, and
+  // needs it only for an empty or flat kernel. lp_deferred says it was left (s.lp is unset).
+  size_t defer_lp_up_to = 0;
+  bool lp_deferred = false;
   double center[3] = {0, 0, 0};
   size_t surface_faces = 0;  // the mesh's own faces (boundary walls follow them in `mesh`)
 };

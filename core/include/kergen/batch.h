@@ -2,9 +2,13 @@
 // mesh: millions of inputs of a few dozen faces each).
 //
 // A KernelBatch is the per-thread state of such a loop: the place where working memory is kept
-// from one call to the next. (In this version it keeps none yet: a call costs what compute_kernel
-// costs. On a cell, heap allocation is about 5 % of the instructions of a call; bench/README.md
-// has the profile.) Code that computes many kernels through it gets whatever later versions keep
+// from one call to the next. It keeps the small-input path's clipping arrays and the traced
+// kernel's vertex and edge arrays, and compute(mesh, options, result) fills `result` in place,
+// reusing the capacity of its arrays (vertices, edges, faces, triangles, face sources, witness,
+// warnings): over many cells those stop being allocated once they have grown to the largest
+// kernel seen. The input's preparation and plane classes are still allocated per call (on a
+// cell, heap allocation was about 5 % of the instructions of a call; bench/README.md has the
+// profile). Code that computes many kernels through it gets whatever later versions keep
 // without changing.
 //
 // Results: KernelBatch::compute(mesh, options) returns what compute_kernel(mesh, options) returns
@@ -38,7 +42,8 @@ class KernelBatch {
   // The same into `result`, whose every field is overwritten.
   void compute(const MeshView& mesh, const Options& options, Kernel& result);
 
-  // Frees whatever memory the batch keeps between calls (the batch stays usable).
+  // Frees the memory the batch keeps between calls (the batch stays usable; a `result` passed
+  // to compute keeps its own arrays).
   void release();
 
  private:

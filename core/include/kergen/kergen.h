@@ -4,7 +4,8 @@
 // it is the intersection of the inner half-spaces of all face planes (a convex set, empty when the
 // shape is not star-shaped). This library computes it with KerGen (Asiler & Sahillioglu, 2024):
 // one kernel vertex from Seidel's randomized LP, then additive tracing of kernel edges along the
-// lines where two face planes meet, until the boundary closes. Topology is decided by exact
+// lines where two face planes meet, until the boundary closes (a closed input of at most 64
+// distinct planes is instead clipped from a box plane by plane, with the same result). Topology is decided by exact
 // (filtered) predicates; no tolerance depends on the mesh's scale.
 //
 // Conventions used by every function in this header:

@@ -35,9 +35,26 @@ struct VertexNumbering {
   std::vector<uint32_t> rank, order;
 };
 
-// Numbers the vertices canonically, in lexicographic order of their coordinates (the exact ones
-// to ~1e-30, so equal rounded coordinates are still told apart; exactly equal ones keep their
-// traced order, which the tracer never produces: a vertex is found once), and fills `c` in that
+// The order of coordinate k of vertices a and b (-1, 0, 1) whose coordinates round to the same
+// doubles: from their low parts (`ta`, `tb`: hi[3], lo[3]) where those differ by far more than
+// their accuracy (~1e-30 relative, precise_coordinates), else exactly (num / den of the exact
+// homogeneous coordinates, computed on demand): the low parts follow the planes a vertex was
+// found on, so the order would otherwise depend on the path that found it.
+int compare_exact_coordinate(const PlaneSet& ps, const VertexGeom& a, const double* ta, const VertexGeom& b,
+                             const double* tb, int k) {
+  const double lo_a = ta[3 + k], lo_b = tb[3 + k];
+  const double accuracy = std::ldexp(std::max(std::fabs(ta[k]), 0x1p-1022), -90);
+  if (std::fabs(lo_a - lo_b) > accuracy) return lo_a < lo_b ? -1 : 1;
+  if (a.mesh_point != kNoPoint && b.mesh_point != kNoPoint) return 0;  // exact: hi, lo = 0
+  const ExactHomogeneous &ha = exact_homogeneous(ps, a), &hb = exact_homogeneous(ps, b);
+  // num_a / den_a - num_b / den_b has the sign of (num_a den_b - num_b den_a) den_a den_b.
+  const int s = (ha.num[k] * hb.den - hb.num[k] * ha.den).sign() * ha.den.sign() * hb.den.sign();
+  return s;
+}
+
+// Numbers the vertices canonically, in lexicographic order of their rounded coordinates, and of
+// their exact ones where those are equal (compare_exact_coordinate; exactly equal ones keep
+// their traced order, which the tracer never produces: a vertex is found once), and fills `c` in that
 // order: area and volume are summed in it, whatever the output numbering. Fills the output
 // vertices (rounded once, to nearest), with `canonical` in that order, else in traced order.
 void round_vertices(const PlaneSet& ps, const TraceResult& trace, int unscale_exp, bool canonical, VertexCoordinates& c,
@@ -52,9 +69,14 @@ void round_vertices(const PlaneSet& ps, const TraceResult& trace, int unscale_ex
   numbering.rank.resize(V);
   for (uint32_t i = 0; i < V; ++i) numbering.order[i] = i;
   const double* t = traced.data();
-  std::stable_sort(numbering.order.begin(), numbering.order.end(), [t](uint32_t a, uint32_t b) {
-    for (int k = 0; k < 6; ++k)  // hi, then lo
+  std::stable_sort(numbering.order.begin(), numbering.order.end(), [&](uint32_t a, uint32_t b) {
+    for (int k = 0; k < 3; ++k)  // the rounded coordinates
       if (t[6 * a + k] != t[6 * b + k]) return t[6 * a + k] < t[6 * b + k];
+    for (int k = 0; k < 3; ++k) {  // then the exact ones
+      const int c =
+          compare_exact_coordinate(ps, trace.vertices[a].geom, t + 6 * a, trace.vertices[b].geom, t + 6 * b, k);
+      if (c != 0) return c < 0;
+    }
     return false;
   });
   for (uint32_t i = 0; i < V; ++i) {
