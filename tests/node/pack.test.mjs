@@ -16,9 +16,12 @@ let packInfo;
 
 // bytes, packed (npm's "package size"): 350 kB, plus 50 kB for volume meshes (the .vtu / .vtk /
 // .node + .ele readers, the per-cell kernels and their bindings) and the convex answer: kergen.wasm
-// 699,808 -> 863,995 B raw, 266,860 -> 324,381 B gzip -9; 394,665 B packed. (What makes the
-// readers' code this large has not been looked into.)
-const SIZE_BUDGET = 400000;
+// 699,808 -> 863,995 B raw, 266,860 -> 324,381 B gzip -9; 394,665 B packed. Plus 15 kB for the
+// small-input path, the orient3d stage of side() and computeKernels' bindings: kergen.wasm
+// 897,057 B raw, 337,048 B gzip -9; 411,467 B packed. (Measured instead: the readers and the
+// volume code at -Os fit in 400 kB, 399,445 B, but read OFF/OBJ files 17-33 % slower in Node and
+// binary STL 2-3x; with stl.cpp and numbers.cpp kept at -O3, 402,560 B and still 15-30 % slower.)
+const SIZE_BUDGET = 415000;
 let readmeBefore;
 
 before(() => {
