@@ -505,17 +505,28 @@ void pair_edges(Prep& s) {
     double vol6 = 0, vol6_abs = 0;
     size_t first_general = cf;
     uint32_t* use_id = pair_storage;
-    for (size_t f = 0; f < cf; ++f) {
-      const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2], u = uint32_t(3 * f);
-      use_id[slot_of(a, b)] = u;
-      use_id[slot_of(b, c)] = u + 1;
-      use_id[slot_of(c, a)] = u + 2;
-      const double d = s.vol6_about_centre(a, b, c);
-      vol6 += d;
-      vol6_abs += std::fabs(d);
-      if (first_general == cf &&
-          !certainly_not_collinear(pts + 3 * size_t(a), pts + 3 * size_t(b), pts + 3 * size_t(c)))
-        first_general = f;
+    // The terms of a block of faces at a time (triangle_terms, vectorized), summed in face order.
+    constexpr size_t kBlock = 64;
+    double term[kBlock];
+    for (size_t f0 = 0; f0 < cf; f0 += kBlock) {
+      const size_t n = std::min(kBlock, cf - f0), whole = n & ~size_t(3);
+      uint64_t uncertain = triangle_terms(pts, cl + 3 * f0, whole, s.c, term);
+      for (size_t j = whole; j < n; ++j) {
+        const uint32_t* t = cl + 3 * (f0 + j);
+        term[j] = s.vol6_about_centre(t[0], t[1], t[2]);
+        if (!certainly_not_collinear(pts + 3 * size_t(t[0]), pts + 3 * size_t(t[1]), pts + 3 * size_t(t[2])))
+          uncertain |= uint64_t(1) << j;
+      }
+      if (first_general == cf && uncertain) first_general = f0 + size_t(__builtin_ctzll(uncertain));
+      for (size_t j = 0; j < n; ++j) {
+        const size_t f = f0 + j;
+        const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2], u = uint32_t(3 * f);
+        use_id[slot_of(a, b)] = u;
+        use_id[slot_of(b, c)] = u + 1;
+        use_id[slot_of(c, a)] = u + 2;
+        vol6 += term[j];
+        vol6_abs += std::fabs(term[j]);
+      }
     }
     s.vol6 = vol6;
     s.vol6_abs = vol6_abs;
