@@ -501,22 +501,15 @@ void pair_edges(Prep& s) {
     // The same pass over the faces sums their fans' volume (sum_fan_volume's, in its order) and
     // finds the end of the leading run of triangles the float filter certifies.
     take_centre(s);
-    const double* pts = s.m.points.data();
     double vol6 = 0, vol6_abs = 0;
     size_t first_general = cf;
     uint32_t* use_id = pair_storage;
-    // The terms of a block of faces at a time (triangle_terms, vectorized), summed in face order.
-    constexpr size_t kBlock = 64;
-    double term[kBlock];
-    for (size_t f0 = 0; f0 < cf; f0 += kBlock) {
-      const size_t n = std::min(kBlock, cf - f0), whole = n & ~size_t(3);
-      uint64_t uncertain = triangle_terms(pts, cl + 3 * f0, whole, s.c, term);
-      for (size_t j = whole; j < n; ++j) {
-        const uint32_t* t = cl + 3 * (f0 + j);
-        term[j] = s.vol6_about_centre(t[0], t[1], t[2]);
-        if (!certainly_not_collinear(pts + 3 * size_t(t[0]), pts + 3 * size_t(t[1]), pts + 3 * size_t(t[2])))
-          uncertain |= uint64_t(1) << j;
-      }
+    // The terms of a block of faces at a time (triangle_block_terms, vectorized), summed in face
+    // order.
+    double term[kTermBlock];
+    for (size_t f0 = 0; f0 < cf; f0 += kTermBlock) {
+      const size_t n = std::min(kTermBlock, cf - f0);
+      const uint64_t uncertain = triangle_block_terms(s, cl + 3 * f0, n, term);
       if (first_general == cf && uncertain) first_general = f0 + size_t(__builtin_ctzll(uncertain));
       for (size_t j = 0; j < n; ++j) {
         const size_t f = f0 + j;

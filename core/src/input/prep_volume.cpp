@@ -124,6 +124,19 @@ uint64_t triangle_terms(const double* pts, const uint32_t* tri, size_t n, const 
   return uncertain;
 }
 
+uint64_t triangle_block_terms(const Prep& s, const uint32_t* tri, size_t n, double* d) {
+  const double* pts = s.m.points.data();
+  const size_t whole = n & ~size_t(3);
+  uint64_t uncertain = triangle_terms(pts, tri, whole, s.c, d);
+  for (size_t j = whole; j < n; ++j) {
+    const uint32_t* t = tri + 3 * j;
+    d[j] = s.vol6_about_centre(t[0], t[1], t[2]);
+    if (!certainly_not_collinear(pts + 3 * size_t(t[0]), pts + 3 * size_t(t[1]), pts + 3 * size_t(t[2])))
+      uncertain |= uint64_t(1) << j;
+  }
+  return uncertain;
+}
+
 // The box into the result, its centre and largest side (for the fans' volume).
 void take_centre(Prep& s) {
   s.ext = 0;
@@ -168,8 +181,25 @@ void sum_fan_volume(Prep& s) {
   };
   size_t f = 0;
   if (s.clean_size == 3 * cf) {  // every clean face is a triangle: loop f starts at 3 f
-    for (; f < cf; ++f)
-      if (!take_triangle(f, cl[3 * f], cl[3 * f + 1], cl[3 * f + 2])) break;
+    // A block of terms at a time (triangle_block_terms), taken in face order up to the first
+    // triangle the filter does not certify, whose volume is counted.
+    double term[kTermBlock];
+    while (f < cf) {
+      const size_t n = std::min(kTermBlock, cf - f);
+      const uint64_t uncertain = triangle_block_terms(s, cl + 3 * f, n, term);
+      const size_t stop = uncertain ? size_t(__builtin_ctzll(uncertain)) : n;
+      for (size_t j = 0; j < stop; ++j) {
+        vol6 += term[j];
+        vol6_abs += std::fabs(term[j]);
+        rep_out[f + j] = {cl[3 * (f + j)], cl[3 * (f + j) + 1], cl[3 * (f + j) + 2]};
+      }
+      f += stop;
+      if (stop < n) {
+        vol6 += term[stop];
+        vol6_abs += std::fabs(term[stop]);
+        break;
+      }
+    }
   } else {
     for (; f < cf; ++f) {
       const size_t b = off[f];
