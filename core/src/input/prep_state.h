@@ -138,6 +138,13 @@ void find_shared_positions(Prep& s);
 bool check_shared_positions(Prep& s);
 
 // prep_volume.cpp: bounding box, enclosed volume, orientation.
+// The volume terms (vol6_about_centre) of the triangles tri[3 j..3 j + 3), j < n, n a multiple
+// of 4 and at most 64, into d, and bit j set when certainly_not_collinear does not certify
+// triangle j: the same bits as the scalar functions, four triangles at a time.
+uint64_t triangle_terms(const double* pts, const uint32_t* tri, size_t n, const double c[3], double* d);
+// The same for any n up to kTermBlock, about s.c (the last n % 4 by the scalar functions).
+constexpr size_t kTermBlock = 64;
+uint64_t triangle_block_terms(const Prep& s, const uint32_t* tri, size_t n, double* d);
 void take_bounding_box(Prep& s);
 void take_centre(Prep& s);
 void sum_fan_volume(Prep& s);

@@ -501,21 +501,25 @@ void pair_edges(Prep& s) {
     // The same pass over the faces sums their fans' volume (sum_fan_volume's, in its order) and
     // finds the end of the leading run of triangles the float filter certifies.
     take_centre(s);
-    const double* pts = s.m.points.data();
     double vol6 = 0, vol6_abs = 0;
     size_t first_general = cf;
     uint32_t* use_id = pair_storage;
-    for (size_t f = 0; f < cf; ++f) {
-      const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2], u = uint32_t(3 * f);
-      use_id[slot_of(a, b)] = u;
-      use_id[slot_of(b, c)] = u + 1;
-      use_id[slot_of(c, a)] = u + 2;
-      const double d = s.vol6_about_centre(a, b, c);
-      vol6 += d;
-      vol6_abs += std::fabs(d);
-      if (first_general == cf &&
-          !certainly_not_collinear(pts + 3 * size_t(a), pts + 3 * size_t(b), pts + 3 * size_t(c)))
-        first_general = f;
+    // The terms of a block of faces at a time (triangle_block_terms, vectorized), summed in face
+    // order.
+    double term[kTermBlock];
+    for (size_t f0 = 0; f0 < cf; f0 += kTermBlock) {
+      const size_t n = std::min(kTermBlock, cf - f0);
+      const uint64_t uncertain = triangle_block_terms(s, cl + 3 * f0, n, term);
+      if (first_general == cf && uncertain) first_general = f0 + size_t(__builtin_ctzll(uncertain));
+      for (size_t j = 0; j < n; ++j) {
+        const size_t f = f0 + j;
+        const uint32_t a = cl[3 * f], b = cl[3 * f + 1], c = cl[3 * f + 2], u = uint32_t(3 * f);
+        use_id[slot_of(a, b)] = u;
+        use_id[slot_of(b, c)] = u + 1;
+        use_id[slot_of(c, a)] = u + 2;
+        vol6 += term[j];
+        vol6_abs += std::fabs(term[j]);
+      }
     }
     s.vol6 = vol6;
     s.vol6_abs = vol6_abs;

@@ -13,7 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "exact/predicates.h"
 #include "fixtures.h"
+#include "input/prep_state.h"
 
 namespace {
 
@@ -422,4 +424,66 @@ TEST(MeshPrep, RefusalsKeepTheirPrecedence) {
   m.indices[5] = 5;
   EXPECT_EQ(refusal(m), std::make_pair(Error::IndexOutOfRange,
                                        std::string("face 1 refers to vertex 5 but the mesh has 4 vertices")));
+}
+
+// The volume terms and the float filter of the triangles, four at a time (triangle_terms), are
+// the scalar functions' bits: on random triangles, exactly collinear ones, nearly collinear ones
+// (the filter's margin) and repeated corners, for every block length.
+TEST(MeshPrep, TriangleTermsAreTheScalarTerms) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> coord(-3, 5);
+  std::vector<double> pts;
+  auto add = [&](double x, double y, double z) {
+    pts.insert(pts.end(), {x, y, z});
+    return uint32_t(pts.size() / 3 - 1);
+  };
+  for (int i = 0; i < 40; ++i) add(coord(rng), coord(rng), coord(rng));
+  std::vector<uint32_t> tri;
+  std::uniform_int_distribution<uint32_t> vertex(0, 39);
+  for (int t = 0; t < 64; ++t) {
+    const uint32_t a = vertex(rng), b = vertex(rng);
+    switch (t % 4) {
+      case 0:  // random
+        tri.insert(tri.end(), {a, b, vertex(rng)});
+        break;
+      case 1: {  // exactly collinear: the midpoint of a and b (exact for these coordinates' halving)
+        const double* p = &pts[3 * size_t(a)];
+        const double* q = &pts[3 * size_t(b)];
+        const uint32_t m = add(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]));
+        tri.insert(tri.end(), {a, m, b});
+        break;
+      }
+      case 2: {  // nearly collinear, off the line by a few ulps
+        const double* p = &pts[3 * size_t(a)];
+        const double* q = &pts[3 * size_t(b)];
+        const double off = std::ldexp(1.0, -50 + int(t % 7));
+        const uint32_t m = add(0.5 * (p[0] + q[0]) + off, 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]) - off);
+        tri.insert(tri.end(), {m, a, b});
+        break;
+      }
+      default:  // a repeated corner
+        tri.insert(tri.end(), {a, b, a});
+    }
+  }
+  const Mesh no_mesh;
+  const Options options;
+  prep::Prep state(no_mesh.view(), options, false, true);  // (its centre and points are read)
+  state.c[0] = 0.25, state.c[1] = -1.5, state.c[2] = 3;
+  state.m.points = pts;
+  for (size_t n = 0; n <= 64; n += 4) {
+    SCOPED_TRACE(n);
+    std::vector<double> d(64, -7.0);
+    const uint64_t uncertain = prep::triangle_terms(pts.data(), tri.data(), n, state.c, d.data());
+    for (size_t j = 0; j < n; ++j) {
+      const uint32_t* t = &tri[3 * j];
+      const double expected = state.vol6_about_centre(t[0], t[1], t[2]);
+      EXPECT_EQ(std::memcmp(&d[j], &expected, sizeof(double)), 0) << j;
+      const bool certain =
+          certainly_not_collinear(&pts[3 * size_t(t[0])], &pts[3 * size_t(t[1])], &pts[3 * size_t(t[2])]);
+      EXPECT_EQ((uncertain >> j & 1) == 0, certain) << j;
+    }
+    EXPECT_EQ(n == 64 ? 0 : uncertain >> n, 0u);
+    if (n == 64) EXPECT_TRUE(uncertain != 0 && ~uncertain != 0);  // (both kinds met)
+    for (size_t j = n; j < 64; ++j) EXPECT_EQ(d[j], -7.0);
+  }
 }
