@@ -27,8 +27,10 @@
 #include <new>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
+#include "blocks.h"
 #include "kergen/kergen.h"
 #include "kergen/volume.h"
 
@@ -140,16 +142,10 @@ uintptr_t error_block(const char* code, const std::string& message) {
   return pack(o);
 }
 
-// As bindings.cpp's guarded(): a C++ exception becomes an error block, never a trap.
+// The blocks' guard (blocks.h) with this file's error_block().
 template <class Body>
 uintptr_t guarded(Body&& body) {
-  try {
-    return body();
-  } catch (const std::bad_alloc&) {
-    return error_block("OUT_OF_MEMORY", "out of memory (the wasm heap is limited to 4 GB)");
-  } catch (const std::exception& e) {
-    return error_block("INTERNAL_ERROR", std::string("internal error: ") + e.what());
-  }
+  return kergen_wasm::guarded_with(error_block, std::forward<Body>(body));
 }
 
 void put_mesh_arrays(const kergen::VolumeMesh& m, CellOut& o) {
