@@ -18,9 +18,11 @@
 //   input_bench [--runs N] [--formats] [--stl] FILE...
 #include <time.h>
 
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -73,8 +75,14 @@ struct Input {
   kergen::MeshFormat format;
 };
 
+// The file's bytes; a file that cannot be opened ends the run with the system's reason (not an
+// "empty file" row, which is what reading nothing would give).
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    std::fprintf(stderr, "input_bench: %s: %s\n", path.c_str(), std::strerror(errno));
+    std::exit(1);
+  }
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
